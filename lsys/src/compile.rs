@@ -1,0 +1,175 @@
+//! The compiled form of a grammar that the engine runs: flat programs and per-symbol tables.
+
+use crate::alphabet::{Alphabet, SymbolId};
+use crate::expr::Op;
+use crate::grammar::{Production, SuccessorItem};
+
+/// A range into one of the flat tables.
+pub(crate) type Span = (u32, u32);
+
+#[derive(Debug, Clone)]
+pub(crate) enum CItem {
+    Module {
+        symbol: SymbolId,
+        args: Span,
+    },
+    Choice {
+        probability: Span,
+        then: Span,
+        otherwise: Span,
+    },
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct CPattern {
+    pub(crate) symbol: SymbolId,
+    pub(crate) arity: u8,
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct CProduction {
+    pub(crate) left: Vec<CPattern>,
+    pub(crate) arity: u8,
+    pub(crate) right: Vec<CPattern>,
+    pub(crate) condition: Option<Span>,
+    pub(crate) successor: Span,
+    pub(crate) weight: Option<f64>,
+    /// Upper bound on the modules one application emits, for the size limit check.
+    pub(crate) max_modules: u32,
+    pub(crate) max_params: u32,
+}
+
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Compiled {
+    pub(crate) ops: Vec<Op>,
+    /// Per successor-module argument: its program in `ops`.
+    pub(crate) args: Vec<Span>,
+    pub(crate) items: Vec<CItem>,
+    pub(crate) productions: Vec<CProduction>,
+    /// For symbol `s`, its productions are `by_symbol[s.0 .. s.0+1]` into `order`.
+    pub(crate) by_symbol: Vec<u32>,
+    pub(crate) order: Vec<u32>,
+    pub(crate) ignored: Vec<bool>,
+    pub(crate) has_context: bool,
+}
+
+impl Compiled {
+    pub(crate) fn new(
+        alphabet: &Alphabet,
+        ignore: &[SymbolId],
+        productions: &[Production],
+    ) -> Compiled {
+        let mut c = Compiled::default();
+        for p in productions {
+            let condition = p.condition.as_ref().map(|e| {
+                let start = c.ops.len() as u32;
+                e.compile(&mut c.ops);
+                (start, c.ops.len() as u32)
+            });
+            let successor = c.items_of(&p.successor);
+            let (max_modules, max_params) = bound(&p.successor);
+            let pat = |v: &[crate::grammar::Pattern]| {
+                v.iter()
+                    .map(|q| CPattern {
+                        symbol: q.symbol,
+                        arity: q.params.len() as u8,
+                    })
+                    .collect::<Vec<_>>()
+            };
+            c.has_context |= !p.left.is_empty() || !p.right.is_empty();
+            c.productions.push(CProduction {
+                left: pat(&p.left),
+                arity: p.predecessor.params.len() as u8,
+                right: pat(&p.right),
+                condition,
+                successor,
+                weight: p.weight,
+                max_modules,
+                max_params,
+            });
+        }
+        let n = alphabet.len();
+        let mut counts = vec![0u32; n + 1];
+        for p in productions {
+            counts[p.predecessor.symbol.index() + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        c.by_symbol = counts.clone();
+        c.order = vec![0; productions.len()];
+        let mut fill = counts;
+        for (i, p) in productions.iter().enumerate() {
+            let s = p.predecessor.symbol.index();
+            c.order[fill[s] as usize] = i as u32;
+            fill[s] += 1;
+        }
+        c.ignored = vec![false; n];
+        for s in ignore {
+            c.ignored[s.index()] = true;
+        }
+        c
+    }
+
+    /// Lays out `items` contiguously (children after their parent list) and returns their span.
+    fn items_of(&mut self, items: &[SuccessorItem]) -> Span {
+        let start = self.items.len();
+        // Reserve the slots first so the list is contiguous; nested lists go after it.
+        for _ in items {
+            self.items.push(CItem::Module {
+                symbol: SymbolId(0),
+                args: (0, 0),
+            });
+        }
+        for (k, item) in items.iter().enumerate() {
+            let compiled = match item {
+                SuccessorItem::Module(m) => {
+                    let a0 = self.args.len() as u32;
+                    for e in &m.args {
+                        let s = self.ops.len() as u32;
+                        e.compile(&mut self.ops);
+                        self.args.push((s, self.ops.len() as u32));
+                    }
+                    CItem::Module {
+                        symbol: m.symbol,
+                        args: (a0, self.args.len() as u32),
+                    }
+                }
+                SuccessorItem::Choice {
+                    probability,
+                    then,
+                    otherwise,
+                } => {
+                    let s = self.ops.len() as u32;
+                    probability.compile(&mut self.ops);
+                    let probability = (s, self.ops.len() as u32);
+                    let then = self.items_of(then);
+                    let otherwise = self.items_of(otherwise);
+                    CItem::Choice {
+                        probability,
+                        then,
+                        otherwise,
+                    }
+                }
+            };
+            self.items[start + k] = compiled;
+        }
+        (start as u32, (start + items.len()) as u32)
+    }
+}
+
+/// Most modules and parameters one application of `items` can emit.
+fn bound(items: &[SuccessorItem]) -> (u32, u32) {
+    items.iter().fold((0u32, 0u32), |(m, p), item| match item {
+        SuccessorItem::Module(t) => (m.saturating_add(1), p.saturating_add(t.args.len() as u32)),
+        SuccessorItem::Choice {
+            then, otherwise, ..
+        } => {
+            let (a, b) = (bound(then), bound(otherwise));
+            (
+                m.saturating_add(a.0.max(b.0)),
+                p.saturating_add(a.1.max(b.1)),
+            )
+        }
+    })
+}

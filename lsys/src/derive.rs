@@ -1,0 +1,492 @@
+//! The rewriting engine: one derivation step streams the current word into the next.
+
+use crate::alphabet::{CUT, POP, PUSH};
+use crate::compile::{CItem, CPattern, CProduction, Span};
+use crate::error::DeriveError;
+use crate::expr::eval;
+use crate::grammar::LSystem;
+use crate::random::Random;
+use crate::word::Word;
+
+/// Bounds that stop a derivation with an error before it exhausts memory or time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Limits {
+    /// Most modules a word may hold. Default 10 million (about 60 MB with offsets).
+    pub max_modules: usize,
+    /// Most parameters a word may hold in total. Default 40 million (320 MB).
+    pub max_params: usize,
+    /// Most derivation steps one call may run. Default 10,000.
+    pub max_steps: u32,
+}
+
+impl Limits {
+    /// The defaults described on each field.
+    pub const DEFAULT: Limits = Limits {
+        max_modules: 10_000_000,
+        max_params: 40_000_000,
+        max_steps: 10_000,
+    };
+
+    /// Sets [`Limits::max_modules`].
+    pub fn with_max_modules(mut self, n: usize) -> Self {
+        self.max_modules = n;
+        self
+    }
+
+    /// Sets [`Limits::max_params`].
+    pub fn with_max_params(mut self, n: usize) -> Self {
+        self.max_params = n;
+        self
+    }
+
+    /// Sets [`Limits::max_steps`].
+    pub fn with_max_steps(mut self, n: u32) -> Self {
+        self.max_steps = n;
+        self
+    }
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+impl LSystem {
+    /// The axiom as a word (generation 0).
+    pub fn axiom_word(&self) -> Word {
+        let mut w = Word::empty(self.alphabet.clone());
+        let mut params = Vec::new();
+        for m in &self.axiom {
+            params.clear();
+            params.extend(m.args.iter().map(|a| a.eval_constant(0.0, 0)));
+            w.push(m.symbol, &params);
+        }
+        w
+    }
+
+    /// Derives `steps` generations from the axiom with the default [`Limits`].
+    ///
+    /// The result is a pure function of the grammar, `steps` and `seed`.
+    ///
+    /// ```
+    /// let algae: sylva_lsys::LSystem = "axiom: A\nA -> AB\nB -> A".parse().unwrap();
+    /// assert_eq!(algae.derive(4, 0).unwrap().to_string(), "ABAABABA");
+    /// ```
+    pub fn derive(&self, steps: u32, seed: u64) -> Result<Word, DeriveError> {
+        self.derive_with(steps, seed, &Limits::DEFAULT)
+    }
+
+    /// Derives `steps` generations under explicit limits.
+    pub fn derive_with(&self, steps: u32, seed: u64, limits: &Limits) -> Result<Word, DeriveError> {
+        let mut d = Deriver::new(self, seed, *limits);
+        d.derive_from(self.axiom_word(), 0, steps)
+    }
+}
+
+/// Rewrites words step by step, reusing its buffers; [`LSystem::derive`] wraps it.
+#[derive(Debug)]
+pub struct Deriver<'g> {
+    grammar: &'g LSystem,
+    rng: Random,
+    limits: Limits,
+    vars: Vec<f64>,
+    stack: Vec<f64>,
+    matched: Vec<u32>,
+    candidates: Vec<(u32, f64)>,
+    /// For `]`: index of its `[`; for `[`: index of its `]`. `u32::MAX` when unmatched.
+    partner: Vec<u32>,
+}
+
+impl<'g> Deriver<'g> {
+    /// A deriver whose random stream starts from `seed`.
+    pub fn new(grammar: &'g LSystem, seed: u64, limits: Limits) -> Self {
+        Deriver {
+            grammar,
+            rng: Random::new(seed),
+            limits,
+            vars: Vec::new(),
+            stack: Vec::new(),
+            matched: Vec::new(),
+            candidates: Vec::new(),
+            partner: Vec::new(),
+        }
+    }
+
+    /// Derives `steps` generations starting from `word`, which is taken to be generation
+    /// `generation` (so `#` in the first step is `generation + 1`).
+    pub fn derive_from(
+        &mut self,
+        word: Word,
+        generation: u32,
+        steps: u32,
+    ) -> Result<Word, DeriveError> {
+        if steps > self.limits.max_steps {
+            return Err(DeriveError::TooManySteps {
+                requested: steps,
+                limit: self.limits.max_steps,
+            });
+        }
+        let mut current = word;
+        let mut next = Word::empty(current.alphabet.clone());
+        for k in 1..=steps {
+            self.step(&current, &mut next, generation.saturating_add(k))?;
+            std::mem::swap(&mut current, &mut next);
+        }
+        Ok(current)
+    }
+
+    /// One parallel rewriting step from `cur` into `out` (cleared first); `generation` is the
+    /// value of `#`.
+    pub fn step(&mut self, cur: &Word, out: &mut Word, generation: u32) -> Result<(), DeriveError> {
+        out.clear();
+        out.alphabet = cur.alphabet.clone();
+        let grammar: &'g LSystem = self.grammar;
+        let c = &grammar.compiled;
+        if c.has_context {
+            self.link_brackets(cur);
+        }
+        let gen_f = f64::from(generation);
+        let mut cut_seen = false;
+        for i in 0..cur.len() {
+            let sym = cur.symbols[i];
+            let s = sym.index();
+            let (lo, hi) = match (c.by_symbol.get(s), c.by_symbol.get(s + 1)) {
+                (Some(&lo), Some(&hi)) if lo < hi => (lo as usize, hi as usize),
+                _ => {
+                    out.push(sym, cur.params(i));
+                    cut_seen |= sym == CUT;
+                    continue;
+                }
+            };
+            match self.select(cur, i, &c.order[lo..hi], gen_f) {
+                Some(p) => {
+                    let prod = &c.productions[p as usize];
+                    self.check_room(out, prod, generation)?;
+                    self.bind(cur, i, prod);
+                    cut_seen |= self.emit(prod.successor, out, gen_f, generation)?;
+                }
+                None => {
+                    out.push(sym, cur.params(i));
+                    cut_seen |= sym == CUT;
+                }
+            }
+            if out.len() > self.limits.max_modules {
+                return Err(DeriveError::TooManyModules {
+                    step: generation,
+                    limit: self.limits.max_modules,
+                });
+            }
+        }
+        if out.params.len() > self.limits.max_params {
+            return Err(DeriveError::TooManyParams {
+                step: generation,
+                limit: self.limits.max_params,
+            });
+        }
+        if cut_seen {
+            apply_cuts(out);
+        }
+        Ok(())
+    }
+
+    fn check_room(&self, out: &Word, prod: &CProduction, step: u32) -> Result<(), DeriveError> {
+        if out.len() + prod.max_modules as usize > self.limits.max_modules {
+            return Err(DeriveError::TooManyModules {
+                step,
+                limit: self.limits.max_modules,
+            });
+        }
+        if out.params.len() + prod.max_params as usize > self.limits.max_params {
+            return Err(DeriveError::TooManyParams {
+                step,
+                limit: self.limits.max_params,
+            });
+        }
+        Ok(())
+    }
+
+    /// Picks the production to apply to module `i`, if any: the first match when it is
+    /// deterministic, else a weighted draw among all matching weighted productions.
+    fn select(&mut self, cur: &Word, i: usize, order: &[u32], generation: f64) -> Option<u32> {
+        let grammar: &'g LSystem = self.grammar;
+        let c = &grammar.compiled;
+        self.candidates.clear();
+        let mut total = 0.0;
+        for &p in order {
+            let prod = &c.productions[p as usize];
+            if !self.matches(cur, i, prod) {
+                continue;
+            }
+            if let Some((a, b)) = prod.condition {
+                self.bind(cur, i, prod);
+                let v = eval(
+                    &c.ops[a as usize..b as usize],
+                    &self.vars,
+                    generation,
+                    &mut self.rng,
+                    &mut self.stack,
+                );
+                if v == 0.0 || v.is_nan() {
+                    continue;
+                }
+            }
+            match prod.weight {
+                None if self.candidates.is_empty() => return Some(p),
+                None => {}
+                Some(w) => {
+                    total += w;
+                    self.candidates.push((p, w));
+                }
+            }
+        }
+        if self.candidates.is_empty() || total <= 0.0 {
+            return None;
+        }
+        let mut u = self.rng.unit() * total;
+        for &(p, w) in &self.candidates {
+            if u < w {
+                return Some(p);
+            }
+            u -= w;
+        }
+        self.candidates
+            .iter()
+            .rev()
+            .find(|c| c.1 > 0.0)
+            .map(|c| c.0)
+    }
+
+    fn matches(&mut self, cur: &Word, i: usize, prod: &CProduction) -> bool {
+        let arity = (cur.offsets[i + 1] - cur.offsets[i]) as usize;
+        if arity != prod.arity as usize {
+            return false;
+        }
+        self.matched.clear();
+        if !prod.left.is_empty() && !self.match_left(cur, i, &prod.left) {
+            return false;
+        }
+        self.matched.push(i as u32);
+        prod.right.is_empty() || self.match_right(cur, i, &prod.right)
+    }
+
+    /// Fills `vars` with the parameters of the modules `matches` found, in slot order.
+    /// Re-runs the match so that it is right for whichever production was chosen.
+    fn bind(&mut self, cur: &Word, i: usize, prod: &CProduction) {
+        self.vars.clear();
+        if prod.left.is_empty() && prod.right.is_empty() {
+            self.vars.extend_from_slice(cur.params(i));
+            return;
+        }
+        self.matches(cur, i, prod);
+        for &m in &self.matched {
+            self.vars.extend_from_slice(cur.params(m as usize));
+        }
+    }
+
+    fn arity_of(cur: &Word, j: usize) -> u8 {
+        (cur.offsets[j + 1] - cur.offsets[j]) as u8
+    }
+
+    /// ABOP 1.8: walking left, a whole branch `[...]` is skipped and a `[` leads to the parent.
+    fn match_left(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
+        let grammar: &'g LSystem = self.grammar;
+        let ignored = &grammar.compiled.ignored;
+        let mut j = i;
+        let start = self.matched.len();
+        for p in pattern.iter().rev() {
+            loop {
+                if j == 0 {
+                    return false;
+                }
+                j -= 1;
+                let s = cur.symbols[j];
+                if s == POP {
+                    match self.partner[j] {
+                        u32::MAX => return false,
+                        open => j = open as usize,
+                    }
+                    continue;
+                }
+                if s == PUSH || ignored[s.index()] {
+                    continue;
+                }
+                if s == p.symbol && Self::arity_of(cur, j) == p.arity {
+                    self.matched.push(j as u32);
+                    break;
+                }
+                return false;
+            }
+        }
+        self.matched[start..].reverse();
+        true
+    }
+
+    /// ABOP 1.8: walking right, branches not named by the pattern are skipped; `[` in the
+    /// pattern enters a branch and `]` skips to the end of the current one.
+    fn match_right(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
+        let grammar: &'g LSystem = self.grammar;
+        let ignored = &grammar.compiled.ignored;
+        let n = cur.len();
+        let mut j = i + 1;
+        for p in pattern {
+            if p.symbol == PUSH {
+                while j < n && ignored[cur.symbols[j].index()] {
+                    j += 1;
+                }
+                if j < n && cur.symbols[j] == PUSH {
+                    j += 1;
+                    continue;
+                }
+                return false;
+            }
+            if p.symbol == POP {
+                loop {
+                    if j >= n {
+                        return false;
+                    }
+                    match cur.symbols[j] {
+                        PUSH => match self.partner[j] {
+                            u32::MAX => return false,
+                            close => j = close as usize + 1,
+                        },
+                        POP => {
+                            j += 1;
+                            break;
+                        }
+                        _ => j += 1,
+                    }
+                }
+                continue;
+            }
+            loop {
+                if j >= n {
+                    return false;
+                }
+                let s = cur.symbols[j];
+                if s == PUSH {
+                    match self.partner[j] {
+                        u32::MAX => return false,
+                        close => j = close as usize + 1,
+                    }
+                    continue;
+                }
+                if s == POP {
+                    return false;
+                }
+                if ignored[s.index()] {
+                    j += 1;
+                    continue;
+                }
+                if s == p.symbol && Self::arity_of(cur, j) == p.arity {
+                    self.matched.push(j as u32);
+                    j += 1;
+                    break;
+                }
+                return false;
+            }
+        }
+        true
+    }
+
+    fn link_brackets(&mut self, cur: &Word) {
+        self.partner.clear();
+        self.partner.resize(cur.len(), u32::MAX);
+        let mut open = Vec::new();
+        for (j, &s) in cur.symbols.iter().enumerate() {
+            if s == PUSH {
+                open.push(j as u32);
+            } else if s == POP {
+                if let Some(o) = open.pop() {
+                    self.partner[j] = o;
+                    self.partner[o as usize] = j as u32;
+                }
+            }
+        }
+    }
+
+    /// Emits the items of `span`; returns whether a cut symbol was produced.
+    fn emit(
+        &mut self,
+        span: Span,
+        out: &mut Word,
+        generation: f64,
+        step: u32,
+    ) -> Result<bool, DeriveError> {
+        let grammar: &'g LSystem = self.grammar;
+        let c = &grammar.compiled;
+        let mut cut = false;
+        for k in span.0..span.1 {
+            match c.items[k as usize] {
+                CItem::Module { symbol, args } => {
+                    for a in args.0..args.1 {
+                        let (lo, hi) = c.args[a as usize];
+                        let v = eval(
+                            &c.ops[lo as usize..hi as usize],
+                            &self.vars,
+                            generation,
+                            &mut self.rng,
+                            &mut self.stack,
+                        );
+                        if !v.is_finite() {
+                            return Err(DeriveError::NonFiniteParameter {
+                                step,
+                                symbol: self.grammar.alphabet.char(symbol),
+                                index: (a - args.0) as usize,
+                                value: v,
+                            });
+                        }
+                        out.params.push(v);
+                    }
+                    out.symbols.push(symbol);
+                    out.offsets.push(out.params.len() as u32);
+                    cut |= symbol == CUT;
+                }
+                CItem::Choice {
+                    probability,
+                    then,
+                    otherwise,
+                } => {
+                    let (lo, hi) = probability;
+                    let p = eval(
+                        &c.ops[lo as usize..hi as usize],
+                        &self.vars,
+                        generation,
+                        &mut self.rng,
+                        &mut self.stack,
+                    );
+                    let branch = if self.rng.unit() < p { then } else { otherwise };
+                    cut |= self.emit(branch, out, generation, step)?;
+                }
+            }
+        }
+        Ok(cut)
+    }
+}
+
+/// Removes every cut symbol `%` and the rest of the branch it stands in (ABOP's cut).
+fn apply_cuts(w: &mut Word) {
+    let mut read = Word::empty(w.alphabet.clone());
+    std::mem::swap(&mut read, w);
+    let mut i = 0;
+    while i < read.len() {
+        let s = read.symbols[i];
+        if s == CUT {
+            let mut depth = 0usize;
+            i += 1;
+            while i < read.len() {
+                match read.symbols[i] {
+                    PUSH => depth += 1,
+                    POP if depth == 0 => break,
+                    POP => depth -= 1,
+                    _ => {}
+                }
+                i += 1;
+            }
+            continue;
+        }
+        w.push(s, read.params(i));
+        i += 1;
+    }
+}

@@ -1,0 +1,87 @@
+//! Error types for parsing grammars and deriving words.
+
+use std::fmt;
+
+/// Where in the source text something went wrong: 1-based line and column (in characters).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Location {
+    /// 1-based line number.
+    pub line: usize,
+    /// 1-based column, counted in Unicode scalar values.
+    pub column: usize,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}, column {}", self.line, self.column)
+    }
+}
+
+/// A grammar or word that could not be parsed.
+///
+/// Fix the text at [`ParseError::location`]; the message says what the parser expected there.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{location}: {message}")]
+#[non_exhaustive]
+pub struct ParseError {
+    /// Where the problem is.
+    pub location: Location,
+    /// What was expected or what is wrong, in words.
+    pub message: String,
+}
+
+impl ParseError {
+    pub(crate) fn new(line: usize, column: usize, message: impl Into<String>) -> Self {
+        Self {
+            location: Location { line, column },
+            message: message.into(),
+        }
+    }
+}
+
+/// A derivation that was stopped before it could finish.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DeriveError {
+    /// The word grew past [`Limits::max_modules`](crate::Limits::max_modules).
+    /// Derive fewer steps or raise the limit if the memory is really there.
+    #[error("derivation step {step} would exceed the limit of {limit} modules")]
+    TooManyModules {
+        /// The step (1-based) that hit the limit.
+        step: u32,
+        /// The limit in force.
+        limit: usize,
+    },
+    /// The word's parameters grew past [`Limits::max_params`](crate::Limits::max_params).
+    /// Derive fewer steps or raise the limit.
+    #[error("derivation step {step} would exceed the limit of {limit} parameters")]
+    TooManyParams {
+        /// The step (1-based) that hit the limit.
+        step: u32,
+        /// The limit in force.
+        limit: usize,
+    },
+    /// More steps were asked for than [`Limits::max_steps`](crate::Limits::max_steps) allows.
+    #[error("{requested} derivation steps requested, the limit is {limit}")]
+    TooManySteps {
+        /// Steps asked for.
+        requested: u32,
+        /// The limit in force.
+        limit: u32,
+    },
+    /// An expression produced infinity or NaN (for example a division by zero).
+    /// Guard the production with a condition or change the constants.
+    #[error(
+        "derivation step {step}: parameter {index} of module '{symbol}' is not finite ({value})"
+    )]
+    NonFiniteParameter {
+        /// The step (1-based) in which it happened.
+        step: u32,
+        /// The module's symbol.
+        symbol: char,
+        /// Which parameter (0-based).
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+}

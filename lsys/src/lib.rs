@@ -1,0 +1,119 @@
+//! L-system grammars in ABOP / cpfg notation, and a fast seeded rewriting engine.
+//!
+//! ```
+//! use sylva_lsys::LSystem;
+//!
+//! let plant: LSystem = "
+//!     #define r 0.5
+//!     axiom: A(1)
+//!     A(x) : x < 4 -> F(x)[+A(x*2)][-A(x+r)]
+//! ".parse()?;
+//! let word = plant.derive(2, 7)?;
+//! assert_eq!(word.to_string(), "F(1)[+F(2)[+A(4)][-A(2.5)]][-F(1.5)[+A(3)][-A(2)]]");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Grammar language
+//!
+//! One statement per line. Whitespace between modules is ignored. Comments are `/* ... */`
+//! (may span lines) and lines starting with `//`.
+//!
+//! - `#define NAME expression`: a named constant, usable in every later expression.
+//! - `#ignore: + - F`: symbols skipped when matching contexts.
+//! - `axiom: modules` (or `ω: modules`): the initial word; parameters are constant expressions.
+//! - Productions: `label: lc < pred(params) > rc : condition -> successor : weight`. Only the
+//!   predecessor, the arrow (`->` or `→`) and the successor are required. The label (two or
+//!   more letters or digits, as ABOP prints `p1:`) is ignored. A condition of `*` means none.
+//!
+//! A module is one character (anything but whitespace and `( ) , < > : ? #`) followed by an
+//! optional parameter list. In predecessors and contexts the parameters are names; in
+//! successors they are expressions.
+//!
+//! **Choosing a production.** The productions of a predecessor are tried in order. Those whose
+//! parameter count, contexts and condition match form the candidates. If the first candidate
+//! has no weight it fires. Otherwise one of the weighted candidates is drawn with probability
+//! proportional to its weight (weights need not sum to 1). A module with no candidate is copied.
+//!
+//! **Contexts** follow ABOP section 1.8. Walking left from the predecessor, whole branches
+//! `[...]` are skipped and a `[` leads to the parent's module; walking right, branches are
+//! skipped unless the pattern itself enters them with `[` (and `]` in a pattern skips to the end
+//! of the current branch). Symbols in `#ignore` are skipped both ways.
+//!
+//! **Expressions** have `+ - * / ^` (power, right-associative), comparisons `< <= > >= == !=`,
+//! `&& || !`, unary minus and parentheses; truth is 1 and falsehood 0. Functions: `sin cos tan
+//! asin acos atan atan2 sqrt exp log abs floor ceil min max` (radians), and the seeded random
+//! draws `uniform(a, b)`, `ran(x)` (uniform in `[0, x)`) and `nran(mean, sd)` (normal).
+//! `#` is the age symbol: the generation being produced (1 in the first step, 0 in the axiom),
+//! so `B(#)` records when a module was introduced.
+//!
+//! **Cut.** The symbol `%` removes itself and the rest of its branch at the end of the step
+//! that produced it (ABOP section 3.3.1 / cpfg).
+//!
+//! **Choices** (a sylva extension): `?(p)<then><otherwise>` in a successor emits `then` with
+//! probability `p` and `otherwise` else, drawn independently each time the production fires.
+//!
+//! # Determinism and limits
+//!
+//! [`LSystem::derive`] is a pure function of the grammar, the step count and the seed: one
+//! PCG stream (`rand_pcg::Pcg64Mcg`) is consumed in word order. Words grow exponentially, so
+//! every derivation runs under [`Limits`] (modules, parameters, steps) and returns
+//! [`DeriveError`] instead of exhausting memory:
+//!
+//! ```
+//! let doubling: sylva_lsys::LSystem = "axiom: F\nF -> FF".parse().unwrap();
+//! assert!(doubling.derive(64, 0).is_err());
+//! ```
+//!
+//! # Representation
+//!
+//! A [`Word`] is structure-of-arrays: `u16` symbol ids, `u32` parameter offsets and one flat
+//! `f64` parameter array. Expressions are compiled once into postfix programs with constant
+//! subtrees folded; a step streams one word into the next and allocates nothing per module.
+//!
+//! # Feature flags
+//!
+//! - `serde`: `Serialize`/`Deserialize` for [`SymbolId`].
+//!
+//! # Conventions
+//!
+//! Angles in turtle parameters are degrees (the turtle crate reads them); math functions in
+//! expressions take radians. Parameters are `f64`.
+
+mod alphabet;
+mod compile;
+mod cursor;
+mod derive;
+mod error;
+mod expr;
+mod grammar;
+mod parser;
+mod presets;
+mod random;
+mod word;
+
+pub use alphabet::{Alphabet, CUT, POP, PUSH, RESERVED, SymbolId};
+pub use derive::{Deriver, Limits};
+pub use error::{DeriveError, Location, ParseError};
+pub use expr::{BinaryOp, Expr, Function, UnaryOp};
+pub use grammar::{GrammarError, LSystem, ModuleTemplate, Pattern, Production, SuccessorItem};
+pub use presets::{PRESETS, Preset, preset};
+pub use word::{Module, Word};
+
+impl LSystem {
+    /// Parses grammar text. Errors name the line and column and say what was expected.
+    ///
+    /// ```
+    /// let err = sylva_lsys::LSystem::parse("axiom: A\nA -> B(1,").unwrap_err();
+    /// assert_eq!((err.location.line, err.location.column), (2, 10));
+    /// ```
+    pub fn parse(text: &str) -> Result<LSystem, ParseError> {
+        parser::parse(text)
+    }
+}
+
+impl std::str::FromStr for LSystem {
+    type Err = ParseError;
+    fn from_str(text: &str) -> Result<LSystem, ParseError> {
+        parser::parse(text)
+    }
+}

@@ -1,0 +1,183 @@
+//! `Word`: a derived string of modules in structure-of-arrays form.
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::Arc;
+
+use crate::alphabet::{Alphabet, SymbolId};
+use crate::error::ParseError;
+
+/// A string of modules: symbol ids, and all parameters in one flat array.
+///
+/// Module `i` has symbol `symbols()[i]` and parameters `params(i)`. `Display` writes the word
+/// in grammar notation; [`Word::parse`] reads it back to an equal word.
+///
+/// ```
+/// use sylva_lsys::Word;
+/// let w: Word = "F(1.5)[+F]A".parse().unwrap();
+/// assert_eq!(w.len(), 6);
+/// assert_eq!(w.params(0), &[1.5]);
+/// assert_eq!(w.to_string(), "F(1.5)[+F]A");
+/// ```
+#[derive(Debug, Clone)]
+pub struct Word {
+    pub(crate) alphabet: Arc<Alphabet>,
+    pub(crate) symbols: Vec<SymbolId>,
+    /// `offsets[i]..offsets[i + 1]` are module `i`'s parameters; `offsets.len() == len() + 1`.
+    pub(crate) offsets: Vec<u32>,
+    pub(crate) params: Vec<f64>,
+}
+
+impl PartialEq for Word {
+    fn eq(&self, other: &Self) -> bool {
+        self.len() == other.len()
+            && self.params == other.params
+            && self.offsets == other.offsets
+            && self
+                .symbols
+                .iter()
+                .zip(&other.symbols)
+                .all(|(&a, &b)| self.alphabet.char(a) == other.alphabet.char(b))
+    }
+}
+
+/// A borrowed view of one module of a [`Word`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Module<'a> {
+    /// The symbol's id in the word's alphabet.
+    pub id: SymbolId,
+    /// The symbol's character.
+    pub symbol: char,
+    /// The actual parameters.
+    pub params: &'a [f64],
+}
+
+impl Word {
+    /// An empty word over `alphabet`.
+    pub fn empty(alphabet: Arc<Alphabet>) -> Word {
+        Word {
+            alphabet,
+            symbols: Vec::new(),
+            offsets: vec![0],
+            params: Vec::new(),
+        }
+    }
+
+    /// Parses modules written in grammar notation, with symbols of `alphabet` only.
+    /// Parameters may be constant expressions (`F(2*3)`).
+    pub fn parse(text: &str, alphabet: Arc<Alphabet>) -> Result<Word, ParseError> {
+        let mut a = (*alphabet).clone();
+        let modules = crate::parser::parse_modules(text, &mut a, false)?;
+        let mut w = Word::empty(alphabet);
+        for (s, p) in modules {
+            w.push(s, &p);
+        }
+        Ok(w)
+    }
+
+    /// The alphabet the symbol ids refer to.
+    pub fn alphabet(&self) -> &Arc<Alphabet> {
+        &self.alphabet
+    }
+
+    /// Number of modules.
+    pub fn len(&self) -> usize {
+        self.symbols.len()
+    }
+
+    /// Whether the word has no modules.
+    pub fn is_empty(&self) -> bool {
+        self.symbols.is_empty()
+    }
+
+    /// All symbol ids in order.
+    pub fn symbols(&self) -> &[SymbolId] {
+        &self.symbols
+    }
+
+    /// Parameters of module `i`. Panics if `i >= len()`, like slice indexing.
+    pub fn params(&self, i: usize) -> &[f64] {
+        &self.params[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// Total number of parameters over all modules.
+    pub fn param_count(&self) -> usize {
+        self.params.len()
+    }
+
+    /// Module `i`, or `None` past the end.
+    pub fn get(&self, i: usize) -> Option<Module<'_>> {
+        let id = *self.symbols.get(i)?;
+        Some(Module {
+            id,
+            symbol: self.alphabet.char(id),
+            params: self.params(i),
+        })
+    }
+
+    /// The modules in order.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = Module<'_>> + '_ {
+        (0..self.len()).map(|i| Module {
+            id: self.symbols[i],
+            symbol: self.alphabet.char(self.symbols[i]),
+            params: self.params(i),
+        })
+    }
+
+    /// Appends a module. The id must belong to this word's alphabet.
+    pub fn push(&mut self, symbol: SymbolId, params: &[f64]) {
+        self.symbols.push(symbol);
+        self.params.extend_from_slice(params);
+        self.offsets.push(self.params.len() as u32);
+    }
+
+    /// Removes all modules, keeping the allocations.
+    pub fn clear(&mut self) {
+        self.symbols.clear();
+        self.params.clear();
+        self.offsets.clear();
+        self.offsets.push(0);
+    }
+
+    /// Bytes of heap memory held by the word's buffers.
+    pub fn heap_bytes(&self) -> usize {
+        self.symbols.capacity() * 2 + self.offsets.capacity() * 4 + self.params.capacity() * 8
+    }
+}
+
+impl FromStr for Word {
+    type Err = ParseError;
+
+    /// Parses a word, building an alphabet of the symbols it uses.
+    fn from_str(text: &str) -> Result<Word, ParseError> {
+        let mut alphabet = Alphabet::new();
+        let modules = crate::parser::parse_modules(text, &mut alphabet, true)?;
+        let mut w = Word::empty(Arc::new(alphabet));
+        for (s, p) in modules {
+            w.push(s, &p);
+        }
+        Ok(w)
+    }
+}
+
+impl fmt::Display for Word {
+    /// Writes the modules in grammar notation. Numbers print in Rust's shortest round-trip
+    /// form, so parsing the text gives back the same bits.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use fmt::Write;
+        for m in self.iter() {
+            f.write_char(m.symbol)?;
+            if !m.params.is_empty() {
+                f.write_char('(')?;
+                for (k, v) in m.params.iter().enumerate() {
+                    if k > 0 {
+                        f.write_char(',')?;
+                    }
+                    write!(f, "{v}")?;
+                }
+                f.write_char(')')?;
+            }
+        }
+        Ok(())
+    }
+}
