@@ -97,3 +97,28 @@ impl Alphabet {
         &self.chars
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn brackets_and_cut_have_fixed_ids() {
+        let a = Alphabet::new();
+        assert_eq!(a.id('['), Some(PUSH));
+        assert_eq!(a.id(']'), Some(POP));
+        assert_eq!(a.id('%'), Some(CUT));
+    }
+
+    #[test]
+    fn reserved_characters_are_refused() {
+        let mut a = Alphabet::new();
+        for &c in RESERVED {
+            assert_eq!(a.intern(c), None);
+        }
+        assert_eq!(a.intern(' '), None);
+        assert_eq!(a.intern('F'), Some(SymbolId(3)));
+        assert_eq!(a.intern('F'), Some(SymbolId(3)));
+        assert_eq!(a.char(SymbolId(3)), 'F');
+    }
+}

@@ -37,6 +37,9 @@ pub(crate) struct CProduction {
     /// Upper bound on the modules one application emits, for the size limit check.
     pub(crate) max_modules: u32,
     pub(crate) max_params: u32,
+    /// When every successor item is a module with constant arguments, the successor
+    /// pre-evaluated: a span into `const_symbols`/`const_ends` and one into `const_params`.
+    pub(crate) constant: Option<(Span, Span)>,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -51,6 +54,15 @@ pub(crate) struct Compiled {
     pub(crate) order: Vec<u32>,
     pub(crate) ignored: Vec<bool>,
     pub(crate) has_context: bool,
+    /// For each symbol: its only production when that one always fires (no context, no
+    /// condition, no weight), else `u32::MAX`. The engine skips matching for these.
+    pub(crate) simple: Vec<u32>,
+    /// Whether any production rewrites the symbol.
+    pub(crate) rewritten: Vec<bool>,
+    pub(crate) const_symbols: Vec<SymbolId>,
+    /// Parameter end offsets of the pre-evaluated modules, relative to their successor.
+    pub(crate) const_ends: Vec<u32>,
+    pub(crate) const_params: Vec<f64>,
 }
 
 impl Compiled {
@@ -77,6 +89,7 @@ impl Compiled {
                     .collect::<Vec<_>>()
             };
             c.has_context |= !p.left.is_empty() || !p.right.is_empty();
+            let constant = c.pre_evaluate(successor);
             c.productions.push(CProduction {
                 left: pat(&p.left),
                 arity: p.predecessor.params.len() as u8,
@@ -86,6 +99,7 @@ impl Compiled {
                 weight: p.weight,
                 max_modules,
                 max_params,
+                constant,
             });
         }
         let n = alphabet.len();
@@ -104,11 +118,62 @@ impl Compiled {
             c.order[fill[s] as usize] = i as u32;
             fill[s] += 1;
         }
+        c.simple = (0..n)
+            .map(|s| {
+                let (lo, hi) = (c.by_symbol[s] as usize, c.by_symbol[s + 1] as usize);
+                let first = c.order.get(lo).copied();
+                match first {
+                    Some(p) if hi - lo == 1 => {
+                        let q = &c.productions[p as usize];
+                        let simple = q.left.is_empty()
+                            && q.right.is_empty()
+                            && q.condition.is_none()
+                            && q.weight.is_none();
+                        if simple { p } else { u32::MAX }
+                    }
+                    _ => u32::MAX,
+                }
+            })
+            .collect();
+        c.rewritten = (0..n)
+            .map(|s| c.by_symbol[s] < c.by_symbol[s + 1])
+            .collect();
         c.ignored = vec![false; n];
         for s in ignore {
             c.ignored[s.index()] = true;
         }
         c
+    }
+
+    /// Evaluates a successor once if nothing in it varies, so emitting it is a copy.
+    fn pre_evaluate(&mut self, span: Span) -> Option<(Span, Span)> {
+        let items = &self.items[span.0 as usize..span.1 as usize];
+        let mut values = Vec::new();
+        let mut symbols = Vec::new();
+        let mut ends = Vec::new();
+        for item in items {
+            let CItem::Module { symbol, args } = item else {
+                return None;
+            };
+            for a in args.0..args.1 {
+                let (lo, hi) = self.args[a as usize];
+                match self.ops[lo as usize..hi as usize] {
+                    [Op::Num(v)] => values.push(v),
+                    _ => return None,
+                }
+            }
+            symbols.push(*symbol);
+            ends.push(values.len() as u32);
+        }
+        let s0 = self.const_symbols.len() as u32;
+        let p0 = self.const_params.len() as u32;
+        self.const_symbols.extend(symbols);
+        self.const_ends.extend(ends);
+        self.const_params.extend(values);
+        Some((
+            (s0, self.const_symbols.len() as u32),
+            (p0, self.const_params.len() as u32),
+        ))
     }
 
     /// Lays out `items` contiguously (children after their parent list) and returns their span.

@@ -56,14 +56,7 @@ impl Default for Limits {
 impl LSystem {
     /// The axiom as a word (generation 0).
     pub fn axiom_word(&self) -> Word {
-        let mut w = Word::empty(self.alphabet.clone());
-        let mut params = Vec::new();
-        for m in &self.axiom {
-            params.clear();
-            params.extend(m.args.iter().map(|a| a.eval_constant(0.0, 0)));
-            w.push(m.symbol, &params);
-        }
-        w
+        self.axiom_word.clone()
     }
 
     /// Derives `steps` generations from the axiom with the default [`Limits`].
@@ -142,6 +135,10 @@ impl<'g> Deriver<'g> {
     pub fn step(&mut self, cur: &Word, out: &mut Word, generation: u32) -> Result<(), DeriveError> {
         out.clear();
         out.alphabet = cur.alphabet.clone();
+        // Most grammars grow: reserving the current size saves the first reallocations.
+        out.symbols.reserve(cur.len());
+        out.offsets.reserve(cur.len());
+        out.params.reserve(cur.params.len());
         let grammar: &'g LSystem = self.grammar;
         let c = &grammar.compiled;
         if c.has_context {
@@ -149,35 +146,64 @@ impl<'g> Deriver<'g> {
         }
         let gen_f = f64::from(generation);
         let mut cut_seen = false;
-        for i in 0..cur.len() {
+        let n = cur.len();
+        let mut i = 0;
+        while i < n {
             let sym = cur.symbols[i];
             let s = sym.index();
-            let (lo, hi) = match (c.by_symbol.get(s), c.by_symbol.get(s + 1)) {
-                (Some(&lo), Some(&hi)) if lo < hi => (lo as usize, hi as usize),
-                _ => {
-                    out.push(sym, cur.params(i));
-                    cut_seen |= sym == CUT;
-                    continue;
+            if !c.rewritten[s] {
+                // A run of modules no production rewrites is copied in bulk.
+                let mut j = i + 1;
+                while j < n && !c.rewritten[cur.symbols[j].index()] {
+                    j += 1;
                 }
+                cut_seen |= copy_run(cur, i, j, out);
+                i = j;
+                continue;
+            }
+            let lo = c.by_symbol[s] as usize;
+            let hi = c.by_symbol[s + 1] as usize;
+            let chosen = match c.simple[s] {
+                p if p != u32::MAX
+                    && c.productions[p as usize].arity as usize == cur.params(i).len() =>
+                {
+                    Some(p)
+                }
+                _ => self.select(cur, i, &c.order[lo..hi], gen_f),
             };
-            match self.select(cur, i, &c.order[lo..hi], gen_f) {
+            match chosen {
                 Some(p) => {
                     let prod = &c.productions[p as usize];
                     self.check_room(out, prod, generation)?;
-                    self.bind(cur, i, prod);
-                    cut_seen |= self.emit(prod.successor, out, gen_f, generation)?;
+                    if let Some(((s0, s1), (p0, p1))) = prod.constant {
+                        let syms = &c.const_symbols[s0 as usize..s1 as usize];
+                        out.symbols.extend_from_slice(syms);
+                        let base = out.params.len() as u32;
+                        out.params
+                            .extend_from_slice(&c.const_params[p0 as usize..p1 as usize]);
+                        out.offsets.extend(
+                            c.const_ends[s0 as usize..s1 as usize]
+                                .iter()
+                                .map(|&e| base + e),
+                        );
+                        cut_seen |= syms.contains(&CUT);
+                    } else {
+                        self.bind(cur, i, prod);
+                        cut_seen |= self.emit(prod.successor, out, gen_f, generation)?;
+                    }
                 }
                 None => {
                     out.push(sym, cur.params(i));
                     cut_seen |= sym == CUT;
                 }
             }
-            if out.len() > self.limits.max_modules {
-                return Err(DeriveError::TooManyModules {
-                    step: generation,
-                    limit: self.limits.max_modules,
-                });
-            }
+            i += 1;
+        }
+        if out.len() > self.limits.max_modules {
+            return Err(DeriveError::TooManyModules {
+                step: generation,
+                limit: self.limits.max_modules,
+            });
         }
         if out.params.len() > self.limits.max_params {
             return Err(DeriveError::TooManyParams {
@@ -463,6 +489,26 @@ impl<'g> Deriver<'g> {
         }
         Ok(cut)
     }
+}
+
+/// Appends modules `i..j` of `cur` to `out`; returns whether a cut symbol was among them.
+fn copy_run(cur: &Word, i: usize, j: usize, out: &mut Word) -> bool {
+    if j == i + 1 {
+        out.push(cur.symbols[i], cur.params(i));
+        return cur.symbols[i] == CUT;
+    }
+    let syms = &cur.symbols[i..j];
+    out.symbols.extend_from_slice(syms);
+    let (p0, p1) = (cur.offsets[i], cur.offsets[j]);
+    let shift = out.params.len() as i64 - i64::from(p0);
+    out.params
+        .extend_from_slice(&cur.params[p0 as usize..p1 as usize]);
+    out.offsets.extend(
+        cur.offsets[i + 1..=j]
+            .iter()
+            .map(|&o| (i64::from(o) + shift) as u32),
+    );
+    syms.contains(&CUT)
 }
 
 /// Removes every cut symbol `%` and the rest of the branch it stands in (ABOP's cut).

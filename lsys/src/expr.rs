@@ -628,3 +628,67 @@ pub(crate) fn eval(
     }
     stack.pop().unwrap_or(0.0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct NoNames;
+    impl Scope for NoNames {
+        fn var(&self, name: &str) -> Option<u16> {
+            (name == "x").then_some(0)
+        }
+        fn constant(&self, name: &str) -> Option<f64> {
+            (name == "k").then_some(10.0)
+        }
+    }
+
+    fn value(text: &str, x: f64) -> f64 {
+        let chars: Vec<char> = text.chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let mut ops = Vec::new();
+        e.compile(&mut ops);
+        eval(&ops, &[x], 3.0, &mut Random::new(0), &mut Vec::new())
+    }
+
+    #[test]
+    fn precedence_follows_mathematics() {
+        assert_eq!(value("1+2*3", 0.0), 7.0);
+        assert_eq!(value("-2^2", 0.0), -4.0);
+        assert_eq!(value("2^3^2", 0.0), 512.0);
+        assert_eq!(value("1 < 2 && 3 > 2 || 0", 0.0), 1.0);
+        assert_eq!(value("(1+2)*x", 4.0), 12.0);
+        assert_eq!(value("k/4 - #", 0.0), -0.5);
+        assert_eq!(value("!0 + !5", 0.0), 1.0);
+    }
+
+    #[test]
+    fn constant_subtrees_fold_to_one_number() {
+        let chars: Vec<char> = "k*2+sin(0)".chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let mut ops = Vec::new();
+        e.compile(&mut ops);
+        assert_eq!(ops, vec![Op::Num(20.0)]);
+    }
+
+    #[test]
+    fn printing_parses_back_to_the_same_tree() {
+        for text in ["1+2*3", "-(x^2)", "min(x,k)/(1-x)", "!(x>=1)&&#<3"] {
+            let chars: Vec<char> = text.chars().collect();
+            let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+            let printed: Vec<char> = e.to_string().chars().collect();
+            let again = parse_expr(&mut Cursor::new(&printed, 1), &NoNames).unwrap();
+            assert_eq!(again, e, "{text}");
+        }
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_stack_overflow() {
+        let text = "(".repeat(10_000) + "1" + &")".repeat(10_000);
+        let chars: Vec<char> = text.chars().collect();
+        assert!(parse_expr(&mut Cursor::new(&chars, 1), &NoNames).is_err());
+        let text = "-".repeat(10_000) + "1";
+        let chars: Vec<char> = text.chars().collect();
+        assert!(parse_expr(&mut Cursor::new(&chars, 1), &NoNames).is_err());
+    }
+}

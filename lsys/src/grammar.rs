@@ -104,6 +104,8 @@ pub struct LSystem {
     pub(crate) axiom: Vec<ModuleTemplate>,
     pub(crate) productions: Vec<Production>,
     pub(crate) compiled: Compiled,
+    /// The axiom evaluated once, since its parameters are constants.
+    pub(crate) axiom_word: crate::word::Word,
 }
 
 impl PartialEq for LSystem {
@@ -168,8 +170,22 @@ impl LSystem {
             }
         }
         let compiled = Compiled::new(&alphabet, &ignore, &productions);
+        let alphabet = Arc::new(alphabet);
+        let mut axiom_word = crate::word::Word::empty(alphabet.clone());
+        let mut params = Vec::new();
+        for m in &axiom {
+            params.clear();
+            params.extend(m.args.iter().map(|a| a.eval_constant(0.0, 0)));
+            if let Some(v) = params.iter().find(|v| !v.is_finite()) {
+                return Err(GrammarError::InvalidAxiom(format!(
+                    "parameter {v} is not finite"
+                )));
+            }
+            axiom_word.push(m.symbol, &params);
+        }
         Ok(LSystem {
-            alphabet: Arc::new(alphabet),
+            axiom_word,
+            alphabet,
             constants,
             ignore,
             axiom,

@@ -1,0 +1,100 @@
+//! Derives an L-system and prints the word, in grammar notation, to stdout.
+//!
+//! ```text
+//! cargo run --release --example derive -- [GRAMMAR_FILE | --preset NAME] [--steps N] [--seed S]
+//! ```
+//!
+//! Without a grammar it derives the bundled preset `abop-1.24a`. Errors go to stderr with a
+//! non-zero exit status.
+
+use std::process::ExitCode;
+
+use sylva::lsys::{LSystem, PRESETS, preset};
+
+struct Args {
+    file: Option<String>,
+    preset: Option<String>,
+    steps: Option<u32>,
+    seed: u64,
+}
+
+const USAGE: &str = "usage: derive [GRAMMAR_FILE | --preset NAME] [--steps N] [--seed S]";
+
+fn parse_args() -> Result<Args, String> {
+    let mut args = Args {
+        file: None,
+        preset: None,
+        steps: None,
+        seed: 0,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| {
+            it.next()
+                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
+        };
+        match a.as_str() {
+            "--steps" => {
+                args.steps = Some(
+                    value("--steps")?
+                        .parse()
+                        .map_err(|e| format!("--steps: {e}"))?,
+                )
+            }
+            "--seed" => {
+                args.seed = value("--seed")?
+                    .parse()
+                    .map_err(|e| format!("--seed: {e}"))?
+            }
+            "--preset" => args.preset = Some(value("--preset")?),
+            "--help" | "-h" => {
+                let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
+                return Err(format!("{USAGE}\npresets: {}", names.join(", ")));
+            }
+            s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
+            s => args.file = Some(s.to_string()),
+        }
+    }
+    Ok(args)
+}
+
+fn run() -> Result<String, String> {
+    let args = parse_args()?;
+    let (grammar, default_steps) = match (&args.file, &args.preset) {
+        (Some(_), Some(_)) => {
+            return Err(format!(
+                "give a grammar file or --preset, not both\n{USAGE}"
+            ));
+        }
+        (Some(path), None) => {
+            let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+            (
+                LSystem::parse(&text).map_err(|e| format!("{path}: {e}"))?,
+                4,
+            )
+        }
+        (None, name) => {
+            let name = name.as_deref().unwrap_or("abop-1.24a");
+            let p =
+                preset(name).ok_or_else(|| format!("no preset called '{name}' (see --help)"))?;
+            (p.lsystem().map_err(|e| format!("{name}: {e}"))?, p.steps)
+        }
+    };
+    let word = grammar
+        .derive(args.steps.unwrap_or(default_steps), args.seed)
+        .map_err(|e| e.to_string())?;
+    Ok(word.to_string())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(word) => {
+            println!("{word}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,282 @@
+//! Known answers: ABOP examples and every grammar feature on small inputs.
+
+use sylva_lsys::{DeriveError, LSystem, Limits, PRESETS, Word};
+
+fn derive(src: &str, steps: u32) -> String {
+    LSystem::parse(src)
+        .unwrap()
+        .derive(steps, 1)
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn algae_grows_as_fibonacci() {
+    let g = LSystem::parse("axiom: A\nA -> AB\nB -> A").unwrap();
+    let lengths: Vec<usize> = (0..10).map(|n| g.derive(n, 0).unwrap().len()).collect();
+    assert_eq!(lengths, [1, 2, 3, 5, 8, 13, 21, 34, 55, 89]);
+    assert_eq!(g.derive(5, 0).unwrap().to_string(), "ABAABABAABAAB");
+}
+
+#[test]
+fn abop_1_24d_second_generation() {
+    let p = sylva_lsys::preset("abop-1.24d").unwrap();
+    let w = p.lsystem().unwrap().derive(2, 0).unwrap();
+    assert_eq!(
+        w.to_string(),
+        "FF[+F[+X]F[-X]+X]FF[-F[+X]F[-X]+X]+F[+X]F[-X]+X"
+    );
+}
+
+#[test]
+fn thesis_parametric_example() {
+    // Garden of Eden thesis 5.1.2 (ABOP section 1.10.1).
+    let src = "axiom: B(2)A(4,4)
+        A(x,y) : y <= 3 -> A(x*2,x+y)
+        A(x,y) : y > 3 -> B(x)A(x/y,0)
+        B(x) : x < 1 -> C
+        B(x) : x >= 1 -> B(x-1)";
+    assert_eq!(derive(src, 1), "B(1)B(4)A(1,0)");
+    assert_eq!(derive(src, 2), "B(0)B(3)A(2,1)");
+    assert_eq!(derive(src, 3), "CB(2)A(4,3)");
+    assert_eq!(derive(src, 4), "CB(1)A(8,7)");
+}
+
+#[test]
+fn honda_tree_first_step_applies_constants() {
+    let g = sylva_lsys::preset("abop-honda").unwrap().lsystem().unwrap();
+    assert_eq!(g.constant("d"), Some(137.5));
+    let w = g.derive(1, 0).unwrap().to_string();
+    assert_eq!(
+        w,
+        "!(10)F(1)[&(45)B(0.6,7.069999999999999)]/(137.5)A(0.9,7.069999999999999)"
+    );
+}
+
+#[test]
+fn ternary_tree_rewrites_turtle_symbols() {
+    let g = sylva_lsys::preset("abop-ternary")
+        .unwrap()
+        .lsystem()
+        .unwrap();
+    let w = g.derive(2, 0).unwrap();
+    // The axiom's F(200) was elongated twice and its width raised twice.
+    let first_f = w.iter().find(|m| m.symbol == 'F').unwrap();
+    assert!((first_f.params[0] - 200.0 * 1.109 * 1.109).abs() < 1e-9);
+    let first_w = w.iter().find(|m| m.symbol == '!').unwrap();
+    assert!((first_w.params[0] - 1.732 * 1.732).abs() < 1e-9);
+}
+
+#[test]
+fn signal_propagates_with_left_context() {
+    // ABOP section 1.8: an acropetal signal moving along a filament.
+    let src = "axiom: baaaa\nb < a -> b\nb -> a";
+    let words: Vec<String> = (0..5).map(|n| derive(src, n)).collect();
+    assert_eq!(words, ["baaaa", "abaaa", "aabaa", "aaaba", "aaaab"]);
+}
+
+#[test]
+fn left_context_skips_branches_and_climbs_to_parent() {
+    // C's left neighbour is A (the branch [B] is skipped); D's is B's parent chain: B then A.
+    assert_eq!(derive("axiom: A[B]C\nA < C -> X", 1), "A[B]X");
+    assert_eq!(derive("axiom: A[B]C\nB < C -> X", 1), "A[B]C");
+    assert_eq!(derive("axiom: A[BD]\nA < B -> X", 1), "A[XD]");
+}
+
+#[test]
+fn right_context_skips_branches_unless_entered() {
+    assert_eq!(derive("axiom: A[B]C\nA > C -> X", 1), "X[B]C");
+    assert_eq!(derive("axiom: A[B]C\nA > B -> X", 1), "A[B]C");
+    assert_eq!(derive("axiom: A[B]C\nA > [B]C -> X", 1), "X[B]C");
+    // `]` skips the rest of the current branch, so E does not stand in the way.
+    assert_eq!(derive("axiom: A[BE]C\nB > ]C -> X", 1), "A[XE]C");
+    assert_eq!(derive("axiom: A[BE]D\nB > ]C -> X", 1), "A[BE]D");
+    assert_eq!(derive("axiom: A[B]C\nB > ]C -> X", 1), "A[X]C");
+}
+
+#[test]
+fn ignored_symbols_are_transparent_to_context() {
+    assert_eq!(derive("#ignore: +-\naxiom: A+-B\nA < B -> X", 1), "A+-X");
+    assert_eq!(derive("axiom: A+-B\nA < B -> X", 1), "A+-B");
+}
+
+#[test]
+fn context_parameters_bind_in_order() {
+    assert_eq!(
+        derive(
+            "axiom: A(1)B(2)C(3)\nA(x) < B(y) > C(z) -> B(x*100+y*10+z)",
+            1
+        ),
+        "A(1)B(123)C(3)"
+    );
+}
+
+#[test]
+fn age_symbol_records_generation() {
+    assert_eq!(derive("axiom: A\nA -> B(#)A", 3), "B(1)B(2)B(3)A");
+}
+
+#[test]
+fn cut_removes_rest_of_branch() {
+    assert_eq!(derive("axiom: F[A]F\nA -> X%YZ", 1), "F[X]F");
+    assert_eq!(derive("axiom: F[A[B]C]F\nA -> %", 1), "F[]F");
+    assert_eq!(derive("axiom: FA[B]C\nA -> %", 1), "F");
+}
+
+#[test]
+fn first_matching_deterministic_production_wins() {
+    let src = "axiom: A(5)\nA(x) : x > 3 -> B\nA(x) : x > 1 -> C\nA(x) -> D";
+    assert_eq!(derive(src, 1), "B");
+    assert_eq!(
+        derive("axiom: A(2)\nA(x) : x > 3 -> B\nA(x) : x > 1 -> C", 1),
+        "C"
+    );
+    assert_eq!(derive("axiom: A(0)\nA(x) : x > 3 -> B", 1), "A(0)");
+}
+
+#[test]
+fn productions_match_on_parameter_count() {
+    assert_eq!(
+        derive("axiom: A A(1) A(1,2)\nA(x) -> B", 1),
+        "AB A(1,2)".replace(' ', "")
+    );
+}
+
+#[test]
+fn choice_extension_picks_alternatives() {
+    assert_eq!(derive("axiom: A\nA -> ?(1)<X><Y>", 1), "X");
+    assert_eq!(derive("axiom: A\nA -> ?(0)<X><Y(2)>", 1), "Y(2)");
+    let w = derive(
+        &format!("axiom: {}\nA -> ?(0.5)<X><Y>", "A".repeat(2000)),
+        1,
+    );
+    let xs = w.chars().filter(|&c| c == 'X').count();
+    assert!((800..1200).contains(&xs), "{xs} of 2000");
+}
+
+#[test]
+fn functions_and_operators_evaluate() {
+    let w = derive(
+        "axiom: A(2)\nA(x) -> B(x^3, -x^2, min(x,1), max(x,3), abs(-x), floor(2.7), ceil(2.1), sqrt(16), (x>1)&&(x<3), !(x==2), x!=2 || 0, atan2(0,1), exp(0), log(1))",
+        1,
+    );
+    assert_eq!(w, "B(8,-4,1,3,2,2,3,4,1,0,0,0,1,0)");
+}
+
+#[test]
+fn random_functions_stay_in_range_and_follow_seed() {
+    let g = LSystem::parse("axiom: A\nA -> A B(uniform(2,3)) C(ran(5))").unwrap();
+    let w = g.derive(50, 9).unwrap();
+    for m in w.iter() {
+        match m.symbol {
+            'B' => assert!((2.0..3.0).contains(&m.params[0])),
+            'C' => assert!((0.0..5.0).contains(&m.params[0])),
+            _ => {}
+        }
+    }
+    assert_eq!(w, g.derive(50, 9).unwrap());
+    assert_ne!(w, g.derive(50, 10).unwrap());
+}
+
+#[test]
+fn explosive_growth_fails_fast_with_a_clear_error() {
+    let g = LSystem::parse("axiom: F\nF -> FF").unwrap();
+    let err = g.derive(64, 0).unwrap_err();
+    assert!(matches!(err, DeriveError::TooManyModules { .. }), "{err}");
+    assert!(err.to_string().contains("limit of 10000000 modules"));
+    let small = Limits::default().with_max_modules(100);
+    assert_eq!(
+        g.derive_with(10, 0, &small).unwrap_err(),
+        DeriveError::TooManyModules {
+            step: 7,
+            limit: 100
+        }
+    );
+    let params = LSystem::parse("axiom: F(1)\nF(x) -> F(x)F(x)").unwrap();
+    assert!(matches!(
+        params.derive_with(10, 0, &Limits::default().with_max_params(50)),
+        Err(DeriveError::TooManyParams { .. })
+    ));
+    assert!(matches!(
+        g.derive_with(5, 0, &Limits::default().with_max_steps(4)),
+        Err(DeriveError::TooManySteps {
+            requested: 5,
+            limit: 4
+        })
+    ));
+}
+
+#[test]
+fn non_finite_parameters_are_reported() {
+    let g = LSystem::parse("axiom: A(1)\nA(x) -> A(x/0)").unwrap();
+    assert!(matches!(
+        g.derive(1, 0),
+        Err(DeriveError::NonFiniteParameter { symbol: 'A', .. })
+    ));
+}
+
+#[test]
+fn parse_errors_name_line_column_and_expectation() {
+    let cases: &[(&str, usize, usize, &str)] = &[
+        ("A -> B", 1, 1, "no axiom"),
+        ("axiom: A\nA B -> C", 2, 1, "one predecessor"),
+        ("axiom: A\nA -> B(", 2, 8, "expected a number"),
+        ("axiom: A\nA(x) -> B(y)", 2, 11, "unknown name 'y'"),
+        ("axiom: A\nA -> B(foo(1))", 2, 8, "unknown function"),
+        ("axiom: A\nA -> B(sin(1,2))", 2, 8, "takes 1 argument"),
+        ("axiom: A\n#bogus", 2, 2, "unknown directive"),
+        ("axiom: A\naxiom: B", 2, 1, "second axiom"),
+        ("axiom: A\n  A  B", 2, 3, "one predecessor"),
+        ("axiom: A\nA : x > 1 -> B", 2, 5, "unknown name 'x'"),
+        ("axiom: A /* never closed", 1, 10, "never closed"),
+        ("axiom: A\nA(x,x) -> B", 2, 5, "named twice"),
+        ("axiom: A\nA -> B : -1", 2, 9, "probability"),
+        ("axiom: A\nA -> ?(0.5)<B>", 2, 15, "'<' to open"),
+        ("axiom: A\nA -> B(1e999)", 2, 8, "not a finite number"),
+    ];
+    for &(src, line, col, needle) in cases {
+        let err = LSystem::parse(src).unwrap_err();
+        assert_eq!(
+            (err.location.line, err.location.column),
+            (line, col),
+            "{src:?}: {err}"
+        );
+        assert!(err.message.contains(needle), "{src:?}: {err}");
+    }
+}
+
+#[test]
+fn abop_notation_with_labels_and_star_conditions_parses() {
+    let g = LSystem::parse("ω: A(1)\np1: A(l) : * → F(l)A(l+1)\n// a comment line\n/* block */")
+        .unwrap();
+    assert_eq!(g.derive(2, 0).unwrap().to_string(), "F(1)F(2)A(3)");
+}
+
+#[test]
+fn every_preset_parses_derives_and_prints_back() {
+    for p in PRESETS {
+        let g = p.lsystem().unwrap_or_else(|e| panic!("{}: {e}", p.name));
+        let w = g
+            .derive(p.steps, 42)
+            .unwrap_or_else(|e| panic!("{}: {e}", p.name));
+        assert!(w.len() > 10, "{}", p.name);
+        let reparsed = LSystem::parse(&g.to_string()).unwrap();
+        assert_eq!(reparsed, g, "{}", p.name);
+        assert_eq!(
+            Word::parse(&w.to_string(), w.alphabet().clone()).unwrap(),
+            w,
+            "{}",
+            p.name
+        );
+    }
+}
+
+#[test]
+fn kenwood_leafy_tree_has_the_papers_shape() {
+    let g = sylva_lsys::preset("kenwood-leafy")
+        .unwrap()
+        .lsystem()
+        .unwrap();
+    let w = g.derive(1, 0).unwrap().to_string();
+    assert_eq!(w, "FF[&FL!A]////[^FL!A]/////[&FL!A]");
+}
