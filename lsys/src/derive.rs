@@ -423,11 +423,11 @@ impl<'g> Deriver<'g> {
         for (j, &s) in cur.symbols.iter().enumerate() {
             if s == PUSH {
                 open.push(j as u32);
-            } else if s == POP {
-                if let Some(o) = open.pop() {
-                    self.partner[j] = o;
-                    self.partner[o as usize] = j as u32;
-                }
+            } else if s == POP
+                && let Some(o) = open.pop()
+            {
+                self.partner[j] = o;
+                self.partner[o as usize] = j as u32;
             }
         }
     }

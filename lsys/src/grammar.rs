@@ -271,9 +271,15 @@ pub(crate) struct ItemsDisplay<'a>(pub(crate) &'a [SuccessorItem], pub(crate) &'
 
 impl fmt::Display for ItemsDisplay<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut previous: Option<&ModuleTemplate> = None;
         for item in self.0 {
             match item {
-                SuccessorItem::Module(m) => write_template(f, m, self.1)?,
+                SuccessorItem::Module(m) => {
+                    separate(f, previous, m, self.1)?;
+                    write_template(f, m, self.1)?;
+                    previous = Some(m);
+                    continue;
+                }
                 SuccessorItem::Choice {
                     probability,
                     then,
@@ -285,8 +291,28 @@ impl fmt::Display for ItemsDisplay<'_> {
                     ItemsDisplay(otherwise, self.1)
                 )?,
             }
+            previous = None;
         }
         Ok(())
+    }
+}
+
+/// Writes a space where two modules would otherwise print as the comment opener `/*`.
+fn separate(
+    f: &mut fmt::Formatter<'_>,
+    previous: Option<&ModuleTemplate>,
+    next: &ModuleTemplate,
+    alphabet: &Alphabet,
+) -> fmt::Result {
+    match previous {
+        Some(p)
+            if p.args.is_empty()
+                && alphabet.char(p.symbol) == '/'
+                && alphabet.char(next.symbol) == '*' =>
+        {
+            f.write_str(" ")
+        }
+        _ => Ok(()),
     }
 }
 
@@ -321,8 +347,11 @@ impl fmt::Display for LSystem {
             writeln!(f, "#ignore: {s}")?;
         }
         f.write_str("axiom: ")?;
+        let mut previous = None;
         for m in &self.axiom {
+            separate(f, previous, m, a)?;
             write_template(f, m, a)?;
+            previous = Some(m);
         }
         writeln!(f)?;
         for p in &self.productions {

@@ -307,10 +307,10 @@ impl GrammarParser {
     fn production(&mut self, cur: &mut Cursor<'_>) -> Result<Production, ParseError> {
         // An optional label such as "p1:" (ABOP prints productions that way).
         let start = cur.pos();
-        if let Some(label) = cur.ident() {
-            if !(label.chars().count() >= 2 && cur.eat(':')) {
-                cur.set_pos(start);
-            }
+        if let Some(label) = cur.ident()
+            && !(label.chars().count() >= 2 && cur.eat(':'))
+        {
+            cur.set_pos(start);
         }
         let mut names = Vec::new();
         let head_at = {

@@ -280,3 +280,11 @@ fn kenwood_leafy_tree_has_the_papers_shape() {
     let w = g.derive(1, 0).unwrap().to_string();
     assert_eq!(w, "FF[&FL!A]////[^FL!A]/////[&FL!A]");
 }
+
+/// Found by the fuzzer: a successor `/` followed by `*` printed as a comment opener.
+#[test]
+fn slash_then_star_prints_back_without_opening_a_comment() {
+    let g = LSystem::parse("axiom: / *\nA -> / * B").unwrap();
+    let printed = g.to_string();
+    assert_eq!(LSystem::parse(&printed).unwrap(), g, "{printed}");
+}

@@ -3,7 +3,7 @@
 use proptest::prelude::*;
 
 /// A bracket-balanced successor over `A B F + - &`, up to a few levels deep.
-pub fn balanced_successor() -> impl Strategy<Value = String> {
+pub(crate) fn balanced_successor() -> impl Strategy<Value = String> {
     let leaf = prop::sample::select(vec!["A", "B", "F", "+", "-", "&", "F(2)", "A(1)"])
         .prop_map(str::to_string);
     leaf.prop_recursive(3, 24, 4, |inner| {
@@ -15,7 +15,7 @@ pub fn balanced_successor() -> impl Strategy<Value = String> {
 }
 
 /// A D0L system over {A, B, C}: axiom and one successor per letter, as strings.
-pub fn d0l() -> impl Strategy<Value = (String, [String; 3])> {
+pub(crate) fn d0l() -> impl Strategy<Value = (String, [String; 3])> {
     let word = |min| {
         prop::collection::vec(prop::sample::select(vec!['A', 'B', 'C']), min..4)
             .prop_map(|v| v.into_iter().collect::<String>())
@@ -24,14 +24,14 @@ pub fn d0l() -> impl Strategy<Value = (String, [String; 3])> {
 }
 
 /// Grammar text with stochastic, parametric and bracketed productions.
-pub fn stochastic_grammar() -> impl Strategy<Value = String> {
+pub(crate) fn stochastic_grammar() -> impl Strategy<Value = String> {
     (balanced_successor(), balanced_successor(), balanced_successor(), 1u32..5, 1u32..5).prop_map(|(a, b, c, w1, w2)| {
         format!("axiom: A\nA -> {a} : {w1}\nA -> {b} : {w2}\nB -> {c}\nA(x) -> F(x*uniform(0.5,1.5))A\nF(x) -> F(x+1)")
     })
 }
 
 /// A word's text with random finite parameters.
-pub fn word_text() -> impl Strategy<Value = String> {
+pub(crate) fn word_text() -> impl Strategy<Value = String> {
     let module = (
         prop::sample::select(vec!['A', 'F', '+', '[', ']', '!', '$', '/']),
         prop::collection::vec(
@@ -51,7 +51,7 @@ pub fn word_text() -> impl Strategy<Value = String> {
 }
 
 /// Lines that look like grammar text: the characters the parser cares about, in any order.
-pub fn grammar_like_text() -> impl Strategy<Value = String> {
+pub(crate) fn grammar_like_text() -> impl Strategy<Value = String> {
     prop::collection::vec("[ABFxy0-9 +\\-*/^()\\[\\],:<>#.!%?&|=→ω]{0,24}|axiom: [AB(1)]{0,6}|#define [a-z] [0-9.]{1,3}|#ignore: [+\\-]", 0..6)
         .prop_map(|lines| lines.join("\n"))
 }

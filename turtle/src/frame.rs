@@ -1,0 +1,130 @@
+//! The turtle's position and orientation.
+
+use glam::{Affine3A, Mat3, Quat, Vec3};
+
+/// A position and an orthonormal heading/left/up frame, stored as a rotation.
+///
+/// The rotation maps the turtle's local axes to world space: local +Y is the heading H, local
+/// -X the left vector L and local +Z the up vector U, so that H x L = U as in ABOP. The initial
+/// frame heads up the world +Y axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Frame {
+    /// Where the turtle is.
+    pub position: Vec3,
+    /// Local-to-world rotation (unit quaternion).
+    pub rotation: Quat,
+}
+
+impl Default for Frame {
+    fn default() -> Self {
+        Frame::IDENTITY
+    }
+}
+
+impl Frame {
+    /// At the origin, heading up +Y, left -X, up +Z.
+    pub const IDENTITY: Frame = Frame {
+        position: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+    };
+
+    /// The heading vector H.
+    pub fn heading(&self) -> Vec3 {
+        self.rotation * Vec3::Y
+    }
+
+    /// The left vector L.
+    pub fn left(&self) -> Vec3 {
+        self.rotation * Vec3::NEG_X
+    }
+
+    /// The up vector U.
+    pub fn up(&self) -> Vec3 {
+        self.rotation * Vec3::Z
+    }
+
+    /// The frame as an affine transform from turtle-local to world coordinates.
+    pub fn to_affine(&self) -> Affine3A {
+        Affine3A::from_rotation_translation(self.rotation, self.position)
+    }
+
+    /// Rotates about the local up vector: positive turns left (ABOP `+`).
+    pub fn yaw(&mut self, radians: f32) {
+        self.rotate_local(Quat::from_rotation_z(radians));
+    }
+
+    /// Rotates about the local left vector: positive pitches down (ABOP `&`).
+    pub fn pitch(&mut self, radians: f32) {
+        self.rotate_local(Quat::from_rotation_x(-radians));
+    }
+
+    /// Rotates about the heading: positive rolls right (ABOP `/`).
+    pub fn roll(&mut self, radians: f32) {
+        self.rotate_local(Quat::from_rotation_y(radians));
+    }
+
+    fn rotate_local(&mut self, q: Quat) {
+        self.rotation = (self.rotation * q).normalize();
+    }
+
+    /// Rotates in world space about `axis` (unit) by `radians`.
+    pub fn rotate_world(&mut self, axis: Vec3, radians: f32) {
+        self.rotation = (Quat::from_axis_angle(axis, radians) * self.rotation).normalize();
+    }
+
+    /// ABOP `$`: rolls about the heading so that the left vector is horizontal (perpendicular
+    /// to world up). Does nothing when heading straight up or down.
+    pub fn roll_to_horizontal(&mut self) {
+        let h = self.heading();
+        let l = Vec3::Y.cross(h);
+        if l.length_squared() < 1e-12 {
+            return;
+        }
+        let l = l.normalize();
+        let u = h.cross(l);
+        self.rotation = Quat::from_mat3(&Mat3::from_cols(-l, h, u)).normalize();
+    }
+
+    /// Turns the heading towards `direction` by `e * |H x T|` radians (the thesis's tropism).
+    pub fn bend_towards(&mut self, direction: Vec3, susceptibility: f32) {
+        let axis = self.heading().cross(direction);
+        let len = axis.length();
+        if len > 1e-7 && susceptibility != 0.0 {
+            self.rotate_world(axis / len, susceptibility * len);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identity_frame_is_right_handed_hlu() {
+        let f = Frame::IDENTITY;
+        assert_eq!(f.heading().cross(f.left()), f.up());
+    }
+
+    #[test]
+    fn yaw_turns_heading_towards_left() {
+        let mut f = Frame::IDENTITY;
+        f.yaw(0.1);
+        assert!(f.heading().dot(Frame::IDENTITY.left()) > 0.0);
+        let mut g = Frame::IDENTITY;
+        g.pitch(0.1);
+        assert!(
+            g.heading().dot(Frame::IDENTITY.up()) < 0.0,
+            "pitch down moves H away from U"
+        );
+    }
+
+    #[test]
+    fn roll_to_horizontal_levels_left_vector() {
+        let mut f = Frame::IDENTITY;
+        f.pitch(0.7);
+        f.roll(0.5);
+        f.roll_to_horizontal();
+        assert!(f.left().y.abs() < 1e-5);
+    }
+}

@@ -1,0 +1,287 @@
+//! Triangle meshes of branches, polygons and leaves, ready for GPU upload.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Affine3A, Vec3};
+
+use crate::frame::Frame;
+use crate::options::{BranchShape, TurtleOptions};
+use crate::sink::{GeometrySink, Segment};
+
+/// One mesh vertex: 32 bytes, `#[repr(C)]` and `Pod` for direct upload.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Pod, Zeroable)]
+pub struct Vertex {
+    /// Position.
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Texture coordinates: on branches u runs around the circumference (0 to 1) and v along
+    /// the length (one unit of v per world unit).
+    pub uv: [f32; 2],
+}
+
+/// Which surface a triangle belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Material {
+    /// Branch tubes.
+    Bark,
+    /// Polygons and leaves.
+    Foliage,
+}
+
+/// Vertex buffer shared by two index lists, one per [`Material`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// All vertices.
+    pub vertices: Vec<Vertex>,
+    /// Triangles of branch tubes (three indices each).
+    pub bark: Vec<u32>,
+    /// Triangles of polygons and leaves.
+    pub foliage: Vec<u32>,
+}
+
+impl Mesh {
+    /// Number of triangles of both materials.
+    pub fn triangle_count(&self) -> usize {
+        (self.bark.len() + self.foliage.len()) / 3
+    }
+
+    /// Bytes of vertex and index data.
+    pub fn byte_size(&self) -> usize {
+        self.vertices.len() * std::mem::size_of::<Vertex>()
+            + (self.bark.len() + self.foliage.len()) * 4
+    }
+
+    /// Indices of one material.
+    pub fn indices(&self, material: Material) -> &[u32] {
+        match material {
+            Material::Bark => &self.bark,
+            Material::Foliage => &self.foliage,
+        }
+    }
+
+    /// Smallest box holding every vertex, or `None` for an empty mesh.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let mut it = self.vertices.iter().map(|v| Vec3::from(v.position));
+        let first = it.next()?;
+        Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+    }
+
+    /// Every triangle of both materials as world-space corner positions under `transform`.
+    pub fn triangles(&self, transform: &Affine3A) -> impl Iterator<Item = [Vec3; 3]> + '_ {
+        let t = *transform;
+        self.bark
+            .chunks_exact(3)
+            .chain(self.foliage.chunks_exact(3))
+            .map(move |tri| {
+                [tri[0], tri[1], tri[2]]
+                    .map(|i| t.transform_point3(Vec3::from(self.vertices[i as usize].position)))
+            })
+    }
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct RingEnd {
+    first_vertex: u32,
+    v: f32,
+    center: Vec3,
+    frame: Frame,
+    radius: f32,
+}
+
+/// A [`GeometrySink`] that builds a [`Mesh`]: tubes for segments, triangulated polygons, leaf
+/// quads.
+#[derive(Debug, Clone)]
+pub struct MeshBuilder {
+    /// The mesh built so far.
+    pub mesh: Mesh,
+    shape: BranchShape,
+    caps: bool,
+    circle: Vec<(f32, f32)>,
+    ends: Vec<RingEnd>,
+}
+
+impl MeshBuilder {
+    /// A builder using the meshing settings of `options` (shape, radial segments, caps).
+    pub fn new(options: &TurtleOptions) -> Self {
+        let sides = options.radial_segments.clamp(3, 1024);
+        let circle = (0..=sides)
+            .map(|i| {
+                let t = std::f32::consts::TAU * i as f32 / sides as f32;
+                (t.cos(), t.sin())
+            })
+            .collect();
+        MeshBuilder {
+            mesh: Mesh::default(),
+            shape: options.shape,
+            caps: options.caps,
+            circle,
+            ends: Vec::new(),
+        }
+    }
+
+    /// Takes the mesh out, leaving the builder empty.
+    pub fn finish(&mut self) -> Mesh {
+        std::mem::take(&mut self.mesh)
+    }
+
+    fn ring(&mut self, center: Vec3, frame: &Frame, radius: f32, v: f32) -> u32 {
+        let first = self.mesh.vertices.len() as u32;
+        let (l, u) = (frame.left(), frame.up());
+        let sides = (self.circle.len() - 1) as f32;
+        for (i, &(c, s)) in self.circle.iter().enumerate() {
+            let d = l * c + u * s;
+            self.mesh.vertices.push(Vertex {
+                position: (center + d * radius).to_array(),
+                normal: d.to_array(),
+                uv: [i as f32 / sides, v],
+            });
+        }
+        first
+    }
+
+    fn join(&mut self, a: u32, b: u32) {
+        let n = (self.circle.len() - 1) as u32;
+        for i in 0..n {
+            let (a0, a1, b0, b1) = (a + i, a + i + 1, b + i, b + i + 1);
+            self.mesh.bark.extend_from_slice(&[a0, a1, b1, a0, b1, b0]);
+        }
+    }
+
+    fn cap(&mut self, center: Vec3, frame: &Frame, radius: f32, facing_forward: bool) {
+        let normal = if facing_forward {
+            frame.heading()
+        } else {
+            -frame.heading()
+        };
+        let (l, u) = (frame.left(), frame.up());
+        let first = self.mesh.vertices.len() as u32;
+        self.mesh.vertices.push(Vertex {
+            position: center.to_array(),
+            normal: normal.to_array(),
+            uv: [0.5, 0.5],
+        });
+        let n = self.circle.len() - 1;
+        for &(c, s) in &self.circle[..n] {
+            self.mesh.vertices.push(Vertex {
+                position: (center + (l * c + u * s) * radius).to_array(),
+                normal: normal.to_array(),
+                uv: [0.5 + 0.5 * c, 0.5 + 0.5 * s],
+            });
+        }
+        for i in 0..n as u32 {
+            let (p, q) = (first + 1 + i, first + 1 + (i + 1) % n as u32);
+            if facing_forward {
+                self.mesh.bark.extend_from_slice(&[first, p, q]);
+            } else {
+                self.mesh.bark.extend_from_slice(&[first, q, p]);
+            }
+        }
+    }
+
+    fn quad(&mut self, corners: [Vec3; 4], normal: Vec3) {
+        let first = self.mesh.vertices.len() as u32;
+        let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        for (p, uv) in corners.into_iter().zip(uvs) {
+            self.mesh.vertices.push(Vertex {
+                position: p.to_array(),
+                normal: normal.to_array(),
+                uv,
+            });
+        }
+        self.mesh.foliage.extend_from_slice(&[
+            first,
+            first + 1,
+            first + 2,
+            first,
+            first + 2,
+            first + 3,
+        ]);
+    }
+}
+
+impl GeometrySink for MeshBuilder {
+    fn begin(&mut self) {
+        self.ends.clear();
+    }
+
+    fn segment(&mut self, s: &Segment) {
+        let start = s.start();
+        let end = s.end();
+        let shared = match (self.shape, s.continues_parent, s.parent) {
+            (BranchShape::Frustum, true, Some(p)) => self.ends.get(p as usize).copied(),
+            _ => None,
+        };
+        let (a, v0) = match shared {
+            Some(e) => (e.first_vertex, e.v),
+            None => {
+                if self.caps {
+                    self.cap(start, &s.frame, s.start_radius, false);
+                }
+                (self.ring(start, &s.frame, s.start_radius, 0.0), 0.0)
+            }
+        };
+        let v1 = v0 + s.length;
+        let b = self.ring(end, &s.frame, s.end_radius, v1);
+        self.join(a, b);
+        let id = s.id as usize;
+        if self.ends.len() <= id {
+            self.ends.resize(id + 1, RingEnd::default());
+        }
+        self.ends[id] = RingEnd {
+            first_vertex: b,
+            v: v1,
+            center: end,
+            frame: s.frame,
+            radius: s.end_radius,
+        };
+        if self.caps && self.shape == BranchShape::Cylinder {
+            self.cap(end, &s.frame, s.end_radius, true);
+        }
+    }
+
+    fn axis_end(&mut self, id: u32) {
+        if self.caps
+            && self.shape == BranchShape::Frustum
+            && let Some(e) = self.ends.get(id as usize).copied()
+        {
+            self.cap(e.center, &e.frame, e.radius, true);
+        }
+    }
+
+    fn polygon(&mut self, vertices: &[Vec3]) {
+        // Newell's method gives a robust normal for any simple polygon.
+        let mut normal = Vec3::ZERO;
+        for (i, a) in vertices.iter().enumerate() {
+            let b = vertices[(i + 1) % vertices.len()];
+            normal += Vec3::new(
+                (a.y - b.y) * (a.z + b.z),
+                (a.z - b.z) * (a.x + b.x),
+                (a.x - b.x) * (a.y + b.y),
+            );
+        }
+        let Some(normal) = normal.try_normalize() else {
+            return;
+        };
+        let first = self.mesh.vertices.len() as u32;
+        for p in vertices {
+            self.mesh.vertices.push(Vertex {
+                position: p.to_array(),
+                normal: normal.to_array(),
+                uv: [0.5, 0.5],
+            });
+        }
+        for i in 1..vertices.len() as u32 - 1 {
+            self.mesh
+                .foliage
+                .extend_from_slice(&[first, first + i, first + i + 1]);
+        }
+    }
+
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
+        let (h, l) = (frame.heading() * size[0], frame.left() * (size[1] * 0.5));
+        let p = frame.position;
+        // Counter-clockwise seen from the up vector, which is the leaf's normal.
+        self.quad([p + l, p - l, p - l + h, p + l + h], frame.up());
+    }
+}

@@ -1,0 +1,159 @@
+//! Settings of the turtle and of the meshes it builds.
+
+use glam::Vec3;
+
+use crate::symbols::SymbolTable;
+
+/// How branch segments become surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum BranchShape {
+    /// One closed cylinder per `F`, radius from the current width (the thesis's primitive).
+    Cylinder,
+    /// Tapered frustums whose radii run on from segment to segment; consecutive segments of
+    /// one axis share their joining ring, so a branch is one smooth tube.
+    #[default]
+    Frustum,
+}
+
+/// Tropism: after each step the heading turns towards `direction` by `susceptibility * |H x T|`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tropism {
+    /// The direction branches bend towards (gravity is `(0, -1, 0)`); need not be unit.
+    pub direction: Vec3,
+    /// The susceptibility `e`.
+    pub susceptibility: f32,
+}
+
+/// Turtle and meshing settings. Angles are in degrees.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct TurtleOptions {
+    /// Which symbol means what.
+    pub symbols: SymbolTable,
+    /// Step length for `F` and `f` without a parameter.
+    pub step: f32,
+    /// Turning angle in degrees for rotations without a parameter.
+    pub angle: f32,
+    /// Initial width (diameter) in world units.
+    pub width: f32,
+    /// Multiplies every width given as a parameter to `!(w)`: grammars written in pixels
+    /// (ABOP's Honda tree uses widths near 10 with unit steps) set it below 1.
+    pub width_unit: f32,
+    /// Factor for `!` without a parameter.
+    pub width_factor: f32,
+    /// Factor for `"` without a parameter.
+    pub length_factor: f32,
+    /// Factor for `;` without a parameter.
+    pub angle_factor: f32,
+    /// Optional tropism applied after every move.
+    pub tropism: Option<Tropism>,
+    /// Leaf quad length (along the heading) and width.
+    pub leaf_size: [f32; 2],
+    /// Cylinders or frustums.
+    pub shape: BranchShape,
+    /// Vertices around each ring (at least 3).
+    pub radial_segments: u32,
+    /// Close tube ends with discs.
+    pub caps: bool,
+    /// Radii below this are raised to it, so thin twigs stay visible.
+    pub min_radius: f32,
+    /// Deepest `[` / `{` nesting accepted.
+    pub max_depth: usize,
+}
+
+impl Default for TurtleOptions {
+    fn default() -> Self {
+        TurtleOptions {
+            symbols: SymbolTable::abop(),
+            step: 1.0,
+            angle: 22.5,
+            width: 0.1,
+            width_unit: 1.0,
+            width_factor: 0.7,
+            length_factor: 0.9,
+            angle_factor: 0.9,
+            tropism: None,
+            leaf_size: [0.3, 0.15],
+            shape: BranchShape::Frustum,
+            radial_segments: 8,
+            caps: false,
+            min_radius: 0.0,
+            max_depth: 1 << 20,
+        }
+    }
+}
+
+impl TurtleOptions {
+    /// Sets [`TurtleOptions::angle`] (degrees).
+    pub fn with_angle(mut self, degrees: f32) -> Self {
+        self.angle = degrees;
+        self
+    }
+
+    /// Sets [`TurtleOptions::step`].
+    pub fn with_step(mut self, step: f32) -> Self {
+        self.step = step;
+        self
+    }
+
+    /// Sets [`TurtleOptions::width`].
+    pub fn with_width(mut self, width: f32) -> Self {
+        self.width = width;
+        self
+    }
+
+    /// Sets [`TurtleOptions::width_unit`].
+    pub fn with_width_unit(mut self, unit: f32) -> Self {
+        self.width_unit = unit;
+        self
+    }
+
+    /// Sets [`TurtleOptions::tropism`].
+    pub fn with_tropism(mut self, direction: Vec3, susceptibility: f32) -> Self {
+        self.tropism = Some(Tropism {
+            direction,
+            susceptibility,
+        });
+        self
+    }
+
+    /// Sets [`TurtleOptions::shape`].
+    pub fn with_shape(mut self, shape: BranchShape) -> Self {
+        self.shape = shape;
+        self
+    }
+
+    /// Sets [`TurtleOptions::radial_segments`].
+    pub fn with_radial_segments(mut self, n: u32) -> Self {
+        self.radial_segments = n;
+        self
+    }
+
+    /// Sets [`TurtleOptions::caps`].
+    pub fn with_caps(mut self, caps: bool) -> Self {
+        self.caps = caps;
+        self
+    }
+
+    /// Sets [`TurtleOptions::min_radius`].
+    pub fn with_min_radius(mut self, r: f32) -> Self {
+        self.min_radius = r;
+        self
+    }
+
+    /// Sets [`TurtleOptions::symbols`].
+    pub fn with_symbols(mut self, symbols: SymbolTable) -> Self {
+        self.symbols = symbols;
+        self
+    }
+
+    /// Options matching a bundled preset's published angle and tropism.
+    pub fn for_preset(preset: &sylva_lsys::Preset) -> Self {
+        let mut o = TurtleOptions::default().with_angle(preset.angle as f32);
+        if let Some((d, e)) = preset.tropism {
+            o = o.with_tropism(Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32), e as f32);
+        }
+        o
+    }
+}

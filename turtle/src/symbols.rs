@@ -1,0 +1,145 @@
+//! Which symbol means what: the turtle's command table.
+
+use std::collections::HashMap;
+
+use sylva_lsys::Alphabet;
+
+/// What the turtle does for one symbol.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Command {
+    /// `F(l)`: move forward by `l` (default: current step) and draw a segment.
+    Draw,
+    /// `f(l)`: move forward without drawing.
+    Move,
+    /// `+(a)` / `-(a)`: turn left / right by `a` degrees about the up vector.
+    Yaw(Sign),
+    /// `&(a)` / `^(a)`: pitch down / up about the left vector.
+    Pitch(Sign),
+    /// `/(a)` / `\(a)`: roll right / left about the heading.
+    Roll(Sign),
+    /// `|`: turn around (yaw by 180 degrees).
+    TurnAround,
+    /// `$`: roll so that the left vector is horizontal.
+    RollToHorizontal,
+    /// `[`: push the turtle state.
+    Push,
+    /// `]`: pop the turtle state.
+    Pop,
+    /// `!(w)`: set the width; without a parameter, multiply it by the width factor.
+    Width,
+    /// `"(s)`: multiply the current step length by `s` (default: the length factor).
+    ScaleLength,
+    /// `;(s)`: multiply the current angle by `s` (default: the angle factor).
+    ScaleAngle,
+    /// `{`: start a polygon.
+    PolygonStart,
+    /// `.`: add the current position to the polygon.
+    PolygonVertex,
+    /// `}`: close and emit the polygon.
+    PolygonEnd,
+    /// A leaf: a quad in the turtle's frame; optional parameter scales it.
+    Leaf,
+    /// Passed to the sink with its parameters and the current frame, otherwise ignored.
+    Marker,
+}
+
+/// Direction of a rotation command.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Sign {
+    /// The command's positive sense (`+`, `&`, `/`).
+    Positive,
+    /// The opposite sense (`-`, `^`, `\`).
+    Negative,
+}
+
+impl Sign {
+    pub(crate) fn factor(self) -> f32 {
+        match self {
+            Sign::Positive => 1.0,
+            Sign::Negative => -1.0,
+        }
+    }
+}
+
+/// Maps symbols to [`Command`]s. Symbols not in the table are skipped by the turtle.
+///
+/// ```
+/// use sylva_turtle::{Command, SymbolTable};
+/// let mut table = SymbolTable::abop();
+/// table.set('G', Command::Move); // make G a move too
+/// table.set('S', Command::Marker);
+/// assert_eq!(table.get('F'), Some(Command::Draw));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SymbolTable {
+    commands: HashMap<char, Command>,
+}
+
+impl Default for SymbolTable {
+    fn default() -> Self {
+        Self::abop()
+    }
+}
+
+impl SymbolTable {
+    /// An empty table: every symbol is skipped.
+    pub fn empty() -> Self {
+        SymbolTable {
+            commands: HashMap::new(),
+        }
+    }
+
+    /// The ABOP 3D turtle: `F f + - & ^ / \ | $ [ ] ! " ; { . }`, and `~` and `J` for leaves
+    /// (ABOP's predefined surface, and the Carey report's leaf).
+    pub fn abop() -> Self {
+        use Command::*;
+        let entries = [
+            ('F', Draw),
+            ('f', Move),
+            ('+', Yaw(Sign::Positive)),
+            ('-', Yaw(Sign::Negative)),
+            ('&', Pitch(Sign::Positive)),
+            ('^', Pitch(Sign::Negative)),
+            ('/', Roll(Sign::Positive)),
+            ('\\', Roll(Sign::Negative)),
+            ('|', TurnAround),
+            ('$', RollToHorizontal),
+            ('[', Push),
+            (']', Pop),
+            ('!', Width),
+            ('"', ScaleLength),
+            (';', ScaleAngle),
+            ('{', PolygonStart),
+            ('.', PolygonVertex),
+            ('}', PolygonEnd),
+            ('~', Leaf),
+            ('J', Leaf),
+        ];
+        SymbolTable {
+            commands: entries.into_iter().collect(),
+        }
+    }
+
+    /// Sets what `symbol` means.
+    pub fn set(&mut self, symbol: char, command: Command) -> &mut Self {
+        self.commands.insert(symbol, command);
+        self
+    }
+
+    /// Makes the turtle skip `symbol`.
+    pub fn remove(&mut self, symbol: char) -> &mut Self {
+        self.commands.remove(&symbol);
+        self
+    }
+
+    /// What `symbol` means, if anything.
+    pub fn get(&self, symbol: char) -> Option<Command> {
+        self.commands.get(&symbol).copied()
+    }
+
+    /// The table as a dense array indexed by the alphabet's symbol ids.
+    pub(crate) fn resolve(&self, alphabet: &Alphabet) -> Vec<Option<Command>> {
+        alphabet.chars().iter().map(|&c| self.get(c)).collect()
+    }
+}
