@@ -3,5 +3,7 @@
 //! # Crates
 //!
 //! - [`lsys`]: L-system grammars and seeded rewriting.
+//! - [`turtle`]: 3D turtle interpretation into meshes and skeletons.
 
 pub use sylva_lsys as lsys;
+pub use sylva_turtle as turtle;

@@ -1,0 +1,122 @@
+//! Derives a tree, meshes it with the turtle and writes a Wavefront OBJ file.
+//!
+//! ```text
+//! cargo run --release --example tree -- [GRAMMAR_FILE | --preset NAME] [--steps N] [--seed S]
+//!     [--angle DEG] [--shape cylinder|frustum] [--sides K] [--caps] [--out tree.obj]
+//! ```
+//!
+//! Without arguments it writes the bundled ternary tree to `tree.obj`.
+
+use std::process::ExitCode;
+
+use sylva::lsys::{LSystem, preset};
+use sylva::turtle::{BranchShape, MeshBuilder, TurtleOptions, interpret, write_obj};
+
+const USAGE: &str = "usage: tree [GRAMMAR_FILE | --preset NAME] [--steps N] [--seed S] [--angle DEG] \
+                     [--shape cylinder|frustum] [--sides K] [--caps] [--out tree.obj]";
+
+fn run() -> Result<(), String> {
+    let mut file = None;
+    let mut preset_name = None;
+    let (mut steps, mut seed, mut angle, mut shape, mut sides, mut caps) =
+        (None, 0u64, None, BranchShape::Frustum, 8u32, false);
+    let mut out = String::from("tree.obj");
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| {
+            it.next()
+                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
+        };
+        let num_err = |name: &'static str| move |e: std::num::ParseIntError| format!("{name}: {e}");
+        match a.as_str() {
+            "--preset" => preset_name = Some(value("--preset")?),
+            "--steps" => {
+                steps = Some(
+                    value("--steps")?
+                        .parse::<u32>()
+                        .map_err(num_err("--steps"))?,
+                )
+            }
+            "--seed" => seed = value("--seed")?.parse().map_err(num_err("--seed"))?,
+            "--sides" => sides = value("--sides")?.parse().map_err(num_err("--sides"))?,
+            "--angle" => {
+                angle = Some(
+                    value("--angle")?
+                        .parse::<f32>()
+                        .map_err(|e| format!("--angle: {e}"))?,
+                )
+            }
+            "--shape" => {
+                shape = match value("--shape")?.as_str() {
+                    "cylinder" => BranchShape::Cylinder,
+                    "frustum" => BranchShape::Frustum,
+                    s => return Err(format!("--shape must be cylinder or frustum, not {s}")),
+                }
+            }
+            "--caps" => caps = true,
+            "--out" => out = value("--out")?,
+            "--help" | "-h" => return Err(USAGE.to_string()),
+            s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
+            s => file = Some(s.to_string()),
+        }
+    }
+    let (grammar, mut options, default_steps) = match (file, preset_name) {
+        (Some(_), Some(_)) => {
+            return Err(format!(
+                "give a grammar file or --preset, not both\n{USAGE}"
+            ));
+        }
+        (Some(path), None) => {
+            let text = std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
+            (
+                LSystem::parse(&text).map_err(|e| format!("{path}: {e}"))?,
+                TurtleOptions::default(),
+                4,
+            )
+        }
+        (None, name) => {
+            let name = name.unwrap_or_else(|| "abop-ternary".to_string());
+            let p = preset(&name).ok_or_else(|| format!("no preset called '{name}'"))?;
+            (
+                p.lsystem().map_err(|e| e.to_string())?,
+                TurtleOptions::for_preset(p),
+                p.steps,
+            )
+        }
+    };
+    if let Some(a) = angle {
+        options.angle = a;
+    }
+    options = options
+        .with_shape(shape)
+        .with_radial_segments(sides)
+        .with_caps(caps);
+    let word = grammar
+        .derive(steps.unwrap_or(default_steps), seed)
+        .map_err(|e| e.to_string())?;
+    let mut builder = MeshBuilder::new(&options);
+    let stats = interpret(&word, &options, &mut builder).map_err(|e| e.to_string())?;
+    let mesh = builder.finish();
+    let f = std::fs::File::create(&out).map_err(|e| format!("{out}: {e}"))?;
+    write_obj(&mesh, f).map_err(|e| format!("{out}: {e}"))?;
+    println!(
+        "wrote {out}: {} vertices, {} triangles, {} segments, {} polygons, {} leaves ({} modules)",
+        mesh.vertices.len(),
+        mesh.triangle_count(),
+        stats.segments,
+        stats.polygons,
+        stats.leaves,
+        word.len()
+    );
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
