@@ -95,7 +95,8 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                 let length = arg(0)?.unwrap_or(state.step);
                 let start = state.frame;
                 state.frame.position += state.frame.heading() * length;
-                if !(state.frame.position.abs().max_element() <= MAX_COORDINATE) {
+                let reach = state.frame.position.abs().max_element();
+                if reach.is_nan() || reach > MAX_COORDINATE {
                     return Err(TurtleError::OutOfRange {
                         index,
                         symbol: module.symbol,
