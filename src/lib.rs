@@ -4,6 +4,8 @@
 //!
 //! - [`lsys`]: L-system grammars and seeded rewriting.
 //! - [`turtle`]: 3D turtle interpretation into meshes and skeletons.
+//! - [`terrain`]: diamond-square heightmaps, smoothing, erosion, sampling, export.
 
 pub use sylva_lsys as lsys;
+pub use sylva_terrain as terrain;
 pub use sylva_turtle as turtle;

@@ -257,7 +257,11 @@ pub(crate) struct PatternsDisplay<'a>(pub(crate) &'a [Pattern], pub(crate) &'a A
 
 impl fmt::Display for PatternsDisplay<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for p in self.0 {
+        for (i, p) in self.0.iter().enumerate() {
+            // Spaces keep "/*" and a leading "//" from reading back as comments.
+            if i > 0 {
+                f.write_str(" ")?;
+            }
             write!(f, "{}", self.1.char(p.symbol))?;
             if !p.params.is_empty() {
                 write!(f, "({})", p.params.join(","))?;
@@ -343,8 +347,8 @@ impl fmt::Display for LSystem {
             writeln!(f, "#define {name} {e}")?;
         }
         if !self.ignore.is_empty() {
-            let s: String = self.ignore.iter().map(|&s| a.char(s)).collect();
-            writeln!(f, "#ignore: {s}")?;
+            let s: Vec<String> = self.ignore.iter().map(|&s| a.char(s).to_string()).collect();
+            writeln!(f, "#ignore: {}", s.join(" "))?;
         }
         f.write_str("axiom: ")?;
         let mut previous = None;

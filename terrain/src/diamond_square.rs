@@ -1,0 +1,225 @@
+//! Midpoint displacement by the diamond-square algorithm.
+
+use glam::Vec2;
+
+use crate::error::{TerrainError, check};
+use crate::hash::signed_noise;
+use crate::heightmap::{Heightmap, checked_len, levels_of};
+
+/// Settings for [`DiamondSquare::generate`].
+///
+/// Every sample's random displacement is keyed by the seed and the sample's global grid
+/// coordinates (`tile * (size - 1) + local`), and samples on a tile's border are interpolated
+/// from the border alone. So neighbouring tiles generated separately share their border
+/// samples exactly: a world can be generated tile by tile with no seams. Structure larger than
+/// one tile comes only from the corner heights.
+///
+/// ```
+/// use sylva_terrain::DiamondSquare;
+/// let map = DiamondSquare::new(129).with_seed(7).with_roughness(0.8).generate().unwrap();
+/// assert_eq!(map.size(), 129);
+/// assert_eq!(map, DiamondSquare::new(129).with_seed(7).with_roughness(0.8).generate().unwrap());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct DiamondSquare {
+    /// Samples per side, 2^n + 1.
+    pub size: usize,
+    /// Horizontal distance between samples.
+    pub spacing: f32,
+    /// Roughness H in [0, 1]: displacements shrink by 2^-H per level, so the mean squared
+    /// height difference at lag d grows as d^(2H). Low H is rough, high H smooth.
+    pub roughness: f32,
+    /// Displacement scale of the first level (and of random corners).
+    pub amplitude: f32,
+    /// Seed of the displacements.
+    pub seed: u64,
+    /// Fixed corner heights (x0z0, x1z0, x0z1, x1z1), or `None` for random corners.
+    pub corners: Option<[f32; 4]>,
+    /// Periodic mode: opposite edges are equal, so the map tiles with copies of itself.
+    pub wrap: bool,
+    /// Which tile of the world this map is (in units of `size - 1` samples).
+    pub tile: [i64; 2],
+}
+
+impl DiamondSquare {
+    /// Defaults: spacing 1, roughness 0.8, amplitude `size / 4` spacings, seed 0, random
+    /// corners, no wrap, tile (0, 0).
+    pub fn new(size: usize) -> Self {
+        DiamondSquare {
+            size,
+            spacing: 1.0,
+            roughness: 0.8,
+            amplitude: size as f32 * 0.25,
+            seed: 0,
+            corners: None,
+            wrap: false,
+            tile: [0, 0],
+        }
+    }
+
+    /// Sets [`DiamondSquare::seed`].
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Sets [`DiamondSquare::roughness`].
+    pub fn with_roughness(mut self, h: f32) -> Self {
+        self.roughness = h;
+        self
+    }
+
+    /// Sets [`DiamondSquare::amplitude`].
+    pub fn with_amplitude(mut self, a: f32) -> Self {
+        self.amplitude = a;
+        self
+    }
+
+    /// Sets [`DiamondSquare::spacing`].
+    pub fn with_spacing(mut self, s: f32) -> Self {
+        self.spacing = s;
+        self
+    }
+
+    /// Sets [`DiamondSquare::corners`].
+    pub fn with_corners(mut self, corners: [f32; 4]) -> Self {
+        self.corners = Some(corners);
+        self
+    }
+
+    /// Sets [`DiamondSquare::wrap`].
+    pub fn with_wrap(mut self, wrap: bool) -> Self {
+        self.wrap = wrap;
+        self
+    }
+
+    /// Sets [`DiamondSquare::tile`].
+    pub fn with_tile(mut self, x: i64, z: i64) -> Self {
+        self.tile = [x, z];
+        self
+    }
+
+    fn validate(&self) -> Result<(), TerrainError> {
+        levels_of(self.size)?;
+        check(
+            "spacing",
+            f64::from(self.spacing),
+            self.spacing > 0.0,
+            "a positive distance",
+        )?;
+        check(
+            "roughness",
+            f64::from(self.roughness),
+            (0.0..=1.0).contains(&self.roughness),
+            "in [0, 1]",
+        )?;
+        check(
+            "amplitude",
+            f64::from(self.amplitude),
+            self.amplitude >= 0.0,
+            "finite and not negative",
+        )?;
+        if let Some(c) = self.corners {
+            for v in c {
+                check("corner height", f64::from(v), true, "finite")?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Generates the heightmap.
+    pub fn generate(&self) -> Result<Heightmap, TerrainError> {
+        self.validate()?;
+        let n = self.size;
+        let mut h = vec![0.0f32; checked_len(n)?];
+        let cells = n - 1;
+        let (gx0, gz0) = (
+            self.tile[0].wrapping_mul(cells as i64),
+            self.tile[1].wrapping_mul(cells as i64),
+        );
+        let noise = |x: usize, z: usize| {
+            // Wrapped maps key their noise by the periodic coordinate.
+            let (x, z) = if self.wrap {
+                (x % cells, z % cells)
+            } else {
+                (x, z)
+            };
+            signed_noise(
+                self.seed,
+                gx0.wrapping_add(x as i64),
+                gz0.wrapping_add(z as i64),
+            )
+        };
+        let corner = |i: usize, x: usize, z: usize| match self.corners {
+            Some(c) => c[i],
+            None => self.amplitude * noise(x, z),
+        };
+        if self.wrap {
+            let c = corner(0, 0, 0);
+            h.iter_mut().for_each(|v| *v = c);
+        } else {
+            h[0] = corner(0, 0, 0);
+            h[cells] = corner(1, cells, 0);
+            h[cells * n] = corner(2, 0, cells);
+            h[cells * n + cells] = corner(3, cells, cells);
+        }
+        let decay = 2f32.powf(-self.roughness);
+        let half_decay = 2f32.powf(-0.5 * self.roughness);
+        let mut scale = self.amplitude * decay;
+        let mut step = cells;
+        while step > 1 {
+            let half = step / 2;
+            // Diamond step: centres of squares.
+            for z in (half..cells).step_by(step) {
+                for x in (half..cells).step_by(step) {
+                    let avg = 0.25
+                        * (h[(z - half) * n + x - half]
+                            + h[(z - half) * n + x + half]
+                            + h[(z + half) * n + x - half]
+                            + h[(z + half) * n + x + half]);
+                    h[z * n + x] = avg + scale * noise(x, z);
+                }
+            }
+            // Square step: edge midpoints. Their parents are closer by a factor of sqrt 2 than
+            // the diamond step's, so their displacement is smaller by 2^(-H/2).
+            let square_scale = scale * half_decay;
+            for z in (0..=cells).step_by(half) {
+                let start = if (z / half).is_multiple_of(2) { half } else { 0 };
+                for x in (start..=cells).step_by(step) {
+                    let avg = if self.wrap {
+                        let at = |x: usize, z: usize| h[(z % cells) * n + (x % cells)];
+                        0.25 * (at(x + cells - half, z)
+                            + at(x + half, z)
+                            + at(x, z + cells - half)
+                            + at(x, z + half))
+                    } else if x == 0 || x == cells {
+                        // On a tile border only border samples count, so neighbours agree.
+                        0.5 * (h[(z - half) * n + x] + h[(z + half) * n + x])
+                    } else if z == 0 || z == cells {
+                        0.5 * (h[z * n + x - half] + h[z * n + x + half])
+                    } else {
+                        0.25 * (h[z * n + x - half]
+                            + h[z * n + x + half]
+                            + h[(z - half) * n + x]
+                            + h[(z + half) * n + x])
+                    };
+                    h[z * n + x] = avg + square_scale * noise(x, z);
+                }
+            }
+            scale *= decay;
+            step = half;
+        }
+        if self.wrap {
+            // Opposite edges are the same periodic samples.
+            for z in 0..n {
+                h[z * n + cells] = h[(z % cells) * n];
+            }
+            for x in 0..n {
+                h[cells * n + x] = h[x];
+            }
+        }
+        let origin = Vec2::new(gx0 as f32, gz0 as f32) * self.spacing;
+        Ok(Heightmap::from_heights(n, self.spacing, h)?.with_origin(origin))
+    }
+}
