@@ -185,7 +185,11 @@ impl DiamondSquare {
             // the diamond step's, so their displacement is smaller by 2^(-H/2).
             let square_scale = scale * half_decay;
             for z in (0..=cells).step_by(half) {
-                let start = if (z / half).is_multiple_of(2) { half } else { 0 };
+                let start = if (z / half).is_multiple_of(2) {
+                    half
+                } else {
+                    0
+                };
                 for x in (start..=cells).step_by(step) {
                     let avg = if self.wrap {
                         let at = |x: usize, z: usize| h[(z % cells) * n + (x % cells)];

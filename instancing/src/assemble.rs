@@ -1,0 +1,177 @@
+//! Trees from instances (Kenwood algorithm 2) with an explicit stack: T = D * M^-1 and
+//! D_new = D * E.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Quat, Vec3};
+
+use crate::cache::InstanceCache;
+use crate::error::InstancingError;
+use crate::hero::ROOT;
+use crate::similarity::Similarity;
+
+/// A placed tree, compact: 28 bytes. Its branches are expanded on demand, deterministically
+/// from `seed`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Pod, Zeroable)]
+pub struct CompactTree {
+    /// Root position.
+    pub position: [f32; 3],
+    /// Rotation about +Y, radians.
+    pub yaw: f32,
+    /// Uniform scale.
+    pub scale: f32,
+    /// Seed of the instance choices.
+    pub seed: u32,
+    /// Index of the species' cache.
+    pub species: u16,
+    /// Reserved, zero.
+    pub reserved: u16,
+}
+
+impl CompactTree {
+    /// The root transform D.
+    pub fn root(&self) -> Similarity {
+        Similarity {
+            rotation: Quat::from_rotation_y(self.yaw),
+            translation: Vec3::from(self.position),
+            scale: self.scale,
+        }
+    }
+}
+
+/// Bounds on one tree's assembly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct AssemblyLimits {
+    /// Deepest chain of exits followed.
+    pub max_depth: u32,
+    /// Most instances one tree may place.
+    pub max_instances: usize,
+}
+
+impl Default for AssemblyLimits {
+    fn default() -> Self {
+        AssemblyLimits {
+            max_depth: 256,
+            max_instances: 1 << 22,
+        }
+    }
+}
+
+/// Instance placements grouped per instance: for each cached instance, the transforms at which
+/// it is drawn. One instanced draw (or one glTF node with EXT_mesh_gpu_instancing) per
+/// non-empty group.
+#[derive(Debug, Clone, Default)]
+pub struct Placements {
+    /// `groups[i]`: the transforms of instance `i` of the cache.
+    pub groups: Vec<Vec<Similarity>>,
+    /// Total placements.
+    pub count: usize,
+}
+
+impl Placements {
+    /// Empty placements for a cache of `instances` instances.
+    pub fn for_cache(cache: &InstanceCache) -> Self {
+        Placements {
+            groups: vec![Vec::new(); cache.instances.len()],
+            count: 0,
+        }
+    }
+
+    /// Removes all placements, keeping allocations.
+    pub fn clear(&mut self) {
+        self.groups.iter_mut().for_each(Vec::clear);
+        self.count = 0;
+    }
+
+    /// The largest number of placements of any one instance.
+    pub fn max_uses(&self) -> usize {
+        self.groups.iter().map(Vec::len).max().unwrap_or(0)
+    }
+
+    /// Instances with at least one placement (draw calls needed).
+    pub fn used_instances(&self) -> usize {
+        self.groups.iter().filter(|g| !g.is_empty()).count()
+    }
+}
+
+#[inline]
+fn pick(seed: u32, counter: u32, n: usize) -> usize {
+    let mut z = (u64::from(seed) << 32 | u64::from(counter)).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^= z >> 31;
+    ((z >> 32) * n as u64 >> 32) as usize
+}
+
+/// Reusable state for expanding trees.
+#[derive(Debug, Default)]
+pub struct Assembler {
+    stack: Vec<(u32, u32, Similarity, u32)>,
+    /// Limits applied to every tree.
+    pub limits: AssemblyLimits,
+}
+
+impl Assembler {
+    /// An assembler with default limits.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Expands one tree into `out`, calling `place(instance, transform)` for each placement.
+    /// Returns the number of instances placed.
+    #[inline]
+    pub fn expand_with(
+        &mut self,
+        cache: &InstanceCache,
+        tree: &CompactTree,
+        mut place: impl FnMut(u32, Similarity),
+    ) -> Result<usize, InstancingError> {
+        self.stack.clear();
+        self.stack.push((ROOT.0, ROOT.1, tree.root(), 0));
+        let mut placed = 0usize;
+        let mut counter = 0u32;
+        while let Some((id, age, desired, depth)) = self.stack.pop() {
+            if depth > self.limits.max_depth {
+                return Err(InstancingError::AssemblyLimit("depth"));
+            }
+            let candidates = cache.lookup(id, age);
+            if candidates.is_empty() {
+                // Heroes guarantee a candidate for every exit; only a foreign cache gets here.
+                return Err(InstancingError::AssemblyLimit("missing instance"));
+            }
+            let chosen = candidates[pick(tree.seed, counter, candidates.len())];
+            counter = counter.wrapping_add(1);
+            let instance = &cache.instances[chosen as usize];
+            place(chosen, desired.mul(&instance.frame_inverse));
+            placed += 1;
+            if placed > self.limits.max_instances {
+                return Err(InstancingError::AssemblyLimit("instances per tree"));
+            }
+            for exit in cache.exits_of(instance) {
+                self.stack
+                    .push((exit.id, exit.age, desired.mul(&exit.frame), depth + 1));
+            }
+        }
+        Ok(placed)
+    }
+
+    /// Expands `trees` (all of the species whose cache is `cache`) into grouped placements.
+    pub fn expand(
+        &mut self,
+        cache: &InstanceCache,
+        trees: &[CompactTree],
+        out: &mut Placements,
+    ) -> Result<usize, InstancingError> {
+        if out.groups.len() < cache.instances.len() {
+            out.groups.resize(cache.instances.len(), Vec::new());
+        }
+        let mut total = 0;
+        for tree in trees {
+            let groups = &mut out.groups;
+            total += self.expand_with(cache, tree, |i, t| groups[i as usize].push(t))?;
+        }
+        out.count += total;
+        Ok(total)
+    }
+}

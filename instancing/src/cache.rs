@@ -1,0 +1,126 @@
+//! The instance cache: one shared vertex and index buffer per species, instances as index
+//! ranges with their hero frame and exit points, and an O(1) lookup by (branch id, age).
+
+use sylva_turtle::Vertex;
+
+use crate::similarity::Similarity;
+
+/// A cached branch instance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Instance {
+    /// Branch id (0: a whole tree).
+    pub id: u32,
+    /// Generation at which the branch was introduced.
+    pub age: u32,
+    /// Bark triangles: `bark[start..start + count]` of the cache's index buffer.
+    pub bark: (u32, u32),
+    /// Foliage triangles: a range of the cache's foliage index buffer.
+    pub foliage: (u32, u32),
+    /// The inverse of the instance's frame M in its hero tree: placing it at a desired frame D
+    /// uses T = D * M^-1.
+    pub frame_inverse: Similarity,
+    /// Its exit points: `exits[start..start + count]` of the cache.
+    pub exits: (u32, u32),
+}
+
+/// An exit point of an instance: where a sub-branch of (id, age) must be attached, as a frame
+/// E relative to the instance's own frame (so the sub-branch goes to D * E).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exit {
+    /// Branch id wanted.
+    pub id: u32,
+    /// Age wanted.
+    pub age: u32,
+    /// Frame relative to the instance.
+    pub frame: Similarity,
+}
+
+/// Bytes one instance's metadata costs against the budget.
+pub const INSTANCE_BYTES: usize = std::mem::size_of::<Instance>();
+/// Bytes one exit point costs against the budget.
+pub const EXIT_BYTES: usize = std::mem::size_of::<Exit>();
+/// Bytes one lookup candidate costs against the budget.
+pub const CANDIDATE_BYTES: usize = 4;
+
+/// The cache of one species: geometry, instances, exits and the lookup table.
+#[derive(Debug, Clone, Default)]
+pub struct InstanceCache {
+    /// The shared vertex buffer.
+    pub vertices: Vec<Vertex>,
+    /// The shared bark index buffer.
+    pub bark: Vec<u32>,
+    /// The shared foliage index buffer.
+    pub foliage: Vec<u32>,
+    /// All instances.
+    pub instances: Vec<Instance>,
+    /// All exit points.
+    pub exits: Vec<Exit>,
+    /// Per (id, age): range into `candidates`; dense, `table[id * ages + age]`.
+    table: Vec<(u32, u32)>,
+    candidates: Vec<u32>,
+    ages: u32,
+    budget: usize,
+}
+
+impl InstanceCache {
+    pub(crate) fn new(budget: usize) -> Self {
+        InstanceCache {
+            budget,
+            ..Default::default()
+        }
+    }
+
+    /// The byte budget the cache was built under.
+    pub fn budget(&self) -> usize {
+        self.budget
+    }
+
+    /// Bytes used: geometry, instance metadata, exits and lookup candidates.
+    pub fn bytes(&self) -> usize {
+        self.vertices.len() * std::mem::size_of::<Vertex>()
+            + (self.bark.len() + self.foliage.len()) * 4
+            + self.instances.len() * INSTANCE_BYTES
+            + self.exits.len() * EXIT_BYTES
+            + self.candidates.len() * CANDIDATE_BYTES
+            + self.table.len() * 8
+    }
+
+    /// Candidates for (id, age) in O(1): indices into [`InstanceCache::instances`].
+    #[inline]
+    pub fn lookup(&self, id: u32, age: u32) -> &[u32] {
+        if age >= self.ages {
+            return &[];
+        }
+        match self
+            .table
+            .get((id as usize) * self.ages as usize + age as usize)
+        {
+            Some(&(start, count)) => &self.candidates[start as usize..(start + count) as usize],
+            None => &[],
+        }
+    }
+
+    /// The exit points of instance `i`.
+    #[inline]
+    pub fn exits_of(&self, instance: &Instance) -> &[Exit] {
+        &self.exits[instance.exits.0 as usize..(instance.exits.0 + instance.exits.1) as usize]
+    }
+
+    /// Rebuilds the dense lookup table over `ids` ids and `ages` ages (bytes counted).
+    pub(crate) fn index(&mut self, ids: u32, ages: u32) {
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (ids * ages) as usize];
+        for (i, inst) in self.instances.iter().enumerate() {
+            if inst.id < ids && inst.age < ages {
+                lists[(inst.id * ages + inst.age) as usize].push(i as u32);
+            }
+        }
+        self.candidates.clear();
+        self.table.clear();
+        for l in lists {
+            self.table
+                .push((self.candidates.len() as u32, l.len() as u32));
+            self.candidates.extend(l);
+        }
+        self.ages = ages;
+    }
+}

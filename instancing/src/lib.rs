@@ -1,0 +1,53 @@
+//! The branch-level instance cache of Kenwood, Gain and Marais (2014), with the refinements of
+//! the Carey report: grammars rewritten into instancing form, a byte-budgeted cache filled by
+//! hero trees, and trees assembled from cached branches.
+//!
+//! ```
+//! use sylva_instancing::{build_cache, Assembler, CompactTree, HeroOptions, Placements};
+//!
+//! let grammar = sylva_lsys::preset("kenwood-leafy").unwrap().lsystem()?;
+//! let built = build_cache(&grammar, &HeroOptions::default().with_budget(4 << 20).with_generations(5))?;
+//! let trees: Vec<CompactTree> = (0..100)
+//!     .map(|i| CompactTree { position: [i as f32 * 10.0, 0.0, 0.0], scale: 1.0, seed: i, ..Default::default() })
+//!     .collect();
+//! let mut placements = Placements::for_cache(&built.cache);
+//! let placed = Assembler::new().expand(&built.cache, &trees, &mut placements)?;
+//! assert!(placed >= 100);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # How it works
+//!
+//! 1. **Rewriting** ([`InstancingGrammar`]): every top-level `[...]` of a successor that holds
+//!    a non-terminal is a branch; identical branches share an id; id 0 is the whole tree. Each
+//!    branch becomes an independent stochastic choice: with probability P a get-instance exit
+//!    `◆(id, #)`, else the branch itself between `⟦(id, #)` and `⟧(id, #)`. This reaches the
+//!    distribution of the paper's 2^B right-hand sides ([`InstancingGrammar::explicit`]) with
+//!    one right-hand side per production.
+//! 2. **Heroes** ([`build_cache`]): hero trees are derived and meshed through the turtle's
+//!    marker symbols ([`HeroRecorder`]); each recorded range becomes an [`Instance`] with its
+//!    frame M and exit points, until the byte budget is used. P rises as the cache fills.
+//! 3. **Assembly** ([`Assembler`]): a [`CompactTree`] (28 bytes) is expanded from its seed:
+//!    start from a whole-tree instance at the root frame D, place each instance at
+//!    T = D * M^-1 and follow each exit E with D * E, on an explicit stack.
+//!
+//! Instances are rigid, so grammars meant for instancing should not use tropism (which bends
+//! by absolute direction).
+
+mod assemble;
+mod builder;
+mod cache;
+mod error;
+mod hero;
+mod recorder;
+mod rewrite;
+mod similarity;
+
+pub use assemble::{Assembler, AssemblyLimits, CompactTree, Placements};
+pub use builder::{BuildReport, InstancedBuilder, NaiveBuilder, TreeBuilder};
+pub use cache::{CANDIDATE_BYTES, EXIT_BYTES, Exit, INSTANCE_BYTES, Instance, InstanceCache};
+pub use error::InstancingError;
+pub use hero::{HeroCache, HeroOptions, HeroStats, build_cache};
+pub use recorder::{HeroRecorder, RecordedInstance};
+pub use rewrite::{Branch, InstancingGrammar, Markers, probability_at_ages};
+pub use similarity::Similarity;

@@ -1,0 +1,134 @@
+//! `HeroRecorder`: a `GeometrySink` that meshes a hero tree and notes, from the marker
+//! symbols, which index ranges form instances and where their exits are.
+
+use glam::Vec3;
+use sylva_turtle::{Frame, GeometrySink, MeshBuilder, Segment, TurtleOptions};
+
+use crate::rewrite::Markers;
+use crate::similarity::Similarity;
+
+/// An instance found in a hero, with ranges into the hero's own mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordedInstance {
+    /// Branch id.
+    pub id: u32,
+    /// Age.
+    pub age: u32,
+    /// Frame M in the hero.
+    pub frame: Similarity,
+    /// Bark index range (start, end) in the hero mesh.
+    pub bark: (u32, u32),
+    /// Foliage index range (start, end).
+    pub foliage: (u32, u32),
+    /// Exit range (start, end) into [`HeroRecorder::exits`].
+    pub exits: (u32, u32),
+    /// Order in which its start marker appeared.
+    pub start_order: u32,
+}
+
+#[derive(Debug, Clone)]
+struct Open {
+    id: u32,
+    age: u32,
+    frame: Similarity,
+    bark: u32,
+    foliage: u32,
+    exits: u32,
+    order: u32,
+}
+
+/// Meshes a hero tree and records its instances and exit points.
+#[derive(Debug, Clone)]
+pub struct HeroRecorder {
+    /// The hero's geometry.
+    pub builder: MeshBuilder,
+    /// Instances in the order they closed.
+    pub instances: Vec<RecordedInstance>,
+    /// Exit points (id, age, world frame) in the order they appeared.
+    pub exits: Vec<(u32, u32, Similarity)>,
+    markers: Markers,
+    open: Vec<Open>,
+    started: u32,
+}
+
+fn key(params: &[f64]) -> Option<(u32, u32)> {
+    match params {
+        [id, age, ..] if *id >= 0.0 && *age >= 0.0 && *id < 1e9 && *age < 1e9 => {
+            Some((*id as u32, *age as u32))
+        }
+        _ => None,
+    }
+}
+
+impl HeroRecorder {
+    /// A recorder meshing with `options` and reading `markers`.
+    pub fn new(options: &TurtleOptions, markers: Markers) -> Self {
+        HeroRecorder {
+            builder: MeshBuilder::new(options),
+            instances: Vec::new(),
+            exits: Vec::new(),
+            markers,
+            open: Vec::new(),
+            started: 0,
+        }
+    }
+}
+
+impl GeometrySink for HeroRecorder {
+    fn begin(&mut self) {
+        self.builder.begin();
+    }
+
+    fn segment(&mut self, segment: &Segment) {
+        self.builder.segment(segment);
+    }
+
+    fn axis_end(&mut self, id: u32) {
+        self.builder.axis_end(id);
+    }
+
+    fn polygon(&mut self, vertices: &[Vec3]) {
+        self.builder.polygon(vertices);
+    }
+
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
+        self.builder.leaf(frame, size);
+    }
+
+    fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {
+        let Some((id, age)) = key(params) else { return };
+        let mesh = &self.builder.mesh;
+        if symbol == self.markers.start {
+            self.open.push(Open {
+                id,
+                age,
+                frame: Similarity::from_frame(frame),
+                bark: mesh.bark.len() as u32,
+                foliage: mesh.foliage.len() as u32,
+                exits: self.exits.len() as u32,
+                order: self.started,
+            });
+            self.started += 1;
+        } else if symbol == self.markers.stop {
+            if self.open.last().is_some_and(|o| o.id == id && o.age == age)
+                && let Some(o) = self.open.pop()
+            {
+                self.instances.push(RecordedInstance {
+                    id,
+                    age,
+                    frame: o.frame,
+                    bark: (o.bark, mesh.bark.len() as u32),
+                    foliage: (o.foliage, mesh.foliage.len() as u32),
+                    exits: (o.exits, self.exits.len() as u32),
+                    start_order: o.order,
+                });
+            }
+        } else if symbol == self.markers.get {
+            self.exits.push((id, age, Similarity::from_frame(frame)));
+        }
+    }
+
+    fn end(&mut self) {
+        self.builder.end();
+    }
+}
