@@ -97,11 +97,11 @@ impl Placements {
 
 #[inline]
 fn pick(seed: u32, counter: u32, n: usize) -> usize {
-    let mut z = (u64::from(seed) << 32 | u64::from(counter)).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    let mut z = ((u64::from(seed) << 32) | u64::from(counter)).wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^= z >> 31;
-    ((z >> 32) * n as u64 >> 32) as usize
+    (((z >> 32) * n as u64) >> 32) as usize
 }
 
 /// Reusable state for expanding trees.

@@ -56,7 +56,7 @@ impl Default for HeroOptions {
             seed: 0,
             p_min: 0.3,
             p_max: 0.95,
-            cap_per_key: 64,
+            cap_per_key: 4096,
             max_heroes: 100_000,
             max_rejections: 4,
             turtle: TurtleOptions::default(),

@@ -31,8 +31,22 @@
 //!    start from a whole-tree instance at the root frame D, place each instance at
 //!    T = D * M^-1 and follow each exit E with D * E, on an explicit stack.
 //!
-//! Instances are rigid, so grammars meant for instancing should not use tropism (which bends
-//! by absolute direction).
+//! # Exactness
+//!
+//! A key (id, age) stands for one subtree when the grammar is deterministic and a branch's
+//! parameters depend only on its age (always so without parameters): then every assembled
+//! tree equals the directly derived tree, triangle for triangle, at any instancing
+//! probability (the test suite checks this). Where the same branch at the same age carries
+//! different parameters on different paths (ABOP's Honda tree), or the turtle uses absolute
+//! directions (tropism, `$`), a reused instance approximates the branch it replaces, as in the
+//! paper. Stochastic grammars always assemble into valid derivations.
+//!
+//! # Completeness
+//!
+//! Hero creation records, never instances, a branch whose (id, age) has no cached instance
+//! yet. So every exit of every cached instance has a candidate, every assembled tree is
+//! complete, and assembly never derives or meshes anything: where Carey builds a missing
+//! branch inline at assembly time, this crate makes the case impossible.
 
 mod assemble;
 mod builder;

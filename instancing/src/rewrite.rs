@@ -201,9 +201,15 @@ impl InstancingGrammar {
             symbol: self.ids[which],
             args: vec![Expr::Number(0.0), Expr::Number(0.0)],
         };
-        let mut axiom = vec![wrap(0)];
+        let bracket = |symbol| ModuleTemplate {
+            symbol,
+            args: Vec::new(),
+        };
+        // The brackets end the trunk's axis before the stop marker, so that its closing cap
+        // falls inside the whole-tree instance.
+        let mut axiom = vec![wrap(0), bracket(PUSH)];
         axiom.extend(self.base.axiom().iter().cloned());
-        axiom.push(wrap(1));
+        axiom.extend([bracket(POP), wrap(1)]);
         axiom
     }
 

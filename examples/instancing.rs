@@ -1,0 +1,202 @@
+//! Builds an instance cache from hero trees and assembles many trees from it.
+//!
+//! ```text
+//! cargo run --release --example instancing -- [--preset kenwood-leafy] [--generations 6]
+//!     [--trees 1000000] [--budget-mb 128] [--seed S] [--naive N] [--stats]
+//! ```
+//!
+//! `--stats` prints one JSON line of figures. `--naive N` also builds N trees the naive way
+//! (derive and mesh each in full) and reports the speedup in trees per second.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use sylva::instancing::{
+    Assembler, CompactTree, HeroOptions, NaiveBuilder, TreeBuilder, build_cache,
+};
+use sylva::lsys::preset;
+use sylva::turtle::TurtleOptions;
+
+struct Args {
+    preset: String,
+    generations: Option<u32>,
+    trees: usize,
+    budget_mb: usize,
+    seed: u64,
+    naive: usize,
+    stats: bool,
+}
+
+const USAGE: &str = "usage: instancing [--preset NAME] [--generations N] [--trees N] [--budget-mb MB] [--seed S] [--naive N] [--stats]";
+
+fn parse() -> Result<Args, String> {
+    let mut a = Args {
+        preset: "kenwood-leafy".into(),
+        generations: None,
+        trees: 100_000,
+        budget_mb: 128,
+        seed: 1,
+        naive: 0,
+        stats: false,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        let mut value = |name: &str| {
+            it.next()
+                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
+        };
+        let bad = |name: &str, e: std::num::ParseIntError| format!("{name}: {e}");
+        match arg.as_str() {
+            "--preset" => a.preset = value("--preset")?,
+            "--generations" => {
+                a.generations = Some(
+                    value("--generations")?
+                        .parse()
+                        .map_err(|e| bad("--generations", e))?,
+                )
+            }
+            "--trees" => a.trees = value("--trees")?.parse().map_err(|e| bad("--trees", e))?,
+            "--budget-mb" => {
+                a.budget_mb = value("--budget-mb")?
+                    .parse()
+                    .map_err(|e| bad("--budget-mb", e))?
+            }
+            "--seed" => a.seed = value("--seed")?.parse().map_err(|e| bad("--seed", e))?,
+            "--naive" => a.naive = value("--naive")?.parse().map_err(|e| bad("--naive", e))?,
+            "--stats" => a.stats = true,
+            "--help" | "-h" => return Err(USAGE.into()),
+            s => return Err(format!("unknown argument {s}\n{USAGE}")),
+        }
+    }
+    Ok(a)
+}
+
+/// Peak resident memory in bytes, from /proc (Linux); 0 elsewhere.
+fn peak_rss() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
+        })
+        .map_or(0, |kb| kb * 1024)
+}
+
+fn trees(n: usize, seed: u64) -> Vec<CompactTree> {
+    let side = (n as f64).sqrt().ceil() as usize;
+    (0..n)
+        .map(|i| {
+            let h = (i as u64 ^ seed).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+            CompactTree {
+                position: [(i % side) as f32 * 12.0, 0.0, (i / side) as f32 * 12.0],
+                yaw: (h >> 40) as f32 / (1u64 << 24) as f32 * std::f32::consts::TAU,
+                scale: 0.9 + 0.2 * ((h >> 16) & 0xffff) as f32 / 65535.0,
+                seed: (h >> 32) as u32,
+                species: 0,
+                reserved: 0,
+            }
+        })
+        .collect()
+}
+
+fn run() -> Result<(), String> {
+    let args = parse()?;
+    let p = preset(&args.preset).ok_or_else(|| format!("no preset called '{}'", args.preset))?;
+    let grammar = p.lsystem().map_err(|e| e.to_string())?;
+    let generations = args.generations.unwrap_or(p.steps.min(7));
+    // Instances are rigid: no tropism for instanced species.
+    let mut turtle = TurtleOptions::default()
+        .with_angle(p.angle as f32)
+        .with_width(0.1);
+    turtle.radial_segments = 6;
+    let options = HeroOptions::default()
+        .with_budget(args.budget_mb << 20)
+        .with_generations(generations)
+        .with_seed(args.seed)
+        .with_turtle(turtle.clone());
+
+    let t0 = Instant::now();
+    let built = build_cache(&grammar, &options).map_err(|e| e.to_string())?;
+    let hero_ms = t0.elapsed().as_secs_f64() * 1e3;
+
+    let t1 = Instant::now();
+    let forest = trees(args.trees, args.seed);
+    let placement_ms = t1.elapsed().as_secs_f64() * 1e3;
+
+    // Full expansion, streamed so that a million trees need no gigabytes of placements.
+    let mut assembler = Assembler::new();
+    let mut uses = vec![0u32; built.cache.instances.len()];
+    let mut checksum = 0.0f32;
+    let t2 = Instant::now();
+    let mut placements = 0usize;
+    for tree in &forest {
+        placements += assembler
+            .expand_with(&built.cache, tree, |i, t| {
+                uses[i as usize] += 1;
+                checksum += t.translation.x;
+            })
+            .map_err(|e| e.to_string())?;
+    }
+    let expand_s = t2.elapsed().as_secs_f64();
+    let max_uses = uses.iter().copied().max().unwrap_or(0);
+
+    let mut naive_rate = None;
+    if args.naive > 0 {
+        let mut naive = NaiveBuilder::new(grammar.clone(), generations, turtle);
+        let sample = &forest[..args.naive.min(forest.len())];
+        let t = Instant::now();
+        naive.build(sample).map_err(|e| e.to_string())?;
+        naive_rate = Some(sample.len() as f64 / t.elapsed().as_secs_f64());
+    }
+    let instanced_rate = args.trees as f64 / ((hero_ms + placement_ms) / 1e3 + expand_s);
+    let s = &built.stats;
+    if args.stats {
+        println!(
+            "{{\"preset\":\"{}\",\"generations\":{generations},\"trees\":{},\"budget_mb\":{},\"heroes\":{},\"rejected_heroes\":{},\"hero_ms\":{hero_ms:.1},\"placement_ms\":{placement_ms:.1},\"expand_ms\":{:.1},\"cache_bytes\":{},\"instances\":{},\"placements\":{placements},\"instances_per_tree\":{:.2},\"compact_bytes_per_tree\":{},\"expanded_bytes_per_tree\":{:.0},\"max_uses\":{max_uses},\"placements_per_s\":{:.0},\"peak_rss_mb\":{:.1},\"instanced_trees_per_s\":{instanced_rate:.0},\"naive_trees_per_s\":{},\"speedup\":{},\"checksum\":{checksum:.1}}}",
+            p.name,
+            args.trees,
+            args.budget_mb,
+            s.heroes,
+            s.rejected,
+            expand_s * 1e3,
+            s.bytes,
+            s.instances,
+            placements as f64 / args.trees.max(1) as f64,
+            std::mem::size_of::<CompactTree>(),
+            placements as f64 * 32.0 / args.trees.max(1) as f64,
+            placements as f64 / expand_s,
+            peak_rss() as f64 / (1 << 20) as f64,
+            naive_rate.map_or("null".into(), |r| format!("{r:.1}")),
+            naive_rate.map_or("null".into(), |r| format!("{:.0}", instanced_rate / r)),
+        );
+    } else {
+        println!(
+            "{} heroes ({} instances, {:.1} MB) in {hero_ms:.0} ms; {} trees placed in {placement_ms:.0} ms; \
+             {placements} instance placements expanded in {:.0} ms ({:.1} M/s); most uses of one instance: {max_uses}",
+            s.heroes,
+            s.instances,
+            s.bytes as f64 / (1 << 20) as f64,
+            args.trees,
+            expand_s * 1e3,
+            placements as f64 / expand_s / 1e6
+        );
+        if let Some(r) = naive_rate {
+            println!(
+                "naive: {r:.1} trees/s; instanced: {instanced_rate:.0} trees/s ({:.0}x)",
+                instanced_rate / r
+            );
+        }
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
