@@ -8,6 +8,9 @@
 //! `--stats` prints one JSON line of figures. `--naive N` also builds N trees the naive way
 //! (derive and mesh each in full) and reports the speedup in trees per second.
 
+#[path = "common/mod.rs"]
+mod common;
+
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -69,18 +72,6 @@ fn parse() -> Result<Args, String> {
         }
     }
     Ok(a)
-}
-
-/// Peak resident memory in bytes, from /proc (Linux); 0 elsewhere.
-fn peak_rss() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
-        })
-        .map_or(0, |kb| kb * 1024)
 }
 
 fn trees(n: usize, seed: u64) -> Vec<CompactTree> {
@@ -166,7 +157,7 @@ fn run() -> Result<(), String> {
             std::mem::size_of::<CompactTree>(),
             placements as f64 * 32.0 / args.trees.max(1) as f64,
             placements as f64 / expand_s,
-            peak_rss() as f64 / (1 << 20) as f64,
+            common::peak_rss() as f64 / (1 << 20) as f64,
             naive_rate.map_or("null".into(), |r| format!("{r:.1}")),
             naive_rate.map_or("null".into(), |r| format!("{:.0}", instanced_rate / r)),
         );

@@ -2,11 +2,13 @@
 //!
 //! # Crates
 //!
+//! - [`forest`]: species, density management, placement, glTF export.
 //! - [`lsys`]: L-system grammars and seeded rewriting.
 //! - [`instancing`]: Kenwood's branch-level instance cache and tree assembly.
 //! - [`turtle`]: 3D turtle interpretation into meshes and skeletons.
 //! - [`terrain`]: diamond-square heightmaps, smoothing, erosion, sampling, export.
 
+pub use sylva_forest as forest;
 pub use sylva_instancing as instancing;
 pub use sylva_lsys as lsys;
 pub use sylva_terrain as terrain;

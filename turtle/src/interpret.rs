@@ -92,7 +92,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
         };
         match command {
             Command::Draw | Command::Move => {
-                let length = arg(0)?.unwrap_or(state.step);
+                let length = arg(0)?.map_or(state.step, |l| l * options.length_unit);
                 let start = state.frame;
                 state.frame.position += state.frame.heading() * length;
                 let reach = state.frame.position.abs().max_element();

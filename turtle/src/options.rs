@@ -37,6 +37,9 @@ pub struct TurtleOptions {
     pub angle: f32,
     /// Initial width (diameter) in world units.
     pub width: f32,
+    /// Multiplies every length given as a parameter to `F(l)` and `f(l)`: scales grammars
+    /// written in other units (the ternary tree's trunk is `F(200)`) to metres.
+    pub length_unit: f32,
     /// Multiplies every width given as a parameter to `!(w)`: grammars written in pixels
     /// (ABOP's Honda tree uses widths near 10 with unit steps) set it below 1.
     pub width_unit: f32,
@@ -69,6 +72,7 @@ impl Default for TurtleOptions {
             step: 1.0,
             angle: 22.5,
             width: 0.1,
+            length_unit: 1.0,
             width_unit: 1.0,
             width_factor: 0.7,
             length_factor: 0.9,
@@ -100,6 +104,12 @@ impl TurtleOptions {
     /// Sets [`TurtleOptions::width`].
     pub fn with_width(mut self, width: f32) -> Self {
         self.width = width;
+        self
+    }
+
+    /// Sets [`TurtleOptions::length_unit`].
+    pub fn with_length_unit(mut self, unit: f32) -> Self {
+        self.length_unit = unit;
         self
     }
 

@@ -341,3 +341,13 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn length_unit_scales_explicit_lengths_only() {
+    let o = TurtleOptions::default()
+        .with_length_unit(0.5)
+        .with_step(3.0);
+    let s = skeleton("F(4)F", &o);
+    assert!((s.bones[0].end.y - 2.0).abs() < 1e-6);
+    assert!((s.bones[1].end.y - 5.0).abs() < 1e-6);
+}

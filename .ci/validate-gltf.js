@@ -1,0 +1,95 @@
+// Validates glTF files with the Khronos glTF-Validator and checks the parts of
+// EXT_mesh_gpu_instancing it does not: attribute accessor types, float components, equal
+// counts and unit quaternions. Exits non-zero on any error.
+// usage: node .ci/validate-gltf.js FILE.glb [EXPECTED_PLACEMENTS]
+const fs = require('fs');
+const path = require('path');
+const validator = require(process.env.GLTF_VALIDATOR || 'gltf-validator');
+
+async function main() {
+  const [file, expected] = process.argv.slice(2);
+  const data = new Uint8Array(fs.readFileSync(file));
+  const report = await validator.validateBytes(data, {
+    uri: path.basename(file),
+    maxIssues: 100000,
+    externalResourceFunction: () => Promise.reject(new Error('no external resources')),
+  });
+  const { numErrors, numWarnings, numInfos, numHints } = report.issues;
+  console.log(`${file}: ${numErrors} errors, ${numWarnings} warnings, ${numInfos} infos, ${numHints} hints`);
+  for (const m of report.issues.messages.filter((m) => m.severity === 0).slice(0, 20)) {
+    console.log(`  error ${m.code} at ${m.pointer}: ${m.message}`);
+  }
+  const warnings = {};
+  for (const m of report.issues.messages.filter((m) => m.severity === 1)) warnings[m.code] = (warnings[m.code] || 0) + 1;
+  for (const [code, n] of Object.entries(warnings)) console.log(`  warning ${code} x${n}`);
+
+  // Our own checks of EXT_mesh_gpu_instancing.
+  const json = parseGlbJson(data);
+  const bin = parseGlbBin(data);
+  let problems = 0;
+  let placements = 0;
+  if (!(json.extensionsUsed || []).includes('EXT_mesh_gpu_instancing')) {
+    console.log('  instancing: EXT_mesh_gpu_instancing missing from extensionsUsed');
+    problems++;
+  }
+  const want = { TRANSLATION: 'VEC3', ROTATION: 'VEC4', SCALE: 'VEC3' };
+  for (const [n, node] of (json.nodes || []).entries()) {
+    const ext = node.extensions && node.extensions.EXT_mesh_gpu_instancing;
+    if (!ext) continue;
+    let count = null;
+    for (const [attr, type] of Object.entries(want)) {
+      const a = json.accessors[ext.attributes[attr]];
+      if (!a || a.type !== type || a.componentType !== 5126) {
+        console.log(`  instancing: node ${n} ${attr} must be a float ${type} accessor`);
+        problems++;
+        continue;
+      }
+      if (count === null) count = a.count;
+      if (a.count !== count) {
+        console.log(`  instancing: node ${n} attribute counts differ`);
+        problems++;
+      }
+      if (attr === 'ROTATION') {
+        const view = json.bufferViews[a.bufferView];
+        const f = new Float32Array(bin.buffer, bin.byteOffset + (view.byteOffset || 0) + (a.byteOffset || 0), a.count * 4);
+        for (let i = 0; i < a.count; i++) {
+          const len = Math.hypot(f[4 * i], f[4 * i + 1], f[4 * i + 2], f[4 * i + 3]);
+          if (Math.abs(len - 1) > 1e-4) {
+            console.log(`  instancing: node ${n} rotation ${i} has length ${len}`);
+            problems++;
+            break;
+          }
+        }
+      }
+    }
+    placements += count || 0;
+  }
+  console.log(`  instancing: ${placements} placements, ${problems} problems`);
+  if (expected !== undefined && Number(expected) !== placements) {
+    console.log(`  instancing: expected ${expected} placements`);
+    problems++;
+  }
+  process.exit(numErrors === 0 && problems === 0 ? 0 : 1);
+}
+
+function chunk(data, index) {
+  const dv = new DataView(data.buffer, data.byteOffset, data.byteLength);
+  let offset = 12;
+  for (let i = 0; i <= index; i++) {
+    const len = dv.getUint32(offset, true);
+    if (i === index) return data.subarray(offset + 8, offset + 8 + len);
+    offset += 8 + len;
+  }
+}
+function parseGlbJson(data) {
+  return JSON.parse(new TextDecoder().decode(chunk(data, 0)));
+}
+function parseGlbBin(data) {
+  const c = chunk(data, 1);
+  return new Uint8Array(c); // copy: aligned for Float32Array views
+}
+
+main().catch((e) => {
+  console.error(e);
+  process.exit(2);
+});

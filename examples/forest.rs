@@ -1,0 +1,267 @@
+//! The main job: a terrain, a few species, a forest of thousands of trees, written as glTF.
+//!
+//! ```text
+//! cargo run --release --example forest -- [--area METRES | --trees N] [--density TREES_PER_HA]
+//!     [--species FILE]... [--budget-mb MB] [--seed S] [--out forest.glb]
+//!     [--heightmap forest_height.png] [--stats]
+//! ```
+//!
+//! With no arguments it builds an 800 m square of smoothed diamond-square terrain with three
+//! species (the files in `examples/species/`) and writes `forest.glb` and
+//! `forest_height.png`. `--stats` prints one JSON line of figures instead of the summary.
+
+#[path = "common/mod.rs"]
+mod common;
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use sylva::forest::{ForestBuilder, ForestConfig, GltfOptions, Rect, Species, write_glb};
+use sylva::terrain::glam::Vec2;
+use sylva::terrain::{DiamondSquare, EdgeMode};
+
+const USAGE: &str = "usage: forest [--area METRES | --trees N] [--density TREES_PER_HA] [--species FILE]... \
+                     [--budget-mb MB] [--seed S] [--out forest.glb] [--heightmap forest_height.png] [--stats]";
+
+const DEFAULT_SPECIES: [(&str, &str); 3] = [
+    (
+        "examples/species/leafy.species",
+        include_str!("species/leafy.species"),
+    ),
+    (
+        "examples/species/ternary.species",
+        include_str!("species/ternary.species"),
+    ),
+    (
+        "examples/species/honda.species",
+        include_str!("species/honda.species"),
+    ),
+];
+
+struct Args {
+    area: Option<f32>,
+    trees: Option<usize>,
+    density: Option<f32>,
+    species: Vec<String>,
+    budget_mb: usize,
+    seed: u64,
+    out: String,
+    heightmap: String,
+    stats: bool,
+}
+
+fn parse() -> Result<Args, String> {
+    let mut a = Args {
+        area: None,
+        trees: None,
+        density: None,
+        species: Vec::new(),
+        budget_mb: 16,
+        seed: 1,
+        out: "forest.glb".into(),
+        heightmap: "forest_height.png".into(),
+        stats: false,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "--area" => a.area = Some(common::parse_value("--area", it.next())?),
+            "--trees" => a.trees = Some(common::parse_value("--trees", it.next())?),
+            "--density" => a.density = Some(common::parse_value("--density", it.next())?),
+            "--species" => a.species.push(common::parse_value("--species", it.next())?),
+            "--budget-mb" => a.budget_mb = common::parse_value("--budget-mb", it.next())?,
+            "--seed" => a.seed = common::parse_value("--seed", it.next())?,
+            "--out" => a.out = common::parse_value("--out", it.next())?,
+            "--heightmap" => a.heightmap = common::parse_value("--heightmap", it.next())?,
+            "--stats" => a.stats = true,
+            "--help" | "-h" => return Err(USAGE.into()),
+            s => return Err(format!("unknown argument {s}\n{USAGE}")),
+        }
+    }
+    if a.area.is_some() && a.trees.is_some() {
+        return Err(format!("give --area or --trees, not both\n{USAGE}"));
+    }
+    Ok(a)
+}
+
+/// Runs `work` under a spinner that shows only if the phase lasts more than a second.
+fn phase<T>(quiet: bool, message: &str, work: impl FnOnce() -> T) -> (T, Duration) {
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new_spinner()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    bar.set_message(message.to_string());
+    // The first tick comes after a second, so quick phases never draw.
+    bar.enable_steady_tick(Duration::from_millis(1000));
+    let start = Instant::now();
+    let out = work();
+    bar.finish_and_clear();
+    (out, start.elapsed())
+}
+
+fn run() -> Result<(), String> {
+    let args = parse()?;
+    let species = if args.species.is_empty() {
+        DEFAULT_SPECIES
+            .iter()
+            .map(|(path, text)| Species::parse_file(text, Path::new(path)))
+            .collect::<Result<Vec<_>, _>>()
+    } else {
+        args.species.iter().map(Species::from_file).collect()
+    }
+    .map_err(|e| e.to_string())?;
+    let mut config = ForestConfig::new(species);
+    config.seed = args.seed;
+    config.budget = args
+        .budget_mb
+        .checked_mul(1 << 20)
+        .filter(|&b| b > 0)
+        .ok_or("--budget-mb must be positive")?;
+    let (builder, hero_time) = phase(
+        args.stats,
+        "building instance caches from hero trees",
+        || ForestBuilder::new(config),
+    );
+    let mut builder = builder.map_err(|e| e.to_string())?;
+    if let Some(d) = args.density {
+        if !(d > 0.0 && d <= 10_000.0) {
+            return Err(format!(
+                "--density {d}: expected 0 < trees per hectare <= 10000"
+            ));
+        }
+        builder.density_mut().patch = (10_000.0 / d).sqrt();
+    }
+    let patch = builder.density().patch;
+    let side = match (args.area, args.trees) {
+        (Some(a), _) if a > 0.0 && a.is_finite() => a,
+        (Some(a), _) => {
+            return Err(format!(
+                "--area {a}: expected a positive side length in metres"
+            ));
+        }
+        (None, Some(n)) => (n as f32).sqrt() * patch,
+        (None, None) => 800.0,
+    };
+
+    let (terrain, _) = phase(args.stats, "generating terrain", || -> Result<_, String> {
+        let ds = DiamondSquare::new(257)
+            .with_seed(args.seed)
+            .with_spacing(side / 256.0)
+            .with_roughness(0.75)
+            .with_amplitude(side * 0.06);
+        let mut map = ds.generate().map_err(|e| e.to_string())?;
+        map.smooth(2.0, EdgeMode::Mirror)
+            .map_err(|e| e.to_string())?;
+        let mesh = map.mesh(1).map_err(|e| e.to_string())?;
+        Ok((map, mesh))
+    });
+    let (map, terrain_mesh) = terrain?;
+
+    let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+    let (forest, placement_time) =
+        phase(args.stats, "placing trees", || builder.build(&map, region));
+    let (batches, expand_time) =
+        phase(args.stats, "expanding trees into instanced batches", || {
+            forest.batches()
+        });
+    let batches = batches.map_err(|e| e.to_string())?;
+    let placements: usize = batches.iter().map(|b| b.placements.count).sum();
+
+    let (written, export_time) = phase(args.stats, "writing glTF", || -> Result<_, String> {
+        let file = std::fs::File::create(&args.out).map_err(|e| format!("{}: {e}", args.out))?;
+        let stats = write_glb(
+            &forest,
+            &batches,
+            Some(&terrain_mesh),
+            &GltfOptions::default(),
+            file,
+        )
+        .map_err(|e| e.to_string())?;
+        let png = std::fs::File::create(&args.heightmap)
+            .map_err(|e| format!("{}: {e}", args.heightmap))?;
+        map.write_png16(std::io::BufWriter::new(png))
+            .map_err(|e| format!("{}: {e}", args.heightmap))?;
+        Ok(stats)
+    });
+    let written = written?;
+
+    let seedlings = forest
+        .trees
+        .iter()
+        .filter(|t| forest.variants[t.species as usize].seedling)
+        .count();
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    if args.stats {
+        println!(
+            "{{\"trees\":{},\"canopy_trees\":{},\"seedlings\":{seedlings},\"species\":{},\"area_m\":{side:.1},\"patch_m\":{patch:.2},\"heroes\":{},\"cache_bytes\":{},\"instances_placed\":{},\"empty_placements\":{},\"instance_nodes\":{},\"hero_ms\":{:.1},\"placement_ms\":{:.1},\"expand_ms\":{:.1},\"export_ms\":{:.1},\"glb_bytes\":{},\"peak_rss_mb\":{:.1},\"bytes_per_tree\":{}}}",
+            forest.trees.len(),
+            forest.trees.len() - seedlings,
+            forest.species.len(),
+            forest.stats.heroes,
+            forest.stats.cache_bytes,
+            written.placements,
+            placements - written.placements,
+            written.instance_nodes,
+            ms(hero_time),
+            ms(placement_time),
+            ms(expand_time),
+            ms(export_time),
+            written.bytes,
+            common::peak_rss() as f64 / (1 << 20) as f64,
+            std::mem::size_of::<sylva::instancing::CompactTree>(),
+        );
+    } else {
+        println!(
+            "sylva forest: {side:.0} m x {side:.0} m, seed {}",
+            args.seed
+        );
+        for (s, c) in forest.species.iter().zip(&forest.canopies) {
+            println!(
+                "  species {:<8} canopy {:.1} m (bound {:.1} m, measured {:.1} m)",
+                s.name,
+                c.diameter(),
+                c.bound,
+                c.measured
+            );
+        }
+        println!(
+            "  {} trees ({} canopy, {seedlings} seedlings) in {:.0} ms; {} heroes, {:.1} MB of instance cache in {:.0} ms",
+            forest.trees.len(),
+            forest.trees.len() - seedlings,
+            ms(placement_time),
+            forest.stats.heroes,
+            forest.stats.cache_bytes as f64 / (1 << 20) as f64,
+            ms(hero_time)
+        );
+        println!(
+            "  {} instance placements in {} instanced meshes ({} more of branches with no geometry yet)",
+            written.placements,
+            written.instance_nodes,
+            placements - written.placements
+        );
+        println!(
+            "wrote {} ({:.1} MB) and {}",
+            args.out,
+            written.bytes as f64 / (1 << 20) as f64,
+            args.heightmap
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

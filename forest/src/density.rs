@@ -1,0 +1,83 @@
+//! Density models: where trees may grow, before the terrain has its say.
+
+use glam::Vec2;
+
+/// An axis-aligned rectangle in the x-z plane, half-open: `min <= p < max`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rect {
+    /// Lower corner (x, z).
+    pub min: Vec2,
+    /// Upper corner (x, z).
+    pub max: Vec2,
+}
+
+impl Rect {
+    /// The rectangle from `min` to `max`.
+    pub fn new(min: Vec2, max: Vec2) -> Self {
+        Rect { min, max }
+    }
+
+    /// Whether `p` lies inside (half-open).
+    pub fn contains(&self, p: Vec2) -> bool {
+        p.x >= self.min.x && p.y >= self.min.y && p.x < self.max.x && p.y < self.max.y
+    }
+
+    /// Whether the rectangle has no area (or is not finite).
+    pub fn is_empty(&self) -> bool {
+        !(self.min.is_finite()
+            && self.max.is_finite()
+            && self.max.x > self.min.x
+            && self.max.y > self.min.y)
+    }
+
+    /// The overlap of two rectangles.
+    pub fn intersect(&self, other: &Rect) -> Rect {
+        Rect {
+            min: self.min.max(other.min),
+            max: self.max.min(other.max),
+        }
+    }
+}
+
+/// A proposed tree.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Candidate {
+    /// Position (x, z).
+    pub position: Vec2,
+    /// Index into the forest's species.
+    pub species: usize,
+    /// A seedling (fewer generations) rather than a canopy tree.
+    pub seedling: bool,
+    /// Per-tree randomness: yaw, scale and instance choices derive from it.
+    pub key: u64,
+}
+
+/// Decides where trees may stand. Implementations must make the candidates of a region a pure
+/// function of (seed, region), and a candidate's presence must not depend on which region is
+/// asked, so that tiles generated apart join without seams.
+pub trait DensityModel {
+    /// Appends the candidates whose positions lie in `region`.
+    fn candidates(&self, region: Rect, seed: u64, out: &mut Vec<Candidate>);
+}
+
+#[inline]
+pub(crate) fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// A hash of a seed and integer coordinates.
+#[inline]
+pub(crate) fn hash(seed: u64, i: i64, j: i64, salt: u64) -> u64 {
+    mix(seed
+        ^ mix((i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+            ^ (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f)
+            ^ salt.wrapping_mul(0x1656_67b1_9e37_79f9)))
+}
+
+/// Uniform in [0, 1) from a hash.
+#[inline]
+pub(crate) fn unit(h: u64) -> f32 {
+    (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+}

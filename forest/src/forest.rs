@@ -1,0 +1,331 @@
+//! Forests: caches per species and maturity, trees placed on a terrain, instanced batches.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use glam::Vec2;
+use sylva_instancing::{
+    Assembler, CompactTree, HeroOptions, InstanceCache, Placements, build_cache,
+};
+use sylva_terrain::HeightField;
+
+use crate::density::{Candidate, DensityModel, Rect, mix, unit};
+use crate::error::ForestError;
+use crate::patch::PatchDensity;
+use crate::species::{Canopy, Species};
+
+/// Where on the terrain trees may stand.
+#[derive(Clone)]
+#[non_exhaustive]
+pub struct Constraints {
+    /// Lowest terrain height with trees.
+    pub min_height: f32,
+    /// Highest terrain height with trees.
+    pub max_height: f32,
+    /// Steepest slope with trees, in degrees (no trees on cliffs).
+    pub max_slope_degrees: f32,
+    /// Optional density mask over (x, z), 0 (none) to 1 (full density).
+    pub mask: Option<Arc<dyn Fn(f32, f32) -> f32 + Send + Sync>>,
+}
+
+impl std::fmt::Debug for Constraints {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Constraints")
+            .field("min_height", &self.min_height)
+            .field("max_height", &self.max_height)
+            .field("max_slope_degrees", &self.max_slope_degrees)
+            .field("mask", &self.mask.as_ref().map(|_| "fn"))
+            .finish()
+    }
+}
+
+impl Default for Constraints {
+    fn default() -> Self {
+        Constraints {
+            min_height: f32::NEG_INFINITY,
+            max_height: f32::INFINITY,
+            max_slope_degrees: 35.0,
+            mask: None,
+        }
+    }
+}
+
+/// Everything that decides a forest apart from the terrain and the region.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct ForestConfig {
+    /// The species, at least one with positive weight.
+    pub species: Vec<Species>,
+    /// Terrain constraints.
+    pub constraints: Constraints,
+    /// World seed.
+    pub seed: u64,
+    /// Total instance-cache budget in bytes, shared among species by weight (seedlings get a
+    /// quarter of each species' share).
+    pub budget: usize,
+    /// Random scale variation: scales are uniform in `1 +- scale_variation`.
+    pub scale_variation: f32,
+    /// Minimum canopy spacing as a multiple of the canopy radius.
+    pub spacing_factor: f32,
+    /// Seedlings proposed per patch.
+    pub seedlings_per_patch: u32,
+}
+
+impl ForestConfig {
+    /// A configuration with defaults: 64 MB of cache, seed 1, 10% scale variation.
+    pub fn new(species: Vec<Species>) -> Self {
+        ForestConfig {
+            species,
+            constraints: Constraints::default(),
+            seed: 1,
+            budget: 64 << 20,
+            scale_variation: 0.1,
+            spacing_factor: 1.0,
+            seedlings_per_patch: 3,
+        }
+    }
+}
+
+/// One instance cache: a species at one maturity.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    /// Index into the configuration's species.
+    pub species: usize,
+    /// Whether this is the seedling form.
+    pub seedling: bool,
+    /// Generations of its trees.
+    pub generations: u32,
+    /// Its cache.
+    pub cache: InstanceCache,
+}
+
+/// Timings and sizes of a forest build.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[non_exhaustive]
+pub struct ForestStats {
+    /// Hero creation time.
+    pub hero_time: Duration,
+    /// Placement time (density model and terrain constraints).
+    pub placement_time: Duration,
+    /// Bytes of all caches.
+    pub cache_bytes: usize,
+    /// Hero trees built.
+    pub heroes: u32,
+}
+
+/// A built forest: caches and compact trees.
+#[derive(Debug, Clone)]
+pub struct Forest {
+    /// The species used.
+    pub species: Vec<Species>,
+    /// Caches, one per species and maturity; `CompactTree::species` indexes this.
+    pub variants: Vec<Variant>,
+    /// The trees.
+    pub trees: Vec<CompactTree>,
+    /// Canopy sizes per species.
+    pub canopies: Vec<Canopy>,
+    /// What it cost.
+    pub stats: ForestStats,
+}
+
+/// Builds the caches once; then generates the trees of any region.
+#[derive(Debug, Clone)]
+pub struct ForestBuilder {
+    config: ForestConfig,
+    density: PatchDensity,
+    canopies: Vec<Canopy>,
+    variants: Vec<Variant>,
+    stats: ForestStats,
+}
+
+impl ForestBuilder {
+    /// Measures canopies and fills one cache per species and maturity.
+    pub fn new(config: ForestConfig) -> Result<Self, ForestError> {
+        if config.species.is_empty() || !config.species.iter().any(|s| s.weight > 0.0) {
+            return Err(ForestError::BadParameter(
+                "a forest needs at least one species with a positive weight".into(),
+            ));
+        }
+        if config.budget == 0 {
+            return Err(ForestError::BadParameter(
+                "the cache budget must be positive".into(),
+            ));
+        }
+        if !(config.scale_variation.is_finite() && (0.0..1.0).contains(&config.scale_variation)) {
+            return Err(ForestError::BadParameter(format!(
+                "scale variation {} must be in [0, 1)",
+                config.scale_variation
+            )));
+        }
+        let canopies = config
+            .species
+            .iter()
+            .map(Species::canopy)
+            .collect::<Result<Vec<_>, _>>()?;
+        let total_weight: f32 = config.species.iter().map(|s| s.weight.max(0.0)).sum();
+        let start = Instant::now();
+        let mut variants = Vec::new();
+        let mut heroes = 0;
+        for (i, s) in config.species.iter().enumerate() {
+            let share =
+                (config.budget as f64 * f64::from(s.weight.max(0.0) / total_weight)) as usize;
+            for (seedling, generations, part) in [
+                (false, s.generations, share - share / 4),
+                (true, s.seedling_generations, share / 4),
+            ] {
+                if part == 0 || (seedling && config.seedlings_per_patch == 0) {
+                    continue;
+                }
+                let options = HeroOptions::default()
+                    .with_budget(part)
+                    .with_generations(generations)
+                    .with_seed(mix(config.seed ^ ((i as u64) << 1) ^ u64::from(seedling)))
+                    .with_turtle(s.turtle.clone());
+                let built = build_cache(&s.grammar, &options)?;
+                heroes += built.stats.heroes;
+                variants.push(Variant {
+                    species: i,
+                    seedling,
+                    generations,
+                    cache: built.cache,
+                });
+            }
+        }
+        let mut density = PatchDensity::new(
+            canopies.iter().map(Canopy::radius).collect(),
+            config.species.iter().map(|s| s.weight.max(0.0)).collect(),
+        );
+        // Trees grow up to 1 + variation times their measured size.
+        density.patch *= 1.0 + config.scale_variation;
+        density
+            .canopy_radii
+            .iter_mut()
+            .for_each(|r| *r *= 1.0 + config.scale_variation);
+        density.spacing_factor = config.spacing_factor;
+        density.seedlings_per_patch = config.seedlings_per_patch;
+        let stats = ForestStats {
+            hero_time: start.elapsed(),
+            cache_bytes: variants.iter().map(|v| v.cache.bytes()).sum(),
+            heroes,
+            ..ForestStats::default()
+        };
+        Ok(ForestBuilder {
+            config,
+            density,
+            canopies,
+            variants,
+            stats,
+        })
+    }
+
+    /// The density model in use (patch side, radii, weights).
+    pub fn density(&self) -> &PatchDensity {
+        &self.density
+    }
+
+    /// Mutable access to the density model, to tune it before generating.
+    pub fn density_mut(&mut self) -> &mut PatchDensity {
+        &mut self.density
+    }
+
+    /// The trees of `region` on `terrain`: a pure function of (seed, region), seamless between
+    /// adjacent regions. Trees outside the terrain's bounds are dropped.
+    pub fn trees(&self, terrain: &dyn HeightField, region: Rect) -> Vec<CompactTree> {
+        self.trees_with(&self.density, terrain, region)
+    }
+
+    /// As [`ForestBuilder::trees`] with another density model.
+    pub fn trees_with(
+        &self,
+        density: &dyn DensityModel,
+        terrain: &dyn HeightField,
+        region: Rect,
+    ) -> Vec<CompactTree> {
+        let (lo, hi) = terrain.bounds();
+        let region = region.intersect(&Rect::new(lo, hi));
+        let mut candidates = Vec::new();
+        density.candidates(region, self.config.seed, &mut candidates);
+        let c = &self.config.constraints;
+        let min_up = c.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
+        candidates
+            .iter()
+            .filter_map(|cand: &Candidate| {
+                let Vec2 { x, y: z } = cand.position;
+                let height = terrain.height(x, z);
+                if !(height >= c.min_height && height <= c.max_height)
+                    || terrain.normal(x, z).y < min_up - 1e-6
+                {
+                    return None;
+                }
+                if let Some(mask) = &c.mask
+                    && unit(mix(cand.key ^ 0x5eed)) >= mask(x, z).clamp(0.0, 1.0)
+                {
+                    return None;
+                }
+                let variant = self
+                    .variants
+                    .iter()
+                    .position(|v| v.species == cand.species && v.seedling == cand.seedling)?;
+                let h = mix(cand.key);
+                Some(CompactTree {
+                    position: [x, height, z],
+                    yaw: unit(h) * std::f32::consts::TAU,
+                    scale: 1.0 + self.config.scale_variation * (2.0 * unit(mix(h)) - 1.0),
+                    seed: (h >> 32) as u32,
+                    species: variant as u16,
+                    reserved: 0,
+                })
+            })
+            .collect()
+    }
+
+    /// Builds the forest of `region` on `terrain`.
+    pub fn build(&self, terrain: &dyn HeightField, region: Rect) -> Forest {
+        let start = Instant::now();
+        let trees = self.trees(terrain, region);
+        let mut stats = self.stats;
+        stats.placement_time = start.elapsed();
+        Forest {
+            species: self.config.species.clone(),
+            variants: self.variants.clone(),
+            trees,
+            canopies: self.canopies.clone(),
+            stats,
+        }
+    }
+}
+
+/// The placements of one variant's instances, ready for instanced draws.
+#[derive(Debug, Clone)]
+pub struct VariantBatches {
+    /// Index into [`Forest::variants`].
+    pub variant: usize,
+    /// Grouped placements of its instances.
+    pub placements: Placements,
+}
+
+impl Forest {
+    /// Expands every tree into placements grouped per variant and instance.
+    pub fn batches(&self) -> Result<Vec<VariantBatches>, ForestError> {
+        let mut out: Vec<VariantBatches> = self
+            .variants
+            .iter()
+            .enumerate()
+            .map(|(i, v)| VariantBatches {
+                variant: i,
+                placements: Placements::for_cache(&v.cache),
+            })
+            .collect();
+        let mut assembler = Assembler::new();
+        for tree in &self.trees {
+            let b = out.get_mut(tree.species as usize).ok_or_else(|| {
+                ForestError::BadParameter(format!("tree of unknown variant {}", tree.species))
+            })?;
+            let cache = &self.variants[tree.species as usize].cache;
+            let groups = &mut b.placements.groups;
+            b.placements.count +=
+                assembler.expand_with(cache, tree, |i, t| groups[i as usize].push(t))?;
+        }
+        Ok(out)
+    }
+}

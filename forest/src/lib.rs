@@ -1,0 +1,45 @@
+//! Forests: species, patch-based density management, placement on any terrain, instanced
+//! batches and glTF export.
+//!
+//! ```
+//! use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
+//! use sylva_terrain::{FlatPlane, glam::Vec2};
+//!
+//! let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
+//! leafy.turtle.step = 0.5;
+//! let mut config = ForestConfig::new(vec![leafy]);
+//! config.budget = 4 << 20;
+//! let builder = ForestBuilder::new(config)?;
+//! let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
+//! let forest = builder.build(&ground, Rect::new(Vec2::ZERO, Vec2::splat(200.0)));
+//! assert!(!forest.trees.is_empty());
+//! let batches = forest.batches()?;
+//! assert!(batches.iter().map(|b| b.placements.count).sum::<usize>() >= forest.trees.len());
+//! # Ok::<(), sylva_forest::ForestError>(())
+//! ```
+//!
+//! The density model follows the Garden of Eden thesis (5.2.3, 5.3.3, 7.10): patches the size
+//! of a canopy, one canopy tree per patch, placement errors between neighbouring patches fixed
+//! through a grid, seedlings thinned with an inverse-square elimination probability. Trees are
+//! stored compactly (28 bytes) and expanded through the instance caches of `sylva-instancing`.
+//!
+//! # Conventions
+//!
+//! +Y up, metres, colours in linear RGB. A forest of a region is a pure function of (seed,
+//! region): regions generated apart join without seams.
+
+mod density;
+mod error;
+mod forest;
+mod gltf;
+mod patch;
+mod species;
+
+pub use density::{Candidate, DensityModel, Rect};
+pub use error::ForestError;
+pub use forest::{
+    Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantBatches,
+};
+pub use gltf::{GltfOptions, write_glb};
+pub use patch::PatchDensity;
+pub use species::{Canopy, Species};

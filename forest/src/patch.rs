@@ -1,0 +1,216 @@
+//! The Garden of Eden gap model: one canopy tree per patch, placement errors fixed, seedlings
+//! thinned around canopy trees.
+
+use glam::Vec2;
+
+use crate::density::{Candidate, DensityModel, Rect, hash, mix, unit};
+
+/// Patch-based density management (thesis 5.3.3 and 7.10).
+///
+/// The plane is cut into square patches of side [`PatchDensity::patch`], anchored at the
+/// world origin. Each patch holds one canopy tree at a random position (its species drawn by
+/// weight). Canopy trees of neighbouring patches closer than `spacing` (the larger of their
+/// canopy radii times [`PatchDensity::spacing_factor`]) are found through the patch grid
+/// itself (each patch is one grid cell, so the search is linear time, the thesis's
+/// closest-pair idea) and resolved: the tree of lower priority moves to a free spot of its own
+/// patch, and if none of 16 tries is free, or a conflict remains with a tree of higher
+/// priority, it is removed. Every decision reads only patches within three rings, so any region
+/// gives the same trees where regions overlap.
+///
+/// Seedlings (thesis 7.10.1): each patch also proposes `seedlings_per_patch` young trees at
+/// random spots, each eliminated with probability `min(1, (r0 / d)^2)`, `d` being the distance
+/// to the nearest canopy tree and `r0 = seedling_clearance * canopy radius`.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct PatchDensity {
+    /// Patch side length.
+    pub patch: f32,
+    /// Canopy radius per species.
+    pub canopy_radii: Vec<f32>,
+    /// Relative frequency per species.
+    pub weights: Vec<f32>,
+    /// Minimum trunk spacing as a multiple of the larger canopy radius (at most 2, so that
+    /// conflicts stay between neighbouring patches).
+    pub spacing_factor: f32,
+    /// Seedlings proposed per patch.
+    pub seedlings_per_patch: u32,
+    /// `r0` of the elimination probability, as a multiple of the canopy radius.
+    pub seedling_clearance: f32,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Canopy {
+    position: Vec2,
+    species: usize,
+    priority: u64,
+    present: bool,
+}
+
+const RINGS: i64 = 3;
+const TRIES: u64 = 16;
+
+impl PatchDensity {
+    /// A model whose patch side is the largest canopy diameter.
+    pub fn new(canopy_radii: Vec<f32>, weights: Vec<f32>) -> Self {
+        let patch = canopy_radii.iter().copied().fold(0.0f32, f32::max) * 2.0;
+        PatchDensity {
+            patch,
+            canopy_radii,
+            weights,
+            spacing_factor: 1.0,
+            seedlings_per_patch: 3,
+            seedling_clearance: 0.6,
+        }
+    }
+
+    fn pick_species(&self, h: u64) -> usize {
+        let total: f32 = self.weights.iter().sum();
+        let mut u = unit(h) * total;
+        for (i, &w) in self.weights.iter().enumerate() {
+            if u < w {
+                return i;
+            }
+            u -= w;
+        }
+        self.weights.iter().rposition(|&w| w > 0.0).unwrap_or(0)
+    }
+
+    fn spacing(&self, a: usize, b: usize) -> f32 {
+        let r = self.canopy_radii[a].max(self.canopy_radii[b]);
+        (self.spacing_factor.clamp(0.0, 2.0) * r).min(self.patch)
+    }
+
+    fn spot(&self, seed: u64, i: i64, j: i64, salt: u64) -> Vec2 {
+        let h = hash(seed, i, j, salt);
+        Vec2::new(
+            (i as f32 + unit(h)) * self.patch,
+            (j as f32 + unit(mix(h))) * self.patch,
+        )
+    }
+
+    /// Canopy trees of the patches in `[i0, i1] x [j0, j1]`, conflicts resolved; row-major.
+    fn canopies(&self, seed: u64, i0: i64, i1: i64, j0: i64, j1: i64) -> Vec<Canopy> {
+        let w = (i1 - i0 + 1) as usize;
+        let at = |i: i64, j: i64| ((j - j0) as usize) * w + (i - i0) as usize;
+        let original: Vec<Canopy> = (j0..=j1)
+            .flat_map(|j| (i0..=i1).map(move |i| (i, j)))
+            .map(|(i, j)| Canopy {
+                position: self.spot(seed, i, j, 0),
+                species: self.pick_species(hash(seed, i, j, 1)),
+                priority: hash(seed, i, j, 2),
+                present: true,
+            })
+            .collect();
+        let neighbours = |i: i64, j: i64| {
+            (-1..=1)
+                .flat_map(move |dj| (-1..=1).map(move |di| (i + di, j + dj)))
+                .filter(move |&(a, b)| (a, b) != (i, j) && a >= i0 && a <= i1 && b >= j0 && b <= j1)
+        };
+        let clash = |t: &Canopy, p: Vec2, n: &Canopy| {
+            n.present && p.distance(n.position) < self.spacing(t.species, n.species)
+        };
+        // Stage 1: a tree in conflict with a higher-priority neighbour moves within its patch,
+        // clear of every neighbour's original spot.
+        let mut moved = original.clone();
+        for j in j0 + 1..j1 {
+            for i in i0 + 1..i1 {
+                let t = original[at(i, j)];
+                if !neighbours(i, j).any(|(a, b)| {
+                    let n = &original[at(a, b)];
+                    n.priority > t.priority && clash(&t, t.position, n)
+                }) {
+                    continue;
+                }
+                let spot = (1..=TRIES)
+                    .map(|k| self.spot(seed, i, j, 2 + k))
+                    .find(|&p| neighbours(i, j).all(|(a, b)| !clash(&t, p, &original[at(a, b)])));
+                let m = &mut moved[at(i, j)];
+                match spot {
+                    Some(p) => m.position = p,
+                    None => m.present = false,
+                }
+            }
+        }
+        // Stage 2: any conflict left is settled by removing the lower-priority tree.
+        let mut done = moved.clone();
+        for j in j0 + 1..j1 {
+            for i in i0 + 1..i1 {
+                let t = moved[at(i, j)];
+                if t.present
+                    && neighbours(i, j).any(|(a, b)| {
+                        let n = &moved[at(a, b)];
+                        n.priority > t.priority && clash(&t, t.position, n)
+                    })
+                {
+                    done[at(i, j)].present = false;
+                }
+            }
+        }
+        done
+    }
+}
+
+impl DensityModel for PatchDensity {
+    fn candidates(&self, region: Rect, seed: u64, out: &mut Vec<Candidate>) {
+        let usable_patch = self.patch.is_finite() && self.patch > 0.0;
+        if region.is_empty() || !usable_patch || !self.weights.iter().any(|&w| w > 0.0) {
+            return;
+        }
+        let cell = |v: f32| (v / self.patch).floor() as i64;
+        let (ri0, ri1, rj0, rj1) = (
+            cell(region.min.x),
+            cell(region.max.x),
+            cell(region.min.y),
+            cell(region.max.y),
+        );
+        let (i0, i1, j0, j1) = (ri0 - RINGS, ri1 + RINGS, rj0 - RINGS, rj1 + RINGS);
+        let canopies = self.canopies(seed, i0, i1, j0, j1);
+        let w = (i1 - i0 + 1) as usize;
+        let at = |i: i64, j: i64| ((j - j0) as usize) * w + (i - i0) as usize;
+        for j in rj0..=rj1 {
+            for i in ri0..=ri1 {
+                let c = canopies[at(i, j)];
+                if c.present && region.contains(c.position) {
+                    out.push(Candidate {
+                        position: c.position,
+                        species: c.species,
+                        seedling: false,
+                        key: hash(seed, i, j, 100),
+                    });
+                }
+                for k in 0..u64::from(self.seedlings_per_patch) {
+                    let p = self.spot(seed, i, j, 1000 + k);
+                    if !region.contains(p) {
+                        continue;
+                    }
+                    let species = self.pick_species(hash(seed, i, j, 2000 + k));
+                    let nearest = (-1..=1)
+                        .flat_map(|dj| (-1..=1).map(move |di| (i + di, j + dj)))
+                        .map(|(a, b)| canopies[at(a, b)])
+                        .filter(|c| c.present)
+                        .map(|c| (p.distance(c.position), c.species))
+                        .min_by(|a, b| a.0.total_cmp(&b.0));
+                    let eliminate = match nearest {
+                        Some((d, s)) => {
+                            let r0 = self.seedling_clearance * self.canopy_radii[s];
+                            if d <= 0.0 {
+                                1.0
+                            } else {
+                                ((r0 / d) * (r0 / d)).min(1.0)
+                            }
+                        }
+                        None => 0.0,
+                    };
+                    if unit(hash(seed, i, j, 3000 + k)) >= eliminate {
+                        out.push(Candidate {
+                            position: p,
+                            species,
+                            seedling: true,
+                            key: hash(seed, i, j, 4000 + k),
+                        });
+                    }
+                }
+            }
+        }
+    }
+}

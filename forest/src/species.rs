@@ -1,0 +1,279 @@
+//! Species: a grammar with its generations, turtle settings, colours and canopy size.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use sylva_lsys::LSystem;
+use sylva_turtle::{Skeleton, TurtleOptions, interpret};
+
+use crate::error::ForestError;
+
+/// A tree species.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Species {
+    /// Name, for reports and exported node names.
+    pub name: String,
+    /// The grammar.
+    pub grammar: LSystem,
+    /// Derivation steps of a canopy tree.
+    pub generations: u32,
+    /// Derivation steps of a seedling (fewer than `generations`).
+    pub seedling_generations: u32,
+    /// Turtle and meshing settings (no tropism: instances are rigid).
+    pub turtle: TurtleOptions,
+    /// Bark colour, linear RGB.
+    pub bark: [f32; 3],
+    /// Leaf colour, linear RGB.
+    pub leaf: [f32; 3],
+    /// Relative frequency among the forest's species.
+    pub weight: f32,
+}
+
+/// Canopy size of a species, as the thesis bounds it and as measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Canopy {
+    /// The thesis's bound on the canopy's diameter, 2 D L sin(alpha): D generations, L the
+    /// longest branch (a chain of segments between branch points), alpha the widest branching
+    /// angle, both measured on the skeleton.
+    pub bound: f32,
+    /// Twice the widest horizontal reach of the skeletons of a few sample trees.
+    pub measured: f32,
+}
+
+impl Canopy {
+    /// The tighter of the two: the canopy diameter used for patches and spacing.
+    pub fn diameter(&self) -> f32 {
+        self.bound.min(self.measured)
+    }
+
+    /// Half of [`Canopy::diameter`].
+    pub fn radius(&self) -> f32 {
+        0.5 * self.diameter()
+    }
+}
+
+impl Species {
+    /// A species from a grammar, with default colours and turtle settings.
+    pub fn new(name: impl Into<String>, grammar: LSystem, generations: u32) -> Self {
+        Species {
+            name: name.into(),
+            grammar,
+            generations,
+            seedling_generations: generations.saturating_sub(2).max(1),
+            turtle: TurtleOptions::default().with_min_radius(0.005),
+            bark: [0.30, 0.20, 0.12],
+            leaf: [0.18, 0.42, 0.12],
+            weight: 1.0,
+        }
+    }
+
+    /// A species from a bundled preset (its angle; tropism dropped, instances being rigid).
+    pub fn from_preset(name: &str, generations: u32) -> Result<Self, ForestError> {
+        let p = sylva_lsys::preset(name)
+            .ok_or_else(|| ForestError::BadParameter(format!("no preset called '{name}'")))?;
+        let mut s = Species::new(name, p.lsystem()?, generations);
+        s.turtle = s.turtle.with_angle(p.angle as f32);
+        Ok(s)
+    }
+
+    /// Measures the canopy on the skeletons of three sample trees (seeds 0 to 2).
+    pub fn canopy(&self) -> Result<Canopy, ForestError> {
+        let (mut longest, mut widest, mut reach) = (0.0f32, 0.0f32, 0.0f32);
+        for seed in 0..3 {
+            let word = self
+                .grammar
+                .derive(self.generations, seed)
+                .map_err(|e| ForestError::BadParameter(format!("{}: {e}", self.name)))?;
+            let mut skeleton = Skeleton::default();
+            interpret(&word, &self.turtle, &mut skeleton)
+                .map_err(|e| ForestError::BadParameter(format!("{}: {e}", self.name)))?;
+            reach = reach.max(skeleton.horizontal_extent());
+            // A branch runs from one branch point to the next: chains of bones whose parent
+            // has no other child. L is the longest such chain.
+            let mut children = vec![0u32; skeleton.bones.len()];
+            for b in &skeleton.bones {
+                if let Some(p) = b.parent {
+                    children[p as usize] += 1;
+                }
+            }
+            let mut chain = vec![0.0f32; skeleton.bones.len()];
+            for (i, bone) in skeleton.bones.iter().enumerate() {
+                let dir = bone.end - bone.start;
+                let parent = bone
+                    .parent
+                    .and_then(|p| skeleton.bones.get(p as usize).map(|b| (p as usize, b)));
+                chain[i] = dir.length()
+                    + match parent {
+                        Some((p, _)) if children[p] == 1 => chain[p],
+                        _ => 0.0,
+                    };
+                longest = longest.max(chain[i]);
+                if let Some((_, pb)) = parent {
+                    widest = widest.max(angle_between(dir, pb.end - pb.start));
+                }
+            }
+        }
+        let bound =
+            2.0 * self.generations as f32 * longest * widest.min(std::f32::consts::FRAC_PI_2).sin();
+        Ok(Canopy {
+            bound: if bound > 0.0 { bound } else { 2.0 * reach },
+            measured: (2.0 * reach).max(1e-3),
+        })
+    }
+
+    /// Reads a species file: `key: value` lines, `#` comments. Keys: `name`, `grammar` (a
+    /// preset name or a grammar file path relative to the species file), `generations`,
+    /// `seedling_generations`, `angle`, `step`, `length_unit`, `width`, `width_unit`, `sides`, `bark` and
+    /// `leaf` (three numbers, linear RGB), `weight`. Errors name the file, line and column;
+    /// errors inside the grammar file name that file.
+    ///
+    /// ```no_run
+    /// let oak = sylva_forest::Species::from_file("oak.species").unwrap();
+    /// ```
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ForestError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| ForestError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::parse_file(&text, path)
+    }
+
+    /// Parses species-file text; `path` names the file in errors and anchors relative paths.
+    pub fn parse_file(text: &str, path: &Path) -> Result<Self, ForestError> {
+        let err = |line: usize, column: usize, message: String| ForestError::SpeciesFile {
+            file: path.to_path_buf(),
+            line,
+            column,
+            message,
+        };
+        let mut fields: Vec<(usize, usize, String, String)> = Vec::new();
+        for (n, raw) in text.lines().enumerate() {
+            let line = raw.split('#').next().unwrap_or("");
+            if line.trim().is_empty() {
+                continue;
+            }
+            let Some((key, value)) = line.split_once(':') else {
+                let col = raw.len() - raw.trim_start().len() + 1;
+                return Err(err(n + 1, col, "expected 'key: value'".into()));
+            };
+            let value_col = key.chars().count() + 2 + (value.len() - value.trim_start().len());
+            fields.push((
+                n + 1,
+                value_col,
+                key.trim().to_string(),
+                value.trim().to_string(),
+            ));
+        }
+        let find = |k: &str| fields.iter().find(|f| f.2 == k);
+        let Some((gl, gc, _, grammar_ref)) = find("grammar") else {
+            return Err(err(
+                1,
+                1,
+                "missing 'grammar:' (a preset name or a grammar file)".into(),
+            ));
+        };
+        let (grammar, angle) = match sylva_lsys::preset(grammar_ref) {
+            Some(p) => (p.lsystem()?, Some(p.angle as f32)),
+            None => {
+                let gpath: PathBuf = path.parent().unwrap_or(Path::new(".")).join(grammar_ref);
+                let gtext = std::fs::read_to_string(&gpath)
+                    .map_err(|e| err(*gl, *gc, format!("grammar '{grammar_ref}': {e}")))?;
+                let g = LSystem::parse(&gtext).map_err(|e| ForestError::SpeciesFile {
+                    file: gpath.clone(),
+                    line: e.location.line,
+                    column: e.location.column,
+                    message: e.message.clone(),
+                })?;
+                (g, None)
+            }
+        };
+        let name = find("name").map_or_else(|| grammar_ref.clone(), |f| f.3.clone());
+        let number = |k: &str, default: f32, min: f32, max: f32| -> Result<f32, ForestError> {
+            match find(k) {
+                None => Ok(default),
+                Some((l, c, _, v)) => match v.parse::<f32>() {
+                    Ok(x) if x.is_finite() && x >= min && x <= max => Ok(x),
+                    _ => Err(err(
+                        *l,
+                        *c,
+                        format!("{k} must be a number from {min} to {max}, not '{v}'"),
+                    )),
+                },
+            }
+        };
+        let colour = |k: &str, default: [f32; 3]| -> Result<[f32; 3], ForestError> {
+            match find(k) {
+                None => Ok(default),
+                Some((l, c, _, v)) => {
+                    let parts: Vec<f32> = v
+                        .split_whitespace()
+                        .filter_map(|s| s.parse().ok())
+                        .collect();
+                    match parts.as_slice() {
+                        [r, g, b] if parts.iter().all(|x| (0.0..=1.0).contains(x)) => {
+                            Ok([*r, *g, *b])
+                        }
+                        _ => Err(err(
+                            *l,
+                            *c,
+                            format!("{k} must be three numbers from 0 to 1, not '{v}'"),
+                        )),
+                    }
+                }
+            }
+        };
+        let generations = number("generations", 5.0, 1.0, 12.0)? as u32;
+        let mut s = Species::new(name, grammar, generations);
+        s.seedling_generations = number(
+            "seedling_generations",
+            s.seedling_generations as f32,
+            1.0,
+            generations as f32,
+        )? as u32;
+        s.turtle.angle = number("angle", angle.unwrap_or(s.turtle.angle), -360.0, 360.0)?;
+        s.turtle.step = number("step", s.turtle.step, 1e-4, 1e4)?;
+        s.turtle.length_unit = number("length_unit", s.turtle.length_unit, 1e-6, 1e3)?;
+        s.turtle.width = number("width", s.turtle.width, 0.0, 1e3)?;
+        s.turtle.width_unit = number("width_unit", s.turtle.width_unit, 0.0, 1e3)?;
+        s.turtle.radial_segments =
+            number("sides", s.turtle.radial_segments as f32, 3.0, 64.0)? as u32;
+        s.bark = colour("bark", s.bark)?;
+        s.leaf = colour("leaf", s.leaf)?;
+        s.weight = number("weight", 1.0, 0.0, 1e6)?;
+        for (l, c, k, _) in &fields {
+            const KNOWN: &[&str] = &[
+                "name",
+                "grammar",
+                "generations",
+                "seedling_generations",
+                "angle",
+                "step",
+                "length_unit",
+                "width",
+                "width_unit",
+                "sides",
+                "bark",
+                "leaf",
+                "weight",
+            ];
+            if !KNOWN.contains(&k.as_str()) {
+                return Err(err(
+                    *l,
+                    c.saturating_sub(k.len() + 1).max(1),
+                    format!("unknown key '{k}'"),
+                ));
+            }
+        }
+        Ok(s)
+    }
+}
+
+fn angle_between(a: Vec3, b: Vec3) -> f32 {
+    let d = a
+        .normalize_or_zero()
+        .dot(b.normalize_or_zero())
+        .clamp(-1.0, 1.0);
+    d.acos()
+}
