@@ -11,9 +11,18 @@ use sylva::terrain::{DiamondSquare, EdgeMode, Heightmap};
 
 fn species() -> Vec<Species> {
     [
-        ("leafy.species", include_str!("../examples/species/leafy.species")),
-        ("ternary.species", include_str!("../examples/species/ternary.species")),
-        ("honda.species", include_str!("../examples/species/honda.species")),
+        (
+            "leafy.species",
+            include_str!("../examples/species/leafy.species"),
+        ),
+        (
+            "ternary.species",
+            include_str!("../examples/species/ternary.species"),
+        ),
+        (
+            "honda.species",
+            include_str!("../examples/species/honda.species"),
+        ),
     ]
     .iter()
     .map(|(name, text)| Species::parse_file(text, Path::new(name)).expect("bundled species parse"))
@@ -26,10 +35,19 @@ fn job(trees: usize) -> (Forest, Heightmap, usize) {
     let builder = ForestBuilder::new(config).expect("caches fit");
     // About one canopy tree per patch plus seedlings: size the square for the target count.
     let side = (trees as f32 / 2.6).sqrt() * builder.density().patch;
-    let mut map = DiamondSquare::new(257).with_spacing(side / 256.0).with_amplitude(side * 0.06).generate().expect("valid");
+    let mut map = DiamondSquare::new(257)
+        .with_spacing(side / 256.0)
+        .with_amplitude(side * 0.06)
+        .generate()
+        .expect("valid");
     map.smooth(2.0, EdgeMode::Mirror).expect("valid");
     let forest = builder.build(&map, Rect::new(Vec2::ZERO, Vec2::splat(side)));
-    let placed = forest.batches().expect("complete").iter().map(|b| b.placements.count).sum();
+    let placed = forest
+        .batches()
+        .expect("complete")
+        .iter()
+        .map(|b| b.placements.count)
+        .sum();
     (forest, map, placed)
 }
 
@@ -48,7 +66,14 @@ fn whole_job(c: &mut Criterion) {
     group.bench_function("export_glb_10000_trees", |b| {
         b.iter(|| {
             let mut out = Vec::new();
-            write_glb(&forest, &batches, Some(&mesh), &GltfOptions::default(), &mut out).expect("valid");
+            write_glb(
+                &forest,
+                &batches,
+                Some(&mesh),
+                &GltfOptions::default(),
+                &mut out,
+            )
+            .expect("valid");
             out.len()
         })
     });

@@ -227,9 +227,53 @@ pub enum Expr {
     Call(Function, Vec<Expr>),
 }
 
+impl BinaryOp {
+    /// Binding strength: higher binds tighter.
+    fn precedence(self) -> u8 {
+        match self {
+            BinaryOp::Or => 1,
+            BinaryOp::And => 2,
+            BinaryOp::Lt
+            | BinaryOp::Le
+            | BinaryOp::Gt
+            | BinaryOp::Ge
+            | BinaryOp::Eq
+            | BinaryOp::Ne => 3,
+            BinaryOp::Add | BinaryOp::Sub => 4,
+            BinaryOp::Mul | BinaryOp::Div => 5,
+            BinaryOp::Pow => 7,
+        }
+    }
+}
+
+const UNARY: u8 = 6;
+const ATOM: u8 = 8;
+
+impl Expr {
+    fn precedence(&self) -> u8 {
+        match self {
+            Expr::Binary(op, ..) => op.precedence(),
+            Expr::Unary(..) => UNARY,
+            _ => ATOM,
+        }
+    }
+}
+
+struct Child<'a>(&'a Expr, bool);
+
+impl fmt::Display for Child<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.1 {
+            write!(f, "({})", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
 impl fmt::Display for Expr {
-    /// Prints with full parentheses around compound terms, so that the text parses back to the
-    /// same tree.
+    /// Prints with the fewest parentheses that keep the tree, so that the text parses back to
+    /// the same tree and never nests deeper than the text it came from.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Expr::Number(v) if *v < 0.0 || (*v == 0.0 && v.is_sign_negative()) => {
@@ -238,9 +282,30 @@ impl fmt::Display for Expr {
             Expr::Number(v) => write!(f, "{v}"),
             Expr::Constant { name, .. } | Expr::Var { name, .. } => f.write_str(name),
             Expr::Generation => f.write_str("#"),
-            Expr::Unary(UnaryOp::Neg, e) => write!(f, "(-{e})"),
-            Expr::Unary(UnaryOp::Not, e) => write!(f, "(!{e})"),
-            Expr::Binary(op, a, b) => write!(f, "({a}{}{b})", op.token()),
+            Expr::Unary(op, e) => {
+                let sign = if *op == UnaryOp::Neg { "-" } else { "!" };
+                write!(f, "{sign}{}", Child(e, e.precedence() < UNARY))
+            }
+            Expr::Binary(BinaryOp::Pow, a, b) => {
+                // The base is an atom; the exponent may be a unary or another power.
+                write!(
+                    f,
+                    "{}^{}",
+                    Child(a, a.precedence() < ATOM),
+                    Child(b, b.precedence() < UNARY)
+                )
+            }
+            Expr::Binary(op, a, b) => {
+                let p = op.precedence();
+                // Left-associative: the right operand needs parentheses at equal precedence.
+                write!(
+                    f,
+                    "{}{}{}",
+                    Child(a, a.precedence() < p),
+                    op.token(),
+                    Child(b, b.precedence() <= p)
+                )
+            }
             Expr::Call(func, args) => {
                 write!(f, "{}(", func.name())?;
                 for (i, a) in args.iter().enumerate() {
@@ -673,13 +738,42 @@ mod tests {
 
     #[test]
     fn printing_parses_back_to_the_same_tree() {
-        for text in ["1+2*3", "-(x^2)", "min(x,k)/(1-x)", "!(x>=1)&&#<3"] {
+        for text in [
+            "1+2*3",
+            "-(x^2)",
+            "min(x,k)/(1-x)",
+            "!(x>=1)&&#<3",
+            "x-(1-x)",
+            "-x^-x^2",
+            "(-x)^2",
+            "x- -x",
+            "1<2<3",
+            "!!x",
+            "2^(x+1)",
+        ] {
             let chars: Vec<char> = text.chars().collect();
             let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
             let printed: Vec<char> = e.to_string().chars().collect();
             let again = parse_expr(&mut Cursor::new(&printed, 1), &NoNames).unwrap();
             assert_eq!(again, e, "{text}");
         }
+    }
+
+    /// Found by the fuzzer: fully parenthesised printing of a long sum nested past the limit.
+    #[test]
+    fn long_chains_print_without_nesting() {
+        let text = (0..200)
+            .map(|i| format!("x*{i}"))
+            .collect::<Vec<_>>()
+            .join("+");
+        let chars: Vec<char> = text.chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let printed: Vec<char> = e.to_string().chars().collect();
+        assert!(!printed.contains(&'('));
+        assert_eq!(
+            parse_expr(&mut Cursor::new(&printed, 1), &NoNames).unwrap(),
+            e
+        );
     }
 
     #[test]
