@@ -125,7 +125,8 @@ impl Species {
     /// Reads a species file: `key: value` lines, `#` comments. Keys: `name`, `grammar` (a
     /// preset name or a grammar file path relative to the species file), `generations`,
     /// `seedling_generations`, `angle`, `step`, `length_unit`, `width`, `width_unit`, `sides`, `bark` and
-    /// `leaf` (three numbers, linear RGB), `weight`. Errors name the file, line and column;
+    /// `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle draws as leaf
+    /// quads, such as the apices left at the last generation) and `leaf_size` (length and width). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
     /// ```no_run
@@ -242,6 +243,32 @@ impl Species {
         s.bark = colour("bark", s.bark)?;
         s.leaf = colour("leaf", s.leaf)?;
         s.weight = number("weight", 1.0, 0.0, 1e6)?;
+        if let Some((l, c, _, v)) = find("leaves") {
+            for ch in v.chars().filter(|c| !c.is_whitespace()) {
+                if matches!(ch, '[' | ']') {
+                    return Err(err(*l, *c, "brackets cannot be leaves".into()));
+                }
+                s.turtle.symbols.set(ch, sylva_turtle::Command::Leaf);
+            }
+        }
+        if let Some((l, c, _, v)) = find("leaf_size") {
+            let parts: Vec<f32> = v
+                .split_whitespace()
+                .filter_map(|s| s.parse().ok())
+                .collect();
+            match parts.as_slice() {
+                [a, b] if parts.iter().all(|x| x.is_finite() && *x > 0.0 && *x < 1e3) => {
+                    s.turtle.leaf_size = [*a, *b]
+                }
+                _ => {
+                    return Err(err(
+                        *l,
+                        *c,
+                        format!("leaf_size must be two positive numbers, not '{v}'"),
+                    ));
+                }
+            }
+        }
         for (l, c, k, _) in &fields {
             const KNOWN: &[&str] = &[
                 "name",
@@ -257,6 +284,8 @@ impl Species {
                 "bark",
                 "leaf",
                 "weight",
+                "leaves",
+                "leaf_size",
             ];
             if !KNOWN.contains(&k.as_str()) {
                 return Err(err(

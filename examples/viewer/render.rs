@@ -1,0 +1,545 @@
+//! The GPU side of the viewer: one shared vertex and index buffer per species variant, one
+//! instance buffer, one `draw_indexed` per instance range and material.
+
+use std::num::NonZeroU64;
+
+use bytemuck::{Pod, Zeroable};
+use sylva::terrain::glam::{Mat4, Vec3};
+use wgpu::util::DeviceExt;
+
+use crate::scene::{Camera, InstanceRaw, Scene};
+
+pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+const MATERIAL_STRIDE: u64 = 256;
+pub(crate) const SKY: [f32; 3] = [0.55, 0.70, 0.88];
+pub(crate) const TERRAIN: [f32; 3] = [0.36, 0.33, 0.20];
+
+/// Flat colours of the id mode: terrain, bark, leaves (sky is the clear colour, black).
+pub(crate) const ID_TERRAIN: [f32; 3] = [1.0, 0.0, 0.0];
+pub(crate) const ID_BARK: [f32; 3] = [0.0, 1.0, 0.0];
+pub(crate) const ID_LEAF: [f32; 3] = [0.0, 0.0, 1.0];
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Globals {
+    view_proj: [[f32; 4]; 4],
+    camera: [f32; 4],
+    light: [f32; 4],
+    sky: [f32; 4],
+    fog: [f32; 4],
+}
+
+/// What one frame drew.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct FrameStats {
+    pub(crate) draws: u32,
+    pub(crate) instances: u64,
+    pub(crate) triangles: u64,
+}
+
+/// Shading or flat material ids.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Mode {
+    Shaded,
+    Ids,
+}
+
+struct VariantBuffers {
+    vertices: wgpu::Buffer,
+    bark: Option<wgpu::Buffer>,
+    foliage: Option<wgpu::Buffer>,
+}
+
+struct Draw {
+    variant: usize,
+    material: u32,
+    indices: (u32, u32),
+    bark: bool,
+    first_instance: u64,
+    instances: u32,
+}
+
+pub(crate) struct Renderer {
+    shaded: wgpu::RenderPipeline,
+    ids: wgpu::RenderPipeline,
+    globals: wgpu::Buffer,
+    globals_group: wgpu::BindGroup,
+    material_group: wgpu::BindGroup,
+    terrain_vertices: wgpu::Buffer,
+    terrain_indices: wgpu::Buffer,
+    terrain_count: u32,
+    identity: wgpu::Buffer,
+    variants: Vec<VariantBuffers>,
+    instances: Option<wgpu::Buffer>,
+    draws: Vec<Draw>,
+    fog_density: f32,
+}
+
+fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
+    const MESH: [wgpu::VertexAttribute; 3] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+    const INSTANCE: [wgpu::VertexAttribute; 2] =
+        wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x4];
+    [
+        Some(wgpu::VertexBufferLayout {
+            array_stride: 32,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &MESH,
+        }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: 32,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &INSTANCE,
+        }),
+    ]
+}
+
+fn buffer(
+    device: &wgpu::Device,
+    label: &str,
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytes,
+        usage,
+    })
+}
+
+impl Renderer {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+        scene: &Scene,
+    ) -> Renderer {
+        let shader = device.create_shader_module(wgpu::include_wgsl!("shader.wgsl"));
+        let uniform_layout = |dynamic: bool, size: u64| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: None,
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: dynamic,
+                        min_binding_size: NonZeroU64::new(size),
+                    },
+                    count: None,
+                }],
+            })
+        };
+        let globals_layout = uniform_layout(false, std::mem::size_of::<Globals>() as u64);
+        let material_layout = uniform_layout(true, 32);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: None,
+            bind_group_layouts: &[Some(&globals_layout), Some(&material_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &vertex_layouts(),
+                },
+                // Leaves are one-sided quads and polygons: draw both faces.
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &[Some(format.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let globals = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("globals"),
+            size: std::mem::size_of::<Globals>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        // Materials: terrain, then bark and leaves of each variant, 256 bytes apart.
+        let mut materials: Vec<([f32; 3], [f32; 3])> = vec![(TERRAIN, ID_TERRAIN)];
+        for v in &scene.variants {
+            materials.push((v.bark_colour, ID_BARK));
+            materials.push((v.leaf_colour, ID_LEAF));
+        }
+        let mut bytes = vec![0u8; materials.len() * MATERIAL_STRIDE as usize];
+        for (i, (colour, id)) in materials.iter().enumerate() {
+            let m: [f32; 8] = [
+                colour[0], colour[1], colour[2], 1.0, id[0], id[1], id[2], 1.0,
+            ];
+            bytes[i * MATERIAL_STRIDE as usize..][..32].copy_from_slice(bytemuck::bytes_of(&m));
+        }
+        let material_buffer = buffer(device, "materials", &bytes, wgpu::BufferUsages::UNIFORM);
+        let globals_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &globals_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: globals.as_entire_binding(),
+            }],
+        });
+        let material_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &material_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &material_buffer,
+                    offset: 0,
+                    size: NonZeroU64::new(32),
+                }),
+            }],
+        });
+        let variants = scene
+            .variants
+            .iter()
+            .map(|v| VariantBuffers {
+                vertices: buffer(
+                    device,
+                    "variant vertices",
+                    bytemuck::cast_slice(&v.vertices),
+                    wgpu::BufferUsages::VERTEX,
+                ),
+                bark: (!v.bark.is_empty()).then(|| {
+                    buffer(
+                        device,
+                        "bark indices",
+                        bytemuck::cast_slice(&v.bark),
+                        wgpu::BufferUsages::INDEX,
+                    )
+                }),
+                foliage: (!v.foliage.is_empty()).then(|| {
+                    buffer(
+                        device,
+                        "leaf indices",
+                        bytemuck::cast_slice(&v.foliage),
+                        wgpu::BufferUsages::INDEX,
+                    )
+                }),
+            })
+            .collect();
+        let mut all: Vec<InstanceRaw> = Vec::new();
+        let mut draws = Vec::new();
+        for g in &scene.groups {
+            let first = all.len() as u64;
+            all.extend_from_slice(&g.instances);
+            for (bark, range) in [(true, g.bark), (false, g.foliage)] {
+                if range.1 > 0 {
+                    draws.push(Draw {
+                        variant: g.variant,
+                        material: 1 + 2 * g.variant as u32 + u32::from(!bark),
+                        indices: (range.0, range.0 + range.1),
+                        bark,
+                        first_instance: first,
+                        instances: g.instances.len() as u32,
+                    });
+                }
+            }
+        }
+        let identity = InstanceRaw {
+            rotation: [0.0, 0.0, 0.0, 1.0],
+            translation_scale: [0.0, 0.0, 0.0, 1.0],
+        };
+        Renderer {
+            shaded: pipeline("fs_main"),
+            ids: pipeline("fs_id"),
+            globals,
+            globals_group,
+            material_group,
+            terrain_vertices: buffer(
+                device,
+                "terrain vertices",
+                bytemuck::cast_slice(&scene.terrain_vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            terrain_indices: buffer(
+                device,
+                "terrain indices",
+                bytemuck::cast_slice(&scene.terrain_indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            terrain_count: scene.terrain_indices.len() as u32,
+            identity: buffer(
+                device,
+                "identity instance",
+                bytemuck::bytes_of(&identity),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            variants,
+            instances: (!all.is_empty()).then(|| {
+                buffer(
+                    device,
+                    "instances",
+                    bytemuck::cast_slice(&all),
+                    wgpu::BufferUsages::VERTEX,
+                )
+            }),
+            draws,
+            fog_density: 1.2 / scene.side,
+        }
+    }
+
+    /// Records one frame into `encoder`.
+    pub(crate) fn render(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        view_proj: Mat4,
+        eye: Vec3,
+        mode: Mode,
+    ) -> FrameStats {
+        let light = Vec3::new(0.4, 0.8, 0.3).normalize();
+        let globals = Globals {
+            view_proj: view_proj.to_cols_array_2d(),
+            camera: [eye.x, eye.y, eye.z, 1.0],
+            light: [light.x, light.y, light.z, 0.0],
+            sky: [SKY[0], SKY[1], SKY[2], 1.0],
+            fog: [
+                if mode == Mode::Ids {
+                    0.0
+                } else {
+                    self.fog_density
+                },
+                0.0,
+                0.0,
+                0.0,
+            ],
+        };
+        queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        let clear = match mode {
+            Mode::Shaded => wgpu::Color {
+                r: f64::from(SKY[0]),
+                g: f64::from(SKY[1]),
+                b: f64::from(SKY[2]),
+                a: 1.0,
+            },
+            Mode::Ids => wgpu::Color::BLACK,
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("forest"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(if mode == Mode::Ids {
+            &self.ids
+        } else {
+            &self.shaded
+        });
+        pass.set_bind_group(0, &self.globals_group, &[]);
+        let mut stats = FrameStats::default();
+        pass.set_bind_group(1, &self.material_group, &[0]);
+        pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));
+        pass.set_vertex_buffer(1, self.identity.slice(..));
+        pass.set_index_buffer(self.terrain_indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.terrain_count, 0, 0..1);
+        stats.draws += 1;
+        stats.instances += 1;
+        stats.triangles += u64::from(self.terrain_count / 3);
+        let Some(instances) = &self.instances else {
+            return stats;
+        };
+        let mut bound: Option<(usize, bool)> = None;
+        for d in &self.draws {
+            let v = &self.variants[d.variant];
+            let indices = if d.bark { &v.bark } else { &v.foliage };
+            let Some(indices) = indices else { continue };
+            if bound != Some((d.variant, d.bark)) {
+                pass.set_vertex_buffer(0, v.vertices.slice(..));
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                bound = Some((d.variant, d.bark));
+            }
+            pass.set_bind_group(
+                1,
+                &self.material_group,
+                &[d.material * MATERIAL_STRIDE as u32],
+            );
+            // Each group's placements sit contiguously in the one instance buffer.
+            pass.set_vertex_buffer(1, instances.slice(d.first_instance * 32..));
+            pass.draw_indexed(d.indices.0..d.indices.1, 0, 0..d.instances);
+            stats.draws += 1;
+            stats.instances += u64::from(d.instances);
+            stats.triangles += u64::from((d.indices.1 - d.indices.0) / 3) * u64::from(d.instances);
+        }
+        stats
+    }
+}
+
+/// A colour and depth target of the given size.
+pub(crate) fn targets(
+    device: &wgpu::Device,
+    format: wgpu::TextureFormat,
+    width: u32,
+    height: u32,
+    readable: bool,
+) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView) {
+    let size = wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    };
+    let colour = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("colour"),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            | if readable {
+                wgpu::TextureUsages::COPY_SRC
+            } else {
+                wgpu::TextureUsages::empty()
+            },
+        view_formats: &[],
+    });
+    let depth = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("depth"),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: DEPTH,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let cv = colour.create_view(&Default::default());
+    let dv = depth.create_view(&Default::default());
+    (colour, cv, dv)
+}
+
+/// Requests an adapter and device; `None` surface for headless use.
+pub(crate) async fn device(
+    instance: &wgpu::Instance,
+    surface: Option<&wgpu::Surface<'_>>,
+) -> Result<(wgpu::Adapter, wgpu::Device, wgpu::Queue), String> {
+    let adapter = instance
+        .request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: surface,
+            ..Default::default()
+        })
+        .await
+        .map_err(|e| {
+            format!("no graphics adapter ({e}); without a GPU install Mesa's software drivers (Debian: libvulkan1 mesa-vulkan-drivers, or libegl1 libegl-mesa0 libgl1-mesa-dri with WGPU_BACKEND=gl)")
+        })?;
+    let (device, queue) = adapter
+        .request_device(&wgpu::DeviceDescriptor {
+            label: Some("sylva viewer"),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..Default::default()
+        })
+        .await
+        .map_err(|e| format!("cannot open the graphics device: {e}"))?;
+    Ok((adapter, device, queue))
+}
+
+/// Renders one frame offscreen and returns it as tightly packed RGBA8 (sRGB) rows.
+pub(crate) async fn render_offscreen(
+    scene: &Scene,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+    mode: Mode,
+) -> Result<(Vec<u8>, FrameStats, String), String> {
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let (adapter, device, queue) = device(&instance, None).await?;
+    let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+    let renderer = Renderer::new(&device, format, scene);
+    let (colour, view, depth) = targets(&device, format, width, height, true);
+    // Rows of a texture-to-buffer copy must be 256-byte aligned.
+    let row = width * 4;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: u64::from(padded) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let (view_proj, eye) = camera.view_proj(scene, width as f32 / height as f32);
+    let stats = renderer.render(&queue, &mut encoder, &view, &depth, view_proj, eye, mode);
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture: &colour,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| format!("device poll: {e}"))?;
+    rx.recv()
+        .map_err(|e| e.to_string())?
+        .map_err(|e| format!("reading the frame back: {e}"))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| format!("reading the frame back: {e}"))?;
+    let mut pixels = Vec::with_capacity((row * height) as usize);
+    for r in 0..height as usize {
+        pixels.extend_from_slice(&data[r * padded as usize..r * padded as usize + row as usize]);
+    }
+    let info = adapter.get_info();
+    Ok((pixels, stats, format!("{} ({:?})", info.name, info.backend)))
+}

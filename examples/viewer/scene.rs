@@ -1,0 +1,231 @@
+//! The CPU side of the viewer: the forest and terrain as flat buffers, and the camera.
+
+use bytemuck::{Pod, Zeroable};
+use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::terrain::glam::{Mat4, Vec2, Vec3};
+use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
+use sylva::turtle::Vertex;
+
+/// One placement as the vertex shader reads it: rotation, then translation and scale.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub(crate) struct InstanceRaw {
+    pub(crate) rotation: [f32; 4],
+    pub(crate) translation_scale: [f32; 4],
+}
+
+/// One species variant's shared buffers.
+pub(crate) struct VariantGeometry {
+    pub(crate) vertices: Vec<Vertex>,
+    pub(crate) bark: Vec<u32>,
+    pub(crate) foliage: Vec<u32>,
+    pub(crate) bark_colour: [f32; 3],
+    pub(crate) leaf_colour: [f32; 3],
+}
+
+/// One cached instance with its placements: one instanced draw per non-empty index range.
+pub(crate) struct Group {
+    pub(crate) variant: usize,
+    pub(crate) bark: (u32, u32),
+    pub(crate) foliage: (u32, u32),
+    pub(crate) instances: Vec<InstanceRaw>,
+}
+
+pub(crate) struct Scene {
+    pub(crate) heightmap: Heightmap,
+    pub(crate) terrain_vertices: Vec<TerrainVertex>,
+    pub(crate) terrain_indices: Vec<u32>,
+    pub(crate) variants: Vec<VariantGeometry>,
+    pub(crate) groups: Vec<Group>,
+    pub(crate) side: f32,
+    pub(crate) trees: usize,
+}
+
+pub(crate) struct SceneOptions {
+    pub(crate) seed: u64,
+    pub(crate) side: f32,
+    pub(crate) species: Vec<Species>,
+    pub(crate) budget: usize,
+}
+
+pub(crate) const DEFAULT_SPECIES: [(&str, &str); 3] = [
+    (
+        "examples/species/leafy.species",
+        include_str!("../species/leafy.species"),
+    ),
+    (
+        "examples/species/ternary.species",
+        include_str!("../species/ternary.species"),
+    ),
+    (
+        "examples/species/honda.species",
+        include_str!("../species/honda.species"),
+    ),
+];
+
+pub(crate) fn default_species() -> Result<Vec<Species>, String> {
+    DEFAULT_SPECIES
+        .iter()
+        .map(|(path, text)| {
+            Species::parse_file(text, std::path::Path::new(path)).map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
+impl Scene {
+    pub(crate) fn build(options: SceneOptions) -> Result<Scene, String> {
+        let mut config = ForestConfig::new(options.species);
+        config.seed = options.seed;
+        config.budget = options.budget;
+        let builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
+        let side = options.side;
+        let mut map = DiamondSquare::new(257)
+            .with_seed(options.seed)
+            .with_spacing(side / 256.0)
+            .with_roughness(0.75)
+            .with_amplitude(side * 0.06)
+            .generate()
+            .map_err(|e| e.to_string())?;
+        map.smooth(2.0, EdgeMode::Mirror)
+            .map_err(|e| e.to_string())?;
+        let terrain = map.mesh(1).map_err(|e| e.to_string())?;
+        let forest = builder.build(&map, Rect::new(Vec2::ZERO, Vec2::splat(side)));
+        let batches = forest.batches().map_err(|e| e.to_string())?;
+        let variants = forest
+            .variants
+            .iter()
+            .map(|v| {
+                let s = &forest.species[v.species];
+                VariantGeometry {
+                    vertices: v.cache.vertices.clone(),
+                    bark: v.cache.bark.clone(),
+                    foliage: v.cache.foliage.clone(),
+                    bark_colour: s.bark,
+                    leaf_colour: s.leaf,
+                }
+            })
+            .collect();
+        let mut groups = Vec::new();
+        for b in &batches {
+            let cache = &forest.variants[b.variant].cache;
+            for (inst, placements) in cache.instances.iter().zip(&b.placements.groups) {
+                if placements.is_empty() || inst.bark.1 + inst.foliage.1 == 0 {
+                    continue;
+                }
+                groups.push(Group {
+                    variant: b.variant,
+                    bark: inst.bark,
+                    foliage: inst.foliage,
+                    instances: placements
+                        .iter()
+                        .map(|t| InstanceRaw {
+                            rotation: t.rotation.to_array(),
+                            translation_scale: [
+                                t.translation.x,
+                                t.translation.y,
+                                t.translation.z,
+                                t.scale,
+                            ],
+                        })
+                        .collect(),
+                });
+            }
+        }
+        Ok(Scene {
+            heightmap: map,
+            terrain_vertices: terrain.vertices,
+            terrain_indices: terrain.indices,
+            variants,
+            groups,
+            side,
+            trees: forest.trees.len(),
+        })
+    }
+
+    /// Ground height under (x, z).
+    pub(crate) fn ground(&self, x: f32, z: f32) -> f32 {
+        self.heightmap.height(x, z)
+    }
+}
+
+/// A camera held `height` metres above the terrain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Camera {
+    pub(crate) x: f32,
+    pub(crate) z: f32,
+    pub(crate) yaw: f32,
+    pub(crate) pitch: f32,
+    pub(crate) height: f32,
+}
+
+impl Camera {
+    /// Parses `x,z,yaw_degrees,pitch_degrees[,height]`.
+    pub(crate) fn parse(text: &str) -> Result<Camera, String> {
+        let v: Vec<f32> = text
+            .split(',')
+            .map(|s| s.trim().parse::<f32>())
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("--camera '{text}': {e}"))?;
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(format!("--camera '{text}': numbers must be finite"));
+        }
+        match v.as_slice() {
+            [x, z, yaw, pitch] => Ok(Camera {
+                x: *x,
+                z: *z,
+                yaw: yaw.to_radians(),
+                pitch: pitch.to_radians(),
+                height: 1.7,
+            }),
+            [x, z, yaw, pitch, h] => Ok(Camera {
+                x: *x,
+                z: *z,
+                yaw: yaw.to_radians(),
+                pitch: pitch.to_radians(),
+                height: *h,
+            }),
+            _ => Err(format!(
+                "--camera '{text}': expected x,z,yaw,pitch[,height]"
+            )),
+        }
+    }
+
+    /// An overview from one corner of the map towards its centre, `height` above the ground.
+    pub(crate) fn overview(side: f32, height: f32) -> Camera {
+        let (x, z) = (side * 0.08, side * 0.08);
+        let yaw = (side * 0.5 - z).atan2(side * 0.5 - x);
+        Camera {
+            x,
+            z,
+            yaw,
+            pitch: -0.18,
+            height,
+        }
+    }
+
+    pub(crate) fn forward(&self) -> Vec3 {
+        Vec3::new(
+            self.yaw.cos() * self.pitch.cos(),
+            self.pitch.sin(),
+            self.yaw.sin() * self.pitch.cos(),
+        )
+    }
+
+    pub(crate) fn eye(&self, scene: &Scene) -> Vec3 {
+        Vec3::new(self.x, scene.ground(self.x, self.z) + self.height, self.z)
+    }
+
+    pub(crate) fn view_proj(&self, scene: &Scene, aspect: f32) -> (Mat4, Vec3) {
+        let eye = self.eye(scene);
+        let view =
+            sylva::terrain::glam::camera::rh::view::look_to_mat4(eye, self.forward(), Vec3::Y);
+        // wgpu's clip space is Direct3D's: y up, depth from 0 to 1.
+        let proj = sylva::terrain::glam::camera::rh::proj::directx::perspective(
+            60f32.to_radians(),
+            aspect.max(1e-3),
+            0.2,
+            scene.side * 2.0,
+        );
+        (proj * view, eye)
+    }
+}

@@ -1,0 +1,64 @@
+// sylva viewer: instanced branches with TRS per instance, Lambert plus ambient, distance fog.
+
+struct Globals {
+    view_proj: mat4x4<f32>,
+    camera: vec4<f32>,
+    light: vec4<f32>,
+    sky: vec4<f32>,
+    fog: vec4<f32>,
+};
+
+struct Material {
+    colour: vec4<f32>,
+    id: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+@group(1) @binding(0) var<uniform> material: Material;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) rotation: vec4<f32>,
+    @location(4) translation_scale: vec4<f32>,
+};
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+};
+
+fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
+    let t = 2.0 * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
+}
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    let world = in.translation_scale.xyz + in.translation_scale.w * rotate(in.rotation, in.position);
+    out.clip = globals.view_proj * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.normal = rotate(in.rotation, in.normal);
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    var n = normalize(in.normal);
+    if (!front) {
+        n = -n;
+    }
+    let diffuse = max(dot(n, globals.light.xyz), 0.0);
+    let lit = material.colour.rgb * (0.35 + 0.65 * diffuse);
+    let fog = 1.0 - exp(-distance(in.world, globals.camera.xyz) * globals.fog.x);
+    return vec4<f32>(mix(lit, globals.sky.rgb, clamp(fog, 0.0, 1.0)), 1.0);
+}
+
+// Flat material ids, for tests that count what covers the picture.
+@fragment
+fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
+    return material.id;
+}

@@ -1,0 +1,269 @@
+//! The windowed mode: winit event loop, walking camera, frame statistics in the title.
+
+use std::collections::HashSet;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use winit::application::ApplicationHandler;
+use winit::event::{DeviceEvent, DeviceId, ElementState, MouseButton, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{CursorGrabMode, Window, WindowId};
+
+use crate::render::{Mode, Renderer, targets};
+use crate::scene::{Camera, Scene};
+
+struct Gpu {
+    window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    config: wgpu::SurfaceConfiguration,
+    renderer: Renderer,
+    depth: wgpu::TextureView,
+}
+
+struct App {
+    scene: Scene,
+    camera: Camera,
+    gpu: Option<Gpu>,
+    keys: HashSet<KeyCode>,
+    captured: bool,
+    last: Instant,
+    frame_ms: f64,
+    error: Option<String>,
+    lost: Arc<AtomicBool>,
+}
+
+/// Opens the window and runs until it closes. Errors (no display, no adapter, a lost device)
+/// come back as messages.
+pub(crate) fn run(scene: Scene, camera: Option<Camera>) -> Result<(), String> {
+    let event_loop = EventLoop::new().map_err(|e| {
+        format!("cannot open a window ({e}); on a machine without a display, render headless with --screenshot PATH")
+    })?;
+    let camera = camera.unwrap_or_else(|| Camera::overview(scene.side, 1.7));
+    let mut app = App {
+        scene,
+        camera,
+        gpu: None,
+        keys: HashSet::new(),
+        captured: false,
+        last: Instant::now(),
+        frame_ms: 0.0,
+        error: None,
+        lost: Arc::new(AtomicBool::new(false)),
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| format!("event loop: {e}"))?;
+    app.error.map_or(Ok(()), Err)
+}
+
+impl App {
+    fn fail(&mut self, event_loop: &ActiveEventLoop, message: String) {
+        self.error = Some(message);
+        event_loop.exit();
+    }
+
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<Gpu, String> {
+        let window = Arc::new(
+            event_loop
+                .create_window(Window::default_attributes().with_title("sylva"))
+                .map_err(|e| format!("cannot create a window: {e}"))?,
+        );
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| format!("cannot draw into the window: {e}"))?;
+        let (adapter, device, queue) =
+            pollster::block_on(crate::render::device(&instance, Some(&surface)))?;
+        let lost = self.lost.clone();
+        device.set_device_lost_callback(move |_, _| lost.store(true, Ordering::SeqCst));
+        let size = window.inner_size();
+        let mut config = surface
+            .get_default_config(&adapter, size.width.max(1), size.height.max(1))
+            .ok_or("the adapter cannot present to this window")?;
+        let caps = surface.get_capabilities(&adapter);
+        if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
+            config.format = *srgb;
+        }
+        surface.configure(&device, &config);
+        let renderer = Renderer::new(&device, config.format, &self.scene);
+        let (_, _, depth) = targets(&device, config.format, config.width, config.height, false);
+        Ok(Gpu {
+            window,
+            surface,
+            device,
+            queue,
+            config,
+            renderer,
+            depth,
+        })
+    }
+
+    fn walk(&mut self, dt: f32) {
+        let speed = if self.keys.contains(&KeyCode::ShiftLeft)
+            || self.keys.contains(&KeyCode::ShiftRight)
+        {
+            20.0
+        } else {
+            5.0
+        };
+        let (s, c) = self.camera.yaw.sin_cos();
+        let mut step = [0.0f32; 2];
+        for (key, dx, dz) in [
+            (KeyCode::KeyW, c, s),
+            (KeyCode::KeyS, -c, -s),
+            (KeyCode::KeyD, -s, c),
+            (KeyCode::KeyA, s, -c),
+        ] {
+            if self.keys.contains(&key) {
+                step[0] += dx;
+                step[1] += dz;
+            }
+        }
+        let side = self.scene.side;
+        self.camera.x = (self.camera.x + step[0] * speed * dt).clamp(0.0, side);
+        self.camera.z = (self.camera.z + step[1] * speed * dt).clamp(0.0, side);
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        if self.lost.load(Ordering::SeqCst) {
+            return self.fail(event_loop, "the graphics device was lost".into());
+        }
+        let now = Instant::now();
+        let dt = (now - self.last).as_secs_f32().min(0.1);
+        self.last = now;
+        self.walk(dt);
+        let Some(gpu) = &mut self.gpu else { return };
+        if gpu.config.width == 0 || gpu.config.height == 0 {
+            return;
+        }
+        let frame = match gpu.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(f)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                gpu.surface.configure(&gpu.device, &gpu.config);
+                return;
+            }
+            wgpu::CurrentSurfaceTexture::Validation => {
+                return self.fail(event_loop, "the window surface failed validation".into());
+            }
+        };
+        let view = frame.texture.create_view(&Default::default());
+        let aspect = gpu.config.width as f32 / gpu.config.height as f32;
+        let (view_proj, eye) = self.camera.view_proj(&self.scene, aspect);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let stats = gpu.renderer.render(
+            &gpu.queue,
+            &mut encoder,
+            &view,
+            &gpu.depth,
+            view_proj,
+            eye,
+            Mode::Shaded,
+        );
+        gpu.queue.submit([encoder.finish()]);
+        gpu.queue.present(frame);
+        self.frame_ms = 0.9 * self.frame_ms + 0.1 * f64::from(dt) * 1e3;
+        gpu.window.set_title(&format!(
+            "sylva: {} draw calls, {} instances, {:.1} M triangles, {:.1} ms",
+            stats.draws,
+            stats.instances,
+            stats.triangles as f64 / 1e6,
+            self.frame_ms
+        ));
+    }
+
+    fn capture(&mut self, on: bool) {
+        let Some(gpu) = &self.gpu else { return };
+        let mode = if on {
+            CursorGrabMode::Locked
+        } else {
+            CursorGrabMode::None
+        };
+        let grabbed = gpu.window.set_cursor_grab(mode).or_else(|_| {
+            gpu.window.set_cursor_grab(if on {
+                CursorGrabMode::Confined
+            } else {
+                CursorGrabMode::None
+            })
+        });
+        gpu.window.set_cursor_visible(!on);
+        self.captured = on && grabbed.is_ok();
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.gpu.is_none() {
+            match self.init(event_loop) {
+                Ok(gpu) => self.gpu = Some(gpu),
+                Err(e) => self.fail(event_loop, e),
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                if let Some(gpu) = &mut self.gpu {
+                    // A minimised window has size zero: keep the old surface until it returns.
+                    if size.width > 0 && size.height > 0 {
+                        gpu.config.width = size.width;
+                        gpu.config.height = size.height;
+                        gpu.surface.configure(&gpu.device, &gpu.config);
+                        gpu.depth = targets(
+                            &gpu.device,
+                            gpu.config.format,
+                            size.width,
+                            size.height,
+                            false,
+                        )
+                        .2;
+                    } else {
+                        gpu.config.width = 0;
+                    }
+                }
+            }
+            WindowEvent::KeyboardInput { event, .. } => {
+                if let PhysicalKey::Code(code) = event.physical_key {
+                    if event.state == ElementState::Pressed {
+                        if code == KeyCode::Escape {
+                            self.capture(false);
+                        }
+                        self.keys.insert(code);
+                    } else {
+                        self.keys.remove(&code);
+                    }
+                }
+            }
+            WindowEvent::MouseInput {
+                state: ElementState::Pressed,
+                button: MouseButton::Left,
+                ..
+            } => self.capture(true),
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            _ => {}
+        }
+    }
+
+    fn device_event(&mut self, _event_loop: &ActiveEventLoop, _id: DeviceId, event: DeviceEvent) {
+        if let DeviceEvent::MouseMotion { delta } = event
+            && self.captured
+        {
+            self.camera.yaw += delta.0 as f32 * 0.003;
+            self.camera.pitch = (self.camera.pitch - delta.1 as f32 * 0.003).clamp(-1.5, 1.5);
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(gpu) = &self.gpu {
+            gpu.window.request_redraw();
+        }
+    }
+}
