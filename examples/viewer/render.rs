@@ -37,6 +37,14 @@ pub(crate) struct FrameStats {
     pub(crate) triangles: u64,
 }
 
+/// Where the frame is seen from and how it is shaded.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct View {
+    pub(crate) view_proj: Mat4,
+    pub(crate) eye: Vec3,
+    pub(crate) mode: Mode,
+}
+
 /// Shading or flat material ids.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Mode {
@@ -305,10 +313,13 @@ impl Renderer {
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
         depth: &wgpu::TextureView,
-        view_proj: Mat4,
-        eye: Vec3,
-        mode: Mode,
+        view: View,
     ) -> FrameStats {
+        let View {
+            view_proj,
+            eye,
+            mode,
+        } = view;
         let light = Vec3::new(0.4, 0.8, 0.3).normalize();
         let globals = Globals {
             view_proj: view_proj.to_cols_array_2d(),
@@ -499,7 +510,17 @@ pub(crate) async fn render_offscreen(
     });
     let mut encoder = device.create_command_encoder(&Default::default());
     let (view_proj, eye) = camera.view_proj(scene, width as f32 / height as f32);
-    let stats = renderer.render(&queue, &mut encoder, &view, &depth, view_proj, eye, mode);
+    let stats = renderer.render(
+        &queue,
+        &mut encoder,
+        &view,
+        &depth,
+        View {
+            view_proj,
+            eye,
+            mode,
+        },
+    );
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
             texture: &colour,

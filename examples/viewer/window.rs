@@ -11,7 +11,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
-use crate::render::{Mode, Renderer, targets};
+use crate::render::{Mode, Renderer, View, targets};
 use crate::scene::{Camera, Scene};
 
 struct Gpu {
