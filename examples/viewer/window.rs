@@ -162,9 +162,11 @@ impl App {
             &mut encoder,
             &view,
             &gpu.depth,
-            view_proj,
-            eye,
-            Mode::Shaded,
+            View {
+                view_proj,
+                eye,
+                mode: Mode::Shaded,
+            },
         );
         gpu.queue.submit([encoder.finish()]);
         gpu.queue.present(frame);
