@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --example viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
-//!     [--screenshot PATH [--size WxH] [--ids]]
+//!     [--screenshot PATH [--size WxH] [--ids] [--frames N]]
 //! ```
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
@@ -29,10 +29,11 @@ struct Args {
     screenshot: Option<String>,
     size: (u32, u32),
     ids: bool,
+    frames: u32,
 }
 
 const USAGE: &str = "usage: viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES] [--budget-mb MB] \
-                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids]]";
+                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -44,6 +45,7 @@ fn parse() -> Result<Args, String> {
     let mut screenshot = None;
     let mut size = (1280u32, 720u32);
     let mut ids = false;
+    let mut frames = 0u32;
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -73,6 +75,7 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--ids" => ids = true,
+            "--frames" => frames = common::parse_value("--frames", it.next())?,
             "--help" | "-h" => return Err(USAGE.into()),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -107,6 +110,7 @@ fn parse() -> Result<Args, String> {
         screenshot,
         size,
         ids,
+        frames,
     })
 }
 
@@ -131,13 +135,19 @@ fn run() -> Result<(), String> {
                 render::Mode::Shaded
             };
             let t = Instant::now();
-            let (pixels, stats, adapter) = pollster::block_on(render::render_offscreen(
-                &scene,
-                &camera,
-                args.size.0,
-                args.size.1,
-                mode,
-            ))?;
+            let offscreen =
+                pollster::block_on(render::Offscreen::new(&scene, args.size.0, args.size.1))?;
+            let (pixels, stats) = offscreen.frame(&scene, &camera, mode)?;
+            let first_ms = t.elapsed().as_secs_f64() * 1e3;
+            // Steady frame time: the median of further frames, read back like the first.
+            let mut times = Vec::new();
+            for _ in 0..args.frames {
+                let t = Instant::now();
+                offscreen.frame(&scene, &camera, mode)?;
+                times.push(t.elapsed().as_secs_f64() * 1e3);
+            }
+            times.sort_by(f64::total_cmp);
+            let adapter = &offscreen.adapter;
             let file = std::fs::File::create(&path).map_err(|e| format!("{path}: {e}"))?;
             let mut encoder =
                 png::Encoder::new(std::io::BufWriter::new(file), args.size.0, args.size.1);
@@ -149,13 +159,18 @@ fn run() -> Result<(), String> {
                 .map_err(|e| format!("{path}: {e}"))?;
             writer.finish().map_err(|e| format!("{path}: {e}"))?;
             println!(
-                "wrote {path} ({}x{}) on {adapter}: {} draw calls, {} instances, {} triangles, first frame in {:.0} ms",
+                "wrote {path} ({}x{}) on {adapter}: {} draw calls, {} instances, {} triangles; first frame {first_ms:.0} ms{}",
                 args.size.0,
                 args.size.1,
                 stats.draws,
                 stats.instances,
                 stats.triangles,
-                t.elapsed().as_secs_f64() * 1e3
+                times
+                    .get(times.len() / 2)
+                    .map_or(String::new(), |m| format!(
+                        ", steady frame {m:.0} ms (median of {})",
+                        times.len()
+                    ))
             );
             Ok(())
         }
