@@ -8,7 +8,8 @@
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
 //! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run. The
-//! title shows draw calls, instances, triangles and frame time. Headless (`--screenshot`):
+//! title shows draw calls, instances, triangles and frame time; `--frames N` closes the window
+//! after N frames and prints the median frame time. Headless (`--screenshot`):
 //! renders one frame offscreen and writes a PNG; without a GPU it runs on Mesa's software
 //! drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
@@ -174,7 +175,7 @@ fn run() -> Result<(), String> {
             );
             Ok(())
         }
-        None => window::run(scene, args.camera),
+        None => window::run(scene, args.camera, args.frames),
     }
 }
 

@@ -34,11 +34,14 @@ struct App {
     frame_ms: f64,
     error: Option<String>,
     lost: Arc<AtomicBool>,
+    /// Close after this many frames (0: run until closed), printing frame times.
+    max_frames: u32,
+    frame_times: Vec<f64>,
 }
 
 /// Opens the window and runs until it closes. Errors (no display, no adapter, a lost device)
 /// come back as messages.
-pub(crate) fn run(scene: Scene, camera: Option<Camera>) -> Result<(), String> {
+pub(crate) fn run(scene: Scene, camera: Option<Camera>, max_frames: u32) -> Result<(), String> {
     let event_loop = EventLoop::new().map_err(|e| {
         format!("cannot open a window ({e}); on a machine without a display, render headless with --screenshot PATH")
     })?;
@@ -53,6 +56,8 @@ pub(crate) fn run(scene: Scene, camera: Option<Camera>) -> Result<(), String> {
         frame_ms: 0.0,
         error: None,
         lost: Arc::new(AtomicBool::new(false)),
+        max_frames,
+        frame_times: Vec::new(),
     };
     event_loop
         .run_app(&mut app)
@@ -171,6 +176,22 @@ impl App {
         gpu.queue.submit([encoder.finish()]);
         gpu.queue.present(frame);
         self.frame_ms = 0.9 * self.frame_ms + 0.1 * f64::from(dt) * 1e3;
+        if self.max_frames > 0 {
+            self.frame_times.push(f64::from(dt) * 1e3);
+            if self.frame_times.len() as u32 >= self.max_frames {
+                let mut t = self.frame_times[1..].to_vec();
+                t.sort_by(f64::total_cmp);
+                println!(
+                    "{} frames: {} draw calls, {} instances, {} triangles per frame; median frame {:.0} ms",
+                    self.frame_times.len(),
+                    stats.draws,
+                    stats.instances,
+                    stats.triangles,
+                    t.get(t.len() / 2).copied().unwrap_or(0.0)
+                );
+                event_loop.exit();
+            }
+        }
         gpu.window.set_title(&format!(
             "sylva: {} draw calls, {} instances, {:.1} M triangles, {:.1} ms",
             stats.draws,
