@@ -7,6 +7,9 @@
 //! Without a grammar it derives the bundled preset `abop-1.24a`. Errors go to stderr with a
 //! non-zero exit status.
 
+#[path = "common/mod.rs"]
+mod common;
+
 use std::process::ExitCode;
 
 use sylva::lsys::{LSystem, PRESETS, preset};
@@ -87,14 +90,5 @@ fn run() -> Result<String, String> {
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(word) => {
-            println!("{word}");
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    common::finish(run().map(|word| println!("{word}")))
 }

@@ -7,6 +7,9 @@
 //!
 //! Without arguments it writes the bundled ternary tree to `tree.obj`.
 
+#[path = "common/mod.rs"]
+mod common;
+
 use std::process::ExitCode;
 
 use sylva::lsys::{LSystem, preset};
@@ -112,11 +115,5 @@ fn run() -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    common::finish(run())
 }

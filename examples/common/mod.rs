@@ -24,3 +24,14 @@ where
     let v = value.ok_or_else(|| format!("{name} needs a value"))?;
     v.parse().map_err(|e| format!("{name} '{v}': {e}"))
 }
+
+/// Ends an example: errors go to stderr with a failure status.
+pub(crate) fn finish(result: Result<(), String>) -> std::process::ExitCode {
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
