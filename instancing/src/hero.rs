@@ -9,7 +9,6 @@ use crate::cache::{CANDIDATE_BYTES, EXIT_BYTES, INSTANCE_BYTES, Instance, Instan
 use crate::error::InstancingError;
 use crate::recorder::HeroRecorder;
 use crate::rewrite::{InstancingGrammar, Markers, probability_at_ages};
-use crate::similarity::Similarity;
 
 /// Settings for [`build_cache`].
 ///
@@ -361,12 +360,5 @@ fn instance_words(word: &Word, markers: &Markers) -> Vec<Word> {
         .collect()
 }
 
-/// Re-exported for assembly: the whole-tree key.
+/// The key of a whole tree: branch id 0, introduced at generation 0.
 pub(crate) const ROOT: (u32, u32) = (0, 0);
-
-impl Similarity {
-    /// Whether all components are finite.
-    pub fn is_finite(&self) -> bool {
-        self.rotation.is_finite() && self.translation.is_finite() && self.scale.is_finite()
-    }
-}

@@ -67,6 +67,11 @@ impl Similarity {
         self.translation + self.scale * (self.rotation * p)
     }
 
+    /// Whether all components are finite.
+    pub fn is_finite(&self) -> bool {
+        self.rotation.is_finite() && self.translation.is_finite() && self.scale.is_finite()
+    }
+
     /// As an affine matrix.
     pub fn to_affine(&self) -> Affine3A {
         Affine3A::from_scale_rotation_translation(
