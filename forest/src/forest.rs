@@ -257,8 +257,9 @@ impl ForestBuilder {
                 {
                     return None;
                 }
+                // A NaN from the mask counts as no trees.
                 if let Some(mask) = &c.mask
-                    && unit(mix(cand.key ^ 0x5eed)) >= mask(x, z).clamp(0.0, 1.0)
+                    && unit(mix(cand.key ^ 0x5eed)) >= mask(x, z).clamp(0.0, 1.0).max(0.0)
                 {
                     return None;
                 }
