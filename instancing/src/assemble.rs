@@ -135,19 +135,22 @@ impl Assembler {
             if depth > self.limits.max_depth {
                 return Err(InstancingError::AssemblyLimit("depth"));
             }
-            let candidates = cache.lookup(id, age);
+            let (candidates, exits) = cache.lookup_with_exits(id, age);
             if candidates.is_empty() {
                 // Heroes guarantee a candidate for every exit; only a foreign cache gets here.
                 return Err(InstancingError::AssemblyLimit("missing instance"));
             }
-            // Two random candidates, the one with fewer exits kept: trees stay as varied as
-            // the cache, but lean towards whole branches over fragments, so a tree needs
-            // fewer placements.
-            let a = candidates[pick(tree.seed, counter, candidates.len())];
-            let b = candidates[pick(tree.seed, counter.wrapping_add(1), candidates.len())];
+            // Two random candidates, the one with fewer exits kept (ties: the first): trees
+            // stay as varied as the cache but lean towards whole branches over fragments, and
+            // need fewer placements.
+            let a = pick(tree.seed, counter, candidates.len());
+            let b = pick(tree.seed, counter.wrapping_add(1), candidates.len());
             counter = counter.wrapping_add(2);
-            let exits = |i: u32| cache.instances[i as usize].exits.1;
-            let chosen = if exits(b) < exits(a) { b } else { a };
+            let chosen = if exits[b] < exits[a] {
+                candidates[b]
+            } else {
+                candidates[a]
+            };
             let instance = &cache.instances[chosen as usize];
             place(chosen, desired.mul(&instance.frame_inverse));
             placed += 1;

@@ -39,8 +39,8 @@ pub struct Exit {
 pub const INSTANCE_BYTES: usize = std::mem::size_of::<Instance>();
 /// Bytes one exit point costs against the budget.
 pub const EXIT_BYTES: usize = std::mem::size_of::<Exit>();
-/// Bytes one lookup candidate costs against the budget.
-pub const CANDIDATE_BYTES: usize = 4;
+/// Bytes one lookup candidate costs against the budget (its index and its exit count).
+pub const CANDIDATE_BYTES: usize = 8;
 
 /// The cache of one species: geometry, instances, exits and the lookup table.
 #[derive(Debug, Clone, Default)]
@@ -58,6 +58,9 @@ pub struct InstanceCache {
     /// Per (id, age): range into `candidates`; dense, `table[id * ages + age]`.
     table: Vec<(u32, u32)>,
     candidates: Vec<u32>,
+    /// Exit counts of `candidates`, side by side so assembly compares them without touching
+    /// the instances.
+    candidate_exits: Vec<u32>,
     ages: u32,
     budget: usize,
 }
@@ -100,6 +103,24 @@ impl InstanceCache {
         }
     }
 
+    /// Candidates for (id, age) and their exit counts.
+    #[inline]
+    pub(crate) fn lookup_with_exits(&self, id: u32, age: u32) -> (&[u32], &[u32]) {
+        if age >= self.ages {
+            return (&[], &[]);
+        }
+        match self
+            .table
+            .get((id as usize) * self.ages as usize + age as usize)
+        {
+            Some(&(start, count)) => {
+                let r = start as usize..(start + count) as usize;
+                (&self.candidates[r.clone()], &self.candidate_exits[r])
+            }
+            None => (&[], &[]),
+        }
+    }
+
     /// The exit points of instance `i`.
     #[inline]
     pub fn exits_of(&self, instance: &Instance) -> &[Exit] {
@@ -115,10 +136,14 @@ impl InstanceCache {
             }
         }
         self.candidates.clear();
+        self.candidate_exits.clear();
         self.table.clear();
         for l in lists {
             self.table
                 .push((self.candidates.len() as u32, l.len() as u32));
+            let instances = &self.instances;
+            self.candidate_exits
+                .extend(l.iter().map(|&i| instances[i as usize].exits.1));
             self.candidates.extend(l);
         }
         self.ages = ages;

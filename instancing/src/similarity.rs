@@ -40,11 +40,13 @@ impl Similarity {
         }
     }
 
-    /// `self * other`: apply `other` first.
+    /// `self * other`: apply `other` first. The product of unit quaternions stays unit to
+    /// within float rounding over the few levels a tree nests, so it is not renormalised here
+    /// (exporters normalise once at the end).
     #[inline]
     pub fn mul(&self, other: &Similarity) -> Similarity {
         Similarity {
-            rotation: (self.rotation * other.rotation).normalize(),
+            rotation: self.rotation * other.rotation,
             translation: self.translation + self.scale * (self.rotation * other.translation),
             scale: self.scale * other.scale,
         }
