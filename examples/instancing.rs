@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example instancing -- [--preset kenwood-leafy] [--generations 6]
-//!     [--trees 1000000] [--budget-mb 128] [--seed S] [--naive N] [--stats]
+//!     [--trees 1000000] [--budget-mb 128] [--seed S] [--naive N] [--choices K] [--stats]
 //! ```
 //!
 //! `--stats` prints one JSON line of figures. `--naive N` also builds N trees the naive way
@@ -27,10 +27,11 @@ struct Args {
     budget_mb: usize,
     seed: u64,
     naive: usize,
+    choices: u32,
     stats: bool,
 }
 
-const USAGE: &str = "usage: instancing [--preset NAME] [--generations N] [--trees N] [--budget-mb MB] [--seed S] [--naive N] [--stats]";
+const USAGE: &str = "usage: instancing [--preset NAME] [--generations N] [--trees N] [--budget-mb MB] [--seed S] [--naive N] [--choices K] [--stats]";
 
 fn parse() -> Result<Args, String> {
     let mut a = Args {
@@ -40,6 +41,7 @@ fn parse() -> Result<Args, String> {
         budget_mb: 128,
         seed: 1,
         naive: 0,
+        choices: 2,
         stats: false,
     };
     let mut it = std::env::args().skip(1);
@@ -66,6 +68,11 @@ fn parse() -> Result<Args, String> {
             }
             "--seed" => a.seed = value("--seed")?.parse().map_err(|e| bad("--seed", e))?,
             "--naive" => a.naive = value("--naive")?.parse().map_err(|e| bad("--naive", e))?,
+            "--choices" => {
+                a.choices = value("--choices")?
+                    .parse()
+                    .map_err(|e| bad("--choices", e))?
+            }
             "--stats" => a.stats = true,
             "--help" | "-h" => return Err(USAGE.into()),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
@@ -117,6 +124,7 @@ fn run() -> Result<(), String> {
 
     // Full expansion, streamed so that a million trees need no gigabytes of placements.
     let mut assembler = Assembler::new();
+    assembler.limits.choices = args.choices;
     let mut uses = vec![0u32; built.cache.instances.len()];
     let mut checksum = 0.0f32;
     let t2 = Instant::now();

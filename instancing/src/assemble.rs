@@ -39,7 +39,7 @@ impl CompactTree {
     }
 }
 
-/// Bounds on one tree's assembly.
+/// Bounds and choices of one tree's assembly.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct AssemblyLimits {
@@ -47,6 +47,10 @@ pub struct AssemblyLimits {
     pub max_depth: u32,
     /// Most instances one tree may place.
     pub max_instances: usize,
+    /// Candidates drawn at random for each exit; the one with the fewest exits of its own is
+    /// used. 1 is a uniform choice (most variety); more lean towards whole branches, so trees
+    /// need fewer placements and expand faster. Default 2.
+    pub choices: u32,
 }
 
 impl Default for AssemblyLimits {
@@ -54,6 +58,7 @@ impl Default for AssemblyLimits {
         AssemblyLimits {
             max_depth: 256,
             max_instances: 1 << 22,
+            choices: 2,
         }
     }
 }
@@ -140,17 +145,18 @@ impl Assembler {
                 // Heroes guarantee a candidate for every exit; only a foreign cache gets here.
                 return Err(InstancingError::AssemblyLimit("missing instance"));
             }
-            // Two random candidates, the one with fewer exits kept (ties: the first): trees
-            // stay as varied as the cache but lean towards whole branches over fragments, and
-            // need fewer placements.
-            let a = pick(tree.seed, counter, candidates.len());
-            let b = pick(tree.seed, counter.wrapping_add(1), candidates.len());
-            counter = counter.wrapping_add(2);
-            let chosen = if exits[b] < exits[a] {
-                candidates[b]
-            } else {
-                candidates[a]
-            };
+            // A few random candidates, the one with the fewest exits kept (ties: the first):
+            // trees stay as varied as the cache but lean towards whole branches over
+            // fragments, and need fewer placements.
+            let mut best = pick(tree.seed, counter, candidates.len());
+            for k in 1..self.limits.choices.max(1) {
+                let other = pick(tree.seed, counter.wrapping_add(k), candidates.len());
+                if exits[other] < exits[best] {
+                    best = other;
+                }
+            }
+            counter = counter.wrapping_add(self.limits.choices.max(1));
+            let chosen = candidates[best];
             let instance = &cache.instances[chosen as usize];
             place(chosen, desired.mul(&instance.frame_inverse));
             placed += 1;

@@ -440,3 +440,33 @@ proptest! {
         }
     }
 }
+
+/// More candidates per exit lean towards whole branches: fewer placements, same validity.
+#[test]
+fn more_choices_mean_fewer_placements() {
+    let grammar = preset("kenwood-leafy").unwrap().lsystem().unwrap();
+    let built = build_cache(
+        &grammar,
+        &HeroOptions::default()
+            .with_budget(4 << 20)
+            .with_generations(5),
+    )
+    .unwrap();
+    let trees: Vec<CompactTree> = (0..300)
+        .map(|seed| CompactTree {
+            scale: 1.0,
+            seed,
+            ..Default::default()
+        })
+        .collect();
+    let placed = |choices: u32| {
+        let mut a = Assembler::new();
+        a.limits.choices = choices;
+        trees
+            .iter()
+            .map(|t| a.expand_with(&built.cache, t, |_, _| {}).unwrap())
+            .sum::<usize>()
+    };
+    let (one, two, eight) = (placed(1), placed(2), placed(8));
+    assert!(eight < two && two < one, "{one} {two} {eight}");
+}
