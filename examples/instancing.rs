@@ -152,7 +152,7 @@ fn run() -> Result<(), String> {
     let s = &built.stats;
     if args.stats {
         println!(
-            "{{\"preset\":\"{}\",\"generations\":{generations},\"trees\":{},\"budget_mb\":{},\"heroes\":{},\"rejected_heroes\":{},\"hero_ms\":{hero_ms:.1},\"placement_ms\":{placement_ms:.1},\"expand_ms\":{:.1},\"cache_bytes\":{},\"instances\":{},\"placements\":{placements},\"instances_per_tree\":{:.2},\"compact_bytes_per_tree\":{},\"expanded_bytes_per_tree\":{:.0},\"max_uses\":{max_uses},\"placements_per_s\":{:.0},\"peak_rss_mb\":{:.1},\"instanced_trees_per_s\":{instanced_rate:.0},\"naive_trees_per_s\":{},\"speedup\":{},\"checksum\":{checksum:.1}}}",
+            "{{\"preset\":\"{}\",\"generations\":{generations},\"trees\":{},\"budget_mb\":{},\"heroes\":{},\"rejected_heroes\":{},\"hero_ms\":{hero_ms:.1},\"placement_ms\":{placement_ms:.1},\"expand_ms\":{:.1},\"cache_bytes\":{},\"instances\":{},\"exits\":{},\"placements\":{placements},\"instances_per_tree\":{:.2},\"compact_bytes_per_tree\":{},\"expanded_bytes_per_tree\":{:.0},\"max_uses\":{max_uses},\"placements_per_s\":{:.0},\"peak_rss_mb\":{:.1},\"instanced_trees_per_s\":{instanced_rate:.0},\"naive_trees_per_s\":{},\"speedup\":{},\"checksum\":{checksum:.1}}}",
             p.name,
             args.trees,
             args.budget_mb,
@@ -161,6 +161,7 @@ fn run() -> Result<(), String> {
             expand_s * 1e3,
             s.bytes,
             s.instances,
+            s.exits,
             placements as f64 / args.trees.max(1) as f64,
             std::mem::size_of::<CompactTree>(),
             placements as f64 * 32.0 / args.trees.max(1) as f64,
