@@ -165,7 +165,7 @@ impl Assembler {
             }
             for exit in cache.exits_of(instance) {
                 self.stack
-                    .push((exit.id(), exit.age(), desired.mul(&exit.frame()), depth + 1));
+                    .push((exit.id, exit.age, desired.mul(&exit.frame), depth + 1));
             }
         }
         Ok(placed)

@@ -1,7 +1,6 @@
 //! The instance cache: one shared vertex and index buffer per species, instances as index
 //! ranges with their hero frame and exit points, and an O(1) lookup by (branch id, age).
 
-use glam::{Quat, Vec3};
 use sylva_turtle::Vertex;
 
 use crate::similarity::Similarity;
@@ -24,61 +23,20 @@ pub struct Instance {
     pub exits: (u32, u32),
 }
 
-/// An exit point of an instance: where a sub-branch of (id, age) must be attached, as a rigid
-/// frame E relative to the instance's own frame (so the sub-branch goes to D * E).
-///
-/// Packed into 32 bytes (rotation, translation, and id and age in one word), because
-/// assembly streams through exits for every placement.
+/// An exit point of an instance: where a sub-branch of (id, age) must be attached, as a frame
+/// E relative to the instance's own frame (so the sub-branch goes to D * E).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Exit {
-    /// Rotation of E.
-    pub rotation: Quat,
-    /// Translation of E.
-    pub translation: Vec3,
-    key: u32,
-}
-
-impl Exit {
-    /// Largest branch id an exit can hold (24 bits).
-    pub const MAX_ID: u32 = (1 << 24) - 1;
-
-    /// An exit for (id, age) at the rigid frame `frame` (its scale is ignored). `None` when
-    /// the id exceeds [`Exit::MAX_ID`] or the age 255.
-    pub fn new(id: u32, age: u32, frame: &Similarity) -> Option<Exit> {
-        (id <= Self::MAX_ID && age <= 255).then_some(Exit {
-            rotation: frame.rotation,
-            translation: frame.translation,
-            key: (id << 8) | age,
-        })
-    }
-
     /// Branch id wanted.
-    #[inline]
-    pub fn id(&self) -> u32 {
-        self.key >> 8
-    }
-
+    pub id: u32,
     /// Age wanted.
-    #[inline]
-    pub fn age(&self) -> u32 {
-        self.key & 0xff
-    }
-
-    /// The frame E.
-    #[inline]
-    pub fn frame(&self) -> Similarity {
-        Similarity {
-            rotation: self.rotation,
-            translation: self.translation,
-            scale: 1.0,
-        }
-    }
+    pub age: u32,
+    /// Frame relative to the instance.
+    pub frame: Similarity,
 }
 
 /// Bytes one instance's metadata costs against the budget.
 pub const INSTANCE_BYTES: usize = std::mem::size_of::<Instance>();
-const _: () = assert!(std::mem::size_of::<Exit>() == 32);
-
 /// Bytes one exit point costs against the budget.
 pub const EXIT_BYTES: usize = std::mem::size_of::<Exit>();
 /// Bytes one lookup candidate costs against the budget (its index and its exit count).

@@ -190,13 +190,6 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
     ] {
         turtle.symbols.set(c, Command::Marker);
     }
-    if ig.branch_count() > crate::cache::Exit::MAX_ID {
-        return Err(InstancingError::BadParameter(format!(
-            "{} distinct branches; at most {} fit an exit",
-            ig.branch_count(),
-            crate::cache::Exit::MAX_ID
-        )));
-    }
     let ids = ig.branch_count() + 1;
     let ages = options.generations + 1;
     let mut cache = InstanceCache::new(options.budget);
@@ -301,10 +294,11 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
             let inverse = r.frame.inverse();
             let e0 = cache.exits.len() as u32;
             for &(id, age, world) in &rec.exits[r.exits.0 as usize..r.exits.1 as usize] {
-                // Ids were checked above and ages are at most 64, so every exit packs.
-                if let Some(exit) = crate::cache::Exit::new(id, age, &inverse.mul(&world)) {
-                    cache.exits.push(exit);
-                }
+                cache.exits.push(crate::cache::Exit {
+                    id,
+                    age,
+                    frame: inverse.mul(&world),
+                });
             }
             lists[(r.id * ages + r.age) as usize].push(cache.instances.len() as u32);
             cache.instances.push(Instance {

@@ -419,7 +419,7 @@ proptest! {
                 prop_assert_eq!(built.stats.bytes, built.cache.bytes());
                 // Every exit of every instance can be filled.
                 for e in &built.cache.exits {
-                    prop_assert!(!built.cache.lookup(e.id(), e.age()).is_empty());
+                    prop_assert!(!built.cache.lookup(e.id, e.age).is_empty());
                 }
             }
             Err(InstancingError::BudgetTooSmall { .. }) => {}
