@@ -47,6 +47,8 @@ struct Canopy {
 }
 
 const RINGS: i64 = 3;
+/// Side, in patches, of the blocks a large region is processed in.
+const BLOCK: i64 = 128;
 const TRIES: u64 = 16;
 
 impl PatchDensity {
@@ -163,6 +165,41 @@ impl DensityModel for PatchDensity {
             cell(region.min.y),
             cell(region.max.y),
         );
+        // Large regions go in blocks of patches, so memory stays bounded whatever the area;
+        // every decision is local, so blocks give the same trees as one pass.
+        if ri1 - ri0 >= BLOCK || rj1 - rj0 >= BLOCK {
+            let mut j = rj0;
+            while j <= rj1 {
+                let mut i = ri0;
+                while i <= ri1 {
+                    // Each block emits the trees of its own patches, so none is lost or
+                    // doubled at block borders.
+                    self.candidates_in(
+                        region,
+                        seed,
+                        out,
+                        (i, (i + BLOCK - 1).min(ri1), j, (j + BLOCK - 1).min(rj1)),
+                    );
+                    i += BLOCK;
+                }
+                j += BLOCK;
+            }
+            return;
+        }
+        self.candidates_in(region, seed, out, (ri0, ri1, rj0, rj1));
+    }
+}
+
+impl PatchDensity {
+    /// Candidates of `region`, whose patches are `cells` = (i0, i1, j0, j1) inclusive.
+    fn candidates_in(
+        &self,
+        region: Rect,
+        seed: u64,
+        out: &mut Vec<Candidate>,
+        cells: (i64, i64, i64, i64),
+    ) {
+        let (ri0, ri1, rj0, rj1) = cells;
         let (i0, i1, j0, j1) = (ri0 - RINGS, ri1 + RINGS, rj0 - RINGS, rj1 + RINGS);
         let canopies = self.canopies(seed, i0, i1, j0, j1);
         let w = (i1 - i0 + 1) as usize;

@@ -347,3 +347,27 @@ fn impossible_configurations_are_errors() {
     no_weight.species.iter_mut().for_each(|s| s.weight = 0.0);
     assert!(ForestBuilder::new(no_weight).is_err());
 }
+
+/// Large regions are processed in blocks of patches; the trees must not depend on it.
+#[test]
+fn large_regions_in_blocks_equal_small_tiles() {
+    let mut model = PatchDensity::new(vec![0.5], vec![1.0]);
+    model.seedlings_per_patch = 1;
+    let whole_region = Rect::new(Vec2::ZERO, Vec2::splat(300.0));
+    let mut whole = Vec::new();
+    model.candidates(whole_region, 9, &mut whole);
+    let mut tiles = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            let min = Vec2::new(i as f32, j as f32) * 75.0;
+            model.candidates(Rect::new(min, min + Vec2::splat(75.0)), 9, &mut tiles);
+        }
+    }
+    let key = |c: &Candidate| (c.position.x.to_bits(), c.position.y.to_bits(), c.key);
+    let mut a: Vec<_> = whole.iter().map(key).collect();
+    let mut b: Vec<_> = tiles.iter().map(key).collect();
+    a.sort_unstable();
+    b.sort_unstable();
+    assert!(a.len() > 50_000);
+    assert_eq!(a, b);
+}
