@@ -140,11 +140,14 @@ fn run() -> Result<(), String> {
     }
     let patch = builder.density().patch;
     let side = match (args.area, args.trees) {
-        (Some(a), _) if a > 0.0 && a.is_finite() => a,
+        (Some(a), _) if a > 0.0 && a <= 20_000.0 => a,
         (Some(a), _) => {
             return Err(format!(
-                "--area {a}: expected a positive side length in metres"
+                "--area {a}: expected a side length from 0 to 20000 metres"
             ));
+        }
+        (None, Some(n)) if n == 0 || n > 10_000_000 => {
+            return Err(format!("--trees {n}: expected 1 to 10000000"));
         }
         (None, Some(n)) => (n as f32).sqrt() * patch,
         (None, None) => 800.0,
