@@ -167,12 +167,13 @@ impl<'g> Deriver<'g> {
                 p if p != u32::MAX
                     && c.productions[p as usize].arity as usize == cur.params(i).len() =>
                 {
-                    Some(p)
+                    // A simple production has no context: nothing was matched, nothing needs to be.
+                    Some((p, true))
                 }
                 _ => self.select(cur, i, &c.order[lo..hi], gen_f),
             };
             match chosen {
-                Some(p) => {
+                Some((p, matched)) => {
                     let prod = &c.productions[p as usize];
                     self.check_room(out, prod, generation)?;
                     if let Some(((s0, s1), (p0, p1))) = prod.constant {
@@ -188,7 +189,7 @@ impl<'g> Deriver<'g> {
                         );
                         cut_seen |= syms.contains(&CUT);
                     } else {
-                        self.bind(cur, i, prod);
+                        self.bind(cur, i, prod, matched);
                         cut_seen |= self.emit(prod.successor, out, gen_f, generation)?;
                     }
                 }
@@ -234,8 +235,15 @@ impl<'g> Deriver<'g> {
     }
 
     /// Picks the production to apply to module `i`, if any: the first match when it is
-    /// deterministic, else a weighted draw among all matching weighted productions.
-    fn select(&mut self, cur: &Word, i: usize, order: &[u32], generation: f64) -> Option<u32> {
+    /// deterministic, else a weighted draw among all matching weighted productions. The flag
+    /// says whether `matched` still holds the chosen production's context match.
+    fn select(
+        &mut self,
+        cur: &Word,
+        i: usize,
+        order: &[u32],
+        generation: f64,
+    ) -> Option<(u32, bool)> {
         let grammar: &'g LSystem = self.grammar;
         let c = &grammar.compiled;
         self.candidates.clear();
@@ -246,7 +254,7 @@ impl<'g> Deriver<'g> {
                 continue;
             }
             if let Some((a, b)) = prod.condition {
-                self.bind(cur, i, prod);
+                self.bind(cur, i, prod, true);
                 let v = eval(
                     &c.ops[a as usize..b as usize],
                     &self.vars,
@@ -259,7 +267,7 @@ impl<'g> Deriver<'g> {
                 }
             }
             match prod.weight {
-                None if self.candidates.is_empty() => return Some(p),
+                None if self.candidates.is_empty() => return Some((p, true)),
                 None => {}
                 Some(w) => {
                     total += w;
@@ -270,10 +278,11 @@ impl<'g> Deriver<'g> {
         if self.candidates.is_empty() || total <= 0.0 {
             return None;
         }
+        // Later candidates were matched after the drawn one: its match must be redone.
         let mut u = self.rng.unit() * total;
         for &(p, w) in &self.candidates {
             if u < w {
-                return Some(p);
+                return Some((p, false));
             }
             u -= w;
         }
@@ -281,7 +290,7 @@ impl<'g> Deriver<'g> {
             .iter()
             .rev()
             .find(|c| c.1 > 0.0)
-            .map(|c| c.0)
+            .map(|c| (c.0, false))
     }
 
     fn matches(&mut self, cur: &Word, i: usize, prod: &CProduction) -> bool {
@@ -298,14 +307,16 @@ impl<'g> Deriver<'g> {
     }
 
     /// Fills `vars` with the parameters of the modules `matches` found, in slot order.
-    /// Re-runs the match so that it is right for whichever production was chosen.
-    fn bind(&mut self, cur: &Word, i: usize, prod: &CProduction) {
+    /// `matched` says whether the last `matches` call was for `prod`; if not, it is redone.
+    fn bind(&mut self, cur: &Word, i: usize, prod: &CProduction, matched: bool) {
         self.vars.clear();
         if prod.left.is_empty() && prod.right.is_empty() {
             self.vars.extend_from_slice(cur.params(i));
             return;
         }
-        self.matches(cur, i, prod);
+        if !matched {
+            self.matches(cur, i, prod);
+        }
         for &m in &self.matched {
             self.vars.extend_from_slice(cur.params(m as usize));
         }

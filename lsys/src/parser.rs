@@ -108,11 +108,11 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
         .map_err(|e| ParseError::new(1, 1, e.to_string()))
 }
 
-/// Parses a word (modules with constant arguments) against an existing alphabet.
+/// Parses a word (modules with constant arguments); `symbol` gives each character's id, or
+/// `None` when it is not allowed.
 pub(crate) fn parse_modules(
     text: &str,
-    alphabet: &mut Alphabet,
-    extend: bool,
+    symbol: &mut dyn FnMut(char) -> Option<SymbolId>,
 ) -> Result<Vec<(SymbolId, Vec<f64>)>, ParseError> {
     let chars: Vec<char> = text.chars().collect();
     let mut out = Vec::new();
@@ -125,12 +125,7 @@ pub(crate) fn parse_modules(
         while !cur.at_end() {
             let pos = cur.pos();
             let c = cur.bump().unwrap_or(' ');
-            let id = if extend {
-                alphabet.intern(c)
-            } else {
-                alphabet.id(c)
-            };
-            let Some(id) = id else {
+            let Some(id) = symbol(c) else {
                 return Err(cur.error_at(pos, format!("'{c}' is not a symbol of this alphabet")));
             };
             let mut params = Vec::new();

@@ -66,8 +66,7 @@ impl Word {
     /// Parses modules written in grammar notation, with symbols of `alphabet` only.
     /// Parameters may be constant expressions (`F(2*3)`).
     pub fn parse(text: &str, alphabet: Arc<Alphabet>) -> Result<Word, ParseError> {
-        let mut a = (*alphabet).clone();
-        let modules = crate::parser::parse_modules(text, &mut a, false)?;
+        let modules = crate::parser::parse_modules(text, &mut |c| alphabet.id(c))?;
         let mut w = Word::empty(alphabet);
         for (s, p) in modules {
             w.push(s, &p);
@@ -151,7 +150,7 @@ impl FromStr for Word {
     /// Parses a word, building an alphabet of the symbols it uses.
     fn from_str(text: &str) -> Result<Word, ParseError> {
         let mut alphabet = Alphabet::new();
-        let modules = crate::parser::parse_modules(text, &mut alphabet, true)?;
+        let modules = crate::parser::parse_modules(text, &mut |c| alphabet.intern(c))?;
         let mut w = Word::empty(Arc::new(alphabet));
         for (s, p) in modules {
             w.push(s, &p);
