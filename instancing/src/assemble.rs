@@ -6,6 +6,7 @@ use glam::{Quat, Vec3};
 
 use crate::cache::InstanceCache;
 use crate::error::InstancingError;
+use crate::hash::mix;
 use crate::hero::ROOT;
 use crate::similarity::Similarity;
 
@@ -102,10 +103,7 @@ impl Placements {
 
 #[inline]
 fn pick(seed: u32, counter: u32, n: usize) -> usize {
-    let mut z = ((u64::from(seed) << 32) | u64::from(counter)).wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^= z >> 31;
+    let z = mix(((u64::from(seed) << 32) | u64::from(counter)).wrapping_add(0x9e37_79b9_7f4a_7c15));
     (((z >> 32) * n as u64) >> 32) as usize
 }
 

@@ -91,16 +91,7 @@ impl InstanceCache {
     /// Candidates for (id, age) in O(1): indices into [`InstanceCache::instances`].
     #[inline]
     pub fn lookup(&self, id: u32, age: u32) -> &[u32] {
-        if age >= self.ages {
-            return &[];
-        }
-        match self
-            .table
-            .get((id as usize) * self.ages as usize + age as usize)
-        {
-            Some(&(start, count)) => &self.candidates[start as usize..(start + count) as usize],
-            None => &[],
-        }
+        self.lookup_with_exits(id, age).0
     }
 
     /// Candidates for (id, age) and their exit counts.

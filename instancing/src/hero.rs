@@ -7,6 +7,7 @@ use sylva_turtle::{Command, TurtleOptions, interpret};
 
 use crate::cache::{CANDIDATE_BYTES, EXIT_BYTES, INSTANCE_BYTES, Instance, InstanceCache};
 use crate::error::InstancingError;
+use crate::hash::mix;
 use crate::recorder::HeroRecorder;
 use crate::rewrite::{InstancingGrammar, Markers, probability_at_ages};
 
@@ -147,12 +148,6 @@ pub struct HeroCache {
     pub words: Vec<Word>,
     /// What happened.
     pub stats: HeroStats,
-}
-
-fn mix(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// Derives hero trees of `grammar` in instancing form and fills a cache with their instances

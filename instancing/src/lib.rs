@@ -52,6 +52,7 @@ mod assemble;
 mod builder;
 mod cache;
 mod error;
+mod hash;
 mod hero;
 mod recorder;
 mod rewrite;

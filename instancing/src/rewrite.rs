@@ -235,25 +235,43 @@ impl InstancingGrammar {
     /// expression that may use `#`). One right-hand side per production, yet the same
     /// distribution as the paper's 2^B right-hand sides ([`InstancingGrammar::explicit`]).
     pub fn compact(&self, probability: impl Fn(u32) -> Expr) -> Result<LSystem, InstancingError> {
-        let mut productions = Vec::with_capacity(self.base.productions().len());
-        for (p, spans) in self.base.productions().iter().zip(&self.spans) {
-            let mut q = p.clone();
-            let mut items = Vec::with_capacity(p.successor.len());
-            let mut next = 0;
-            for &(open, close, id) in spans {
-                items.extend(p.successor[next..open].iter().cloned());
-                items.push(SuccessorItem::Choice {
-                    probability: probability(id),
-                    then: vec![self.marker(2, id, Expr::Generation)],
-                    otherwise: self.recorded(&p.successor[open..=close], id),
+        let productions = self
+            .base
+            .productions()
+            .iter()
+            .zip(&self.spans)
+            .map(|(p, spans)| {
+                let mut q = p.clone();
+                q.successor = self.replace_branches(p, spans, |_, branch, id, items| {
+                    items.push(SuccessorItem::Choice {
+                        probability: probability(id),
+                        then: vec![self.marker(2, id, Expr::Generation)],
+                        otherwise: self.recorded(branch, id),
+                    });
                 });
-                next = close + 1;
-            }
-            items.extend(p.successor[next..].iter().cloned());
-            q.successor = items;
-            productions.push(q);
-        }
+                q
+            })
+            .collect();
         self.build(productions)
+    }
+
+    /// The successor of `p` with each branch in `spans` replaced by what `replace` appends;
+    /// `replace` gets the branch's index among the production's branches, its items and id.
+    fn replace_branches(
+        &self,
+        p: &Production,
+        spans: &[(usize, usize, u32)],
+        mut replace: impl FnMut(usize, &[SuccessorItem], u32, &mut Vec<SuccessorItem>),
+    ) -> Vec<SuccessorItem> {
+        let mut items = Vec::with_capacity(p.successor.len() + 2 * spans.len());
+        let mut next = 0;
+        for (k, &(open, close, id)) in spans.iter().enumerate() {
+            items.extend(p.successor[next..open].iter().cloned());
+            replace(k, &p.successor[open..=close], id, &mut items);
+            next = close + 1;
+        }
+        items.extend(p.successor[next..].iter().cloned());
+        items
     }
 
     /// The paper's explicit form: a production with B branches becomes 2^B productions, one per
@@ -291,21 +309,15 @@ impl InstancingGrammar {
             }
             let w = prod.weight.unwrap_or(1.0);
             for mask in 0u32..(1 << b) {
-                let mut items = Vec::new();
-                let mut next = 0;
-                for (bit, &(open, close, id)) in spans.iter().enumerate() {
-                    items.extend(prod.successor[next..open].iter().cloned());
+                let i = mask.count_ones() as i32;
+                let mut q = prod.clone();
+                q.successor = self.replace_branches(prod, spans, |bit, branch, id, items| {
                     if mask & (1 << bit) != 0 {
                         items.push(self.marker(2, id, Expr::Generation));
                     } else {
-                        items.extend(self.recorded(&prod.successor[open..=close], id));
+                        items.extend(self.recorded(branch, id));
                     }
-                    next = close + 1;
-                }
-                items.extend(prod.successor[next..].iter().cloned());
-                let i = mask.count_ones() as i32;
-                let mut q = prod.clone();
-                q.successor = items;
+                });
                 q.weight = Some(w * p.powi(i) * (1.0 - p).powi(b as i32 - i));
                 out.push(q);
             }
