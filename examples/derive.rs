@@ -32,24 +32,10 @@ fn parse_args() -> Result<Args, String> {
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
-        };
         match a.as_str() {
-            "--steps" => {
-                args.steps = Some(
-                    value("--steps")?
-                        .parse()
-                        .map_err(|e| format!("--steps: {e}"))?,
-                )
-            }
-            "--seed" => {
-                args.seed = value("--seed")?
-                    .parse()
-                    .map_err(|e| format!("--seed: {e}"))?
-            }
-            "--preset" => args.preset = Some(value("--preset")?),
+            "--steps" => args.steps = Some(common::parse_value("--steps", it.next())?),
+            "--seed" => args.seed = common::parse_value("--seed", it.next())?,
+            "--preset" => args.preset = Some(common::parse_value::<String>("--preset", it.next())?),
             "--help" | "-h" => {
                 let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
                 return Err(format!("{USAGE}\npresets: {}", names.join(", ")));

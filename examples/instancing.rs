@@ -46,33 +46,16 @@ fn parse() -> Result<Args, String> {
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
-        };
-        let bad = |name: &str, e: std::num::ParseIntError| format!("{name}: {e}");
         match arg.as_str() {
-            "--preset" => a.preset = value("--preset")?,
+            "--preset" => a.preset = common::parse_value::<String>("--preset", it.next())?,
             "--generations" => {
-                a.generations = Some(
-                    value("--generations")?
-                        .parse()
-                        .map_err(|e| bad("--generations", e))?,
-                )
+                a.generations = Some(common::parse_value("--generations", it.next())?)
             }
-            "--trees" => a.trees = value("--trees")?.parse().map_err(|e| bad("--trees", e))?,
-            "--budget-mb" => {
-                a.budget_mb = value("--budget-mb")?
-                    .parse()
-                    .map_err(|e| bad("--budget-mb", e))?
-            }
-            "--seed" => a.seed = value("--seed")?.parse().map_err(|e| bad("--seed", e))?,
-            "--naive" => a.naive = value("--naive")?.parse().map_err(|e| bad("--naive", e))?,
-            "--choices" => {
-                a.choices = value("--choices")?
-                    .parse()
-                    .map_err(|e| bad("--choices", e))?
-            }
+            "--trees" => a.trees = common::parse_value("--trees", it.next())?,
+            "--budget-mb" => a.budget_mb = common::parse_value("--budget-mb", it.next())?,
+            "--seed" => a.seed = common::parse_value("--seed", it.next())?,
+            "--naive" => a.naive = common::parse_value("--naive", it.next())?,
+            "--choices" => a.choices = common::parse_value("--choices", it.next())?,
             "--stats" => a.stats = true,
             "--help" | "-h" => return Err(USAGE.into()),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),

@@ -25,40 +25,19 @@ fn run() -> Result<(), String> {
     let mut out = String::from("height.png");
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
-        };
-        let bad = |name: &str, e: &dyn std::fmt::Display| format!("{name}: {e}");
         match a.as_str() {
-            "--size" => size = value("--size")?.parse().map_err(|e| bad("--size", &e))?,
-            "--roughness" => {
-                roughness = value("--roughness")?
-                    .parse()
-                    .map_err(|e| bad("--roughness", &e))?
-            }
-            "--seed" => seed = value("--seed")?.parse().map_err(|e| bad("--seed", &e))?,
-            "--smooth" => {
-                sigma = value("--smooth")?
-                    .parse()
-                    .map_err(|e| bad("--smooth", &e))?
-            }
-            "--spacing" => {
-                spacing = value("--spacing")?
-                    .parse()
-                    .map_err(|e| bad("--spacing", &e))?
-            }
+            "--size" => size = common::parse_value("--size", it.next())?,
+            "--roughness" => roughness = common::parse_value("--roughness", it.next())?,
+            "--seed" => seed = common::parse_value("--seed", it.next())?,
+            "--smooth" => sigma = common::parse_value("--smooth", it.next())?,
+            "--spacing" => spacing = common::parse_value("--spacing", it.next())?,
             "--amplitude" => {
-                amplitude = Some(
-                    value("--amplitude")?
-                        .parse::<f32>()
-                        .map_err(|e| bad("--amplitude", &e))?,
-                )
+                amplitude = Some(common::parse_value::<f32>("--amplitude", it.next())?)
             }
             "--erode" => erode = true,
             "--wrap" => wrap = true,
             "--raw" => raw = true,
-            "--out" => out = value("--out")?,
+            "--out" => out = common::parse_value::<String>("--out", it.next())?,
             "--help" | "-h" => return Err(USAGE.to_string()),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }

@@ -26,38 +26,21 @@ fn run() -> Result<(), String> {
     let mut out = String::from("tree.obj");
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))
-        };
-        let num_err = |name: &'static str| move |e: std::num::ParseIntError| format!("{name}: {e}");
         match a.as_str() {
-            "--preset" => preset_name = Some(value("--preset")?),
-            "--steps" => {
-                steps = Some(
-                    value("--steps")?
-                        .parse::<u32>()
-                        .map_err(num_err("--steps"))?,
-                )
-            }
-            "--seed" => seed = value("--seed")?.parse().map_err(num_err("--seed"))?,
-            "--sides" => sides = value("--sides")?.parse().map_err(num_err("--sides"))?,
-            "--angle" => {
-                angle = Some(
-                    value("--angle")?
-                        .parse::<f32>()
-                        .map_err(|e| format!("--angle: {e}"))?,
-                )
-            }
+            "--preset" => preset_name = Some(common::parse_value::<String>("--preset", it.next())?),
+            "--steps" => steps = Some(common::parse_value::<u32>("--steps", it.next())?),
+            "--seed" => seed = common::parse_value("--seed", it.next())?,
+            "--sides" => sides = common::parse_value("--sides", it.next())?,
+            "--angle" => angle = Some(common::parse_value::<f32>("--angle", it.next())?),
             "--shape" => {
-                shape = match value("--shape")?.as_str() {
+                shape = match common::parse_value::<String>("--shape", it.next())?.as_str() {
                     "cylinder" => BranchShape::Cylinder,
                     "frustum" => BranchShape::Frustum,
                     s => return Err(format!("--shape must be cylinder or frustum, not {s}")),
                 }
             }
             "--caps" => caps = true,
-            "--out" => out = value("--out")?,
+            "--out" => out = common::parse_value::<String>("--out", it.next())?,
             "--help" | "-h" => return Err(USAGE.to_string()),
             s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
             s => file = Some(s.to_string()),
