@@ -115,6 +115,18 @@ fn buffer(
     })
 }
 
+/// An index buffer, or none for no indices (wgpu refuses empty buffers for drawing).
+fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<wgpu::Buffer> {
+    (!indices.is_empty()).then(|| {
+        buffer(
+            device,
+            label,
+            bytemuck::cast_slice(indices),
+            wgpu::BufferUsages::INDEX,
+        )
+    })
+}
+
 impl Renderer {
     pub(crate) fn new(
         device: &wgpu::Device,
@@ -227,22 +239,8 @@ impl Renderer {
                     bytemuck::cast_slice(&v.vertices),
                     wgpu::BufferUsages::VERTEX,
                 ),
-                bark: (!v.bark.is_empty()).then(|| {
-                    buffer(
-                        device,
-                        "bark indices",
-                        bytemuck::cast_slice(&v.bark),
-                        wgpu::BufferUsages::INDEX,
-                    )
-                }),
-                foliage: (!v.foliage.is_empty()).then(|| {
-                    buffer(
-                        device,
-                        "leaf indices",
-                        bytemuck::cast_slice(&v.foliage),
-                        wgpu::BufferUsages::INDEX,
-                    )
-                }),
+                bark: index_buffer(device, "bark indices", &v.bark),
+                foliage: index_buffer(device, "leaf indices", &v.foliage),
             })
             .collect();
         let mut all: Vec<InstanceRaw> = Vec::new();
