@@ -14,14 +14,18 @@ pub trait HeightField {
 
     /// Unit surface normal at (x, z). The default uses central differences over `0.5` units.
     fn normal(&self, x: f32, z: f32) -> Vec3 {
-        let e = 0.5;
-        let dx = self.height(x + e, z) - self.height(x - e, z);
-        let dz = self.height(x, z + e) - self.height(x, z - e);
-        Vec3::new(-dx, 2.0 * e, -dz).normalize_or(Vec3::Y)
+        central_difference_normal(self, x, z, 0.5)
     }
 
     /// The covered rectangle, (min x, min z) and (max x, max z).
     fn bounds(&self) -> (Vec2, Vec2);
+}
+
+/// The unit normal of `field` at (x, z) from central differences `e` either side.
+fn central_difference_normal<F: HeightField + ?Sized>(field: &F, x: f32, z: f32, e: f32) -> Vec3 {
+    let dx = field.height(x + e, z) - field.height(x - e, z);
+    let dz = field.height(x, z + e) - field.height(x, z - e);
+    Vec3::new(-dx, 2.0 * e, -dz).normalize_or(Vec3::Y)
 }
 
 /// A horizontal plane over a rectangle.
@@ -75,10 +79,7 @@ impl HeightField for Heightmap {
 
     /// Central differences over one sample spacing.
     fn normal(&self, x: f32, z: f32) -> Vec3 {
-        let e = self.spacing();
-        let dx = self.height(x + e, z) - self.height(x - e, z);
-        let dz = self.height(x, z + e) - self.height(x, z - e);
-        Vec3::new(-dx, 2.0 * e, -dz).normalize_or(Vec3::Y)
+        central_difference_normal(self, x, z, self.spacing())
     }
 
     fn bounds(&self) -> (Vec2, Vec2) {
