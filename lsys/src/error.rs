@@ -39,6 +39,43 @@ impl ParseError {
     }
 }
 
+/// A grammar that cannot be used as built (only from [`LSystem::from_parts`]; text input
+/// reports a [`ParseError`](crate::ParseError) instead).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum GrammarError {
+    /// A production refers to a symbol not in the alphabet, a parameter slot it does not bind,
+    /// nests choices deeper than the parser allows, or has an expression deeper than
+    /// [`MAX_EXPR_DEPTH`](crate::MAX_EXPR_DEPTH). Fix the production named.
+    #[error("production {index}: {message}")]
+    InvalidProduction {
+        /// Index of the production.
+        index: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// An axiom module uses a symbol not in the alphabet, a parameter variable, or a value
+    /// that is not finite. Fix the module named.
+    #[error("axiom module {module}: {message}")]
+    InvalidAxiom {
+        /// Index of the module in the axiom.
+        module: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A `#define` constant is not a finite constant expression within the depth limit.
+    #[error("constant '{name}': {message}")]
+    InvalidConstant {
+        /// The constant's name.
+        name: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The ignore set names a symbol that is not in the alphabet.
+    #[error("the ignore set names a symbol that is not in the alphabet")]
+    InvalidIgnore,
+}
+
 /// A derivation that was stopped before it could finish.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]

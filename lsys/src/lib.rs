@@ -79,25 +79,23 @@
 //! Angles in turtle parameters are degrees (the turtle crate reads them); math functions in
 //! expressions take radians. Parameters are `f64`.
 
-mod alphabet;
-mod compile;
-mod cursor;
-mod derive;
+// The modules form layers: `model` (data) <- `engine` (check, compile, derive) <- `syntax`
+// (parse, print). No module reaches back up.
+mod engine;
 mod error;
-mod expr;
-mod grammar;
-mod parser;
+mod model;
 mod presets;
-mod random;
-mod word;
+mod syntax;
 
-pub use alphabet::{Alphabet, CUT, POP, PUSH, RESERVED, SymbolId};
-pub use derive::{Deriver, Limits};
-pub use error::{DeriveError, Location, ParseError};
-pub use expr::{BinaryOp, Expr, Function, UnaryOp};
-pub use grammar::{GrammarError, LSystem, ModuleTemplate, Pattern, Production, SuccessorItem};
+pub use engine::derive::{Deriver, Limits};
+pub use engine::lsystem::LSystem;
+pub use error::{DeriveError, GrammarError, Location, ParseError};
+pub use model::alphabet::{Alphabet, CUT, POP, PUSH, RESERVED, SymbolId};
+pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
+pub use model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
+pub use model::word::{Module, Word};
 pub use presets::{PRESETS, Preset, preset};
-pub use word::{Module, Word};
+pub use syntax::parser::MAX_GRAMMAR_BYTES;
 
 impl LSystem {
     /// Parses grammar text. Errors name the line and column and say what was expected.
@@ -107,13 +105,13 @@ impl LSystem {
     /// assert_eq!((err.location.line, err.location.column), (2, 10));
     /// ```
     pub fn parse(text: &str) -> Result<LSystem, ParseError> {
-        parser::parse(text)
+        syntax::parser::parse(text)
     }
 }
 
 impl std::str::FromStr for LSystem {
     type Err = ParseError;
     fn from_str(text: &str) -> Result<LSystem, ParseError> {
-        parser::parse(text)
+        syntax::parser::parse(text)
     }
 }

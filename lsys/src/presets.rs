@@ -1,7 +1,7 @@
 //! Grammars shipped with the crate: ABOP figures, the Garden of Eden trees, Kenwood's leafy tree.
 
+use crate::engine::lsystem::LSystem;
 use crate::error::ParseError;
-use crate::grammar::LSystem;
 
 /// A bundled grammar with the viewing settings it was published with.
 #[derive(Debug, Clone, Copy, PartialEq)]

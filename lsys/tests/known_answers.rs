@@ -230,7 +230,7 @@ fn parse_errors_name_line_column_and_expectation() {
         ("axiom: A\nA : x > 1 -> B", 2, 5, "unknown name 'x'"),
         ("axiom: A /* never closed", 1, 10, "never closed"),
         ("axiom: A\nA(x,x) -> B", 2, 5, "named twice"),
-        ("axiom: A\nA -> B : -1", 2, 9, "probability"),
+        ("axiom: A\nA -> B : -1", 2, 10, "probability"),
         ("axiom: A\nA -> ?(0.5)<B>", 2, 15, "'<' to open"),
         ("axiom: A\nA -> B(1e999)", 2, 8, "not a finite number"),
     ];

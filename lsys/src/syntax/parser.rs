@@ -1,30 +1,43 @@
 //! The grammar text parser (ABOP / cpfg notation).
 
-use crate::alphabet::{Alphabet, SymbolId};
-use crate::cursor::Cursor;
-use crate::error::ParseError;
-use crate::expr::{Expr, MAX_NESTING, Scope, parse_expr};
-use crate::grammar::{LSystem, ModuleTemplate, Pattern, Production, SuccessorItem};
+use std::collections::HashMap;
 
-/// Longest grammar text accepted, so that a parse always finishes quickly.
-pub(crate) const MAX_SOURCE_CHARS: usize = 1 << 22;
+use crate::engine::lsystem::LSystem;
+use crate::error::{GrammarError, Location, ParseError};
+use crate::model::alphabet::{Alphabet, POP, PUSH, SymbolId};
+use crate::model::expr::{Expr, MAX_NESTING};
+use crate::model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
+use crate::model::word::Word;
+use crate::syntax::cursor::Cursor;
+use crate::syntax::expr_parser::{Scope, parse_expr};
 
-struct Constants<'a> {
-    defined: &'a [(String, Expr)],
-    vars: &'a [String],
+/// Longest grammar text accepted, in bytes, so that a parse always finishes quickly.
+pub const MAX_GRAMMAR_BYTES: usize = 1 << 22;
+
+/// Most parameters one production may bind (contexts and predecessor together): the width of
+/// a binding slot.
+const MAX_BINDINGS: usize = u16::MAX as usize;
+
+/// The names an expression can see: `#define` values (evaluated once, when defined) and the
+/// production's formal parameters.
+struct Names<'a> {
+    constants: &'a HashMap<String, f64>,
+    vars: &'a HashMap<String, u16>,
 }
 
-impl Scope for Constants<'_> {
+impl Scope for Names<'_> {
     fn var(&self, name: &str) -> Option<u16> {
-        self.vars.iter().position(|v| v == name).map(|i| i as u16)
+        self.vars.get(name).copied()
     }
     fn constant(&self, name: &str) -> Option<f64> {
-        self.defined
-            .iter()
-            .rev()
-            .find(|(n, _)| n == name)
-            .map(|(_, e)| e.eval_constant(0.0, 0))
+        self.constants.get(name).copied()
     }
+}
+
+/// No formal parameters: the scope of `#define`, weights and the axiom.
+fn no_vars() -> &'static HashMap<String, u16> {
+    static EMPTY: std::sync::OnceLock<HashMap<String, u16>> = std::sync::OnceLock::new();
+    EMPTY.get_or_init(HashMap::new)
 }
 
 /// Replaces `/* ... */` comments by spaces, keeping newlines so positions stay right.
@@ -77,11 +90,11 @@ fn strip_block_comments(src: &[char]) -> Result<Vec<char>, ParseError> {
 }
 
 pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
-    if text.len() > MAX_SOURCE_CHARS {
+    if text.len() > MAX_GRAMMAR_BYTES {
         return Err(ParseError::new(
             1,
             1,
-            format!("grammar text longer than {MAX_SOURCE_CHARS} bytes"),
+            format!("grammar text longer than {MAX_GRAMMAR_BYTES} bytes"),
         ));
     }
     let src: Vec<char> = text.chars().collect();
@@ -89,6 +102,8 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
     let mut p = GrammarParser {
         alphabet: Alphabet::new(),
         constants: Vec::new(),
+        values: HashMap::new(),
+        constant_at: Vec::new(),
         ignore: Vec::new(),
         axiom: None,
         productions: Vec::new(),
@@ -97,29 +112,45 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
         let line = line.strip_suffix(&['\r']).unwrap_or(line);
         p.line(&mut Cursor::new(line, n + 1))?;
     }
-    let Some(axiom) = p.axiom else {
+    let Some((axiom, axiom_at)) = p.axiom else {
         return Err(ParseError::new(
             1,
             1,
             "the grammar has no axiom: add a line 'axiom: ...'",
         ));
     };
-    LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, p.productions)
-        .map_err(|e| ParseError::new(1, 1, e.to_string()))
+    let (productions, production_at): (Vec<_>, Vec<_>) = p.productions.into_iter().unzip();
+    // The parser checks everything `from_parts` checks, at the place it happens; should a
+    // check only `from_parts` makes ever fail, the error still points at the right line.
+    LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions).map_err(|e| {
+        let at = match &e {
+            GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
+            GrammarError::InvalidProduction { index, .. } => production_at.get(*index).copied(),
+            GrammarError::InvalidConstant { name, .. } => p
+                .constant_at
+                .iter()
+                .find(|(n, _)| n == name)
+                .map(|&(_, at)| at),
+            _ => None,
+        };
+        let at = at.unwrap_or(Location { line: 1, column: 1 });
+        ParseError::new(at.line, at.column, e.to_string())
+    })
 }
 
-/// Parses a word (modules with constant arguments); `symbol` gives each character's id, or
-/// `None` when it is not allowed.
+/// Parses a word (modules with constant arguments) onto `word`; `symbol` gives each
+/// character's id, or `None` when it is not allowed.
 pub(crate) fn parse_modules(
     text: &str,
     symbol: &mut dyn FnMut(char) -> Option<SymbolId>,
-) -> Result<Vec<(SymbolId, Vec<f64>)>, ParseError> {
+    word: &mut Word,
+) -> Result<(), ParseError> {
     let chars: Vec<char> = text.chars().collect();
-    let mut out = Vec::new();
-    let empty = Constants {
-        defined: &[],
-        vars: &[],
+    let names = Names {
+        constants: &HashMap::new(),
+        vars: no_vars(),
     };
+    let mut params = Vec::new();
     for (n, line) in chars.split(|&c| c == '\n').enumerate() {
         let mut cur = Cursor::new(line, n + 1);
         while !cur.at_end() {
@@ -128,29 +159,41 @@ pub(crate) fn parse_modules(
             let Some(id) = symbol(c) else {
                 return Err(cur.error_at(pos, format!("'{c}' is not a symbol of this alphabet")));
             };
-            let mut params = Vec::new();
+            params.clear();
             if cur.eat('(') {
                 loop {
-                    let e = parse_expr(&mut cur, &empty)?;
-                    params.push(e.eval_constant(0.0, 0));
+                    let at = cur.pos();
+                    let value = parse_expr(&mut cur, &names)?.eval_constant(0.0, 0);
+                    if !value.is_finite() {
+                        return Err(
+                            cur.error_at(at, format!("parameter value {value} is not finite"))
+                        );
+                    }
+                    params.push(value);
                     if cur.eat(')') {
                         break;
                     }
                     cur.expect(',', "',' or ')' after a parameter")?;
                 }
             }
-            out.push((id, params));
+            word.push(id, &params);
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 struct GrammarParser {
     alphabet: Alphabet,
     constants: Vec<(String, Expr)>,
+    /// Each constant's value, computed once when it is defined.
+    values: HashMap<String, f64>,
+    /// Where each constant was defined, for errors found after parsing.
+    constant_at: Vec<(String, Location)>,
     ignore: Vec<SymbolId>,
-    axiom: Option<Vec<ModuleTemplate>>,
-    productions: Vec<Production>,
+    /// The axiom and where each of its modules starts.
+    axiom: Option<(Vec<ModuleTemplate>, Vec<Location>)>,
+    /// The productions and where each starts.
+    productions: Vec<(Production, Location)>,
 }
 
 impl GrammarParser {
@@ -168,8 +211,9 @@ impl GrammarParser {
             }
             cur.set_pos(start);
         }
+        let at = cur.location();
         let production = self.production(cur)?;
-        self.productions.push(production);
+        self.productions.push((production, at));
         Ok(())
     }
 
@@ -177,13 +221,14 @@ impl GrammarParser {
         let at = cur.pos();
         match cur.ident().as_deref() {
             Some("define") => {
+                cur.skip_ws();
                 let name_at = cur.pos();
                 let Some(name) = cur.ident() else {
                     return Err(cur.error("expected a constant name after #define"));
                 };
-                let scope = Constants {
-                    defined: &self.constants,
-                    vars: &[],
+                let scope = Names {
+                    constants: &self.values,
+                    vars: no_vars(),
                 };
                 let value = parse_expr(cur, &scope)?;
                 if !cur.at_end() {
@@ -192,15 +237,19 @@ impl GrammarParser {
                         cur.describe_next()
                     )));
                 }
-                if !is_constant(&value) {
+                if !value.is_constant() {
                     return Err(cur.error_at(
                         name_at,
                         "a #define value cannot use '#' or random functions",
                     ));
                 }
-                if !value.eval_constant(0.0, 0).is_finite() {
+                let number = value.eval_constant(0.0, 0);
+                if !number.is_finite() {
                     return Err(cur.error_at(name_at, format!("constant '{name}' is not finite")));
                 }
+                self.values.insert(name.clone(), number);
+                self.constant_at
+                    .push((name.clone(), cur.location_of(name_at)));
                 self.constants.push((name, value));
                 Ok(())
             }
@@ -237,25 +286,40 @@ impl GrammarParser {
         if self.axiom.is_some() {
             return Err(cur.error_at(start, "a second axiom: a grammar has exactly one"));
         }
-        let items = self.successor(cur, &[], 0)?;
+        let mut starts = Vec::new();
+        let items = self.successor(cur, no_vars(), 0, &mut starts)?;
         if !cur.at_end() {
             return Err(cur.error(format!("unexpected {} in the axiom", cur.describe_next())));
         }
         let mut modules = Vec::with_capacity(items.len());
-        for item in items {
-            match item {
-                SuccessorItem::Module(m) => modules.push(m),
-                _ => return Err(cur.error_at(start, "the axiom cannot contain a '?' choice")),
+        let mut locations = Vec::with_capacity(items.len());
+        for (item, at) in items.into_iter().zip(starts) {
+            let SuccessorItem::Module(m) = item else {
+                return Err(cur.error_at(at, "the axiom cannot contain a '?' choice"));
+            };
+            // The axiom is evaluated once, now: a value that is not finite is an error here.
+            if let Some(v) = m
+                .args
+                .iter()
+                .map(|a| a.eval_constant(0.0, 0))
+                .find(|v| !v.is_finite())
+            {
+                return Err(cur.error_at(
+                    at,
+                    format!("the axiom module's parameter value {v} is not finite"),
+                ));
             }
+            modules.push(m);
+            locations.push(cur.location_of(at));
         }
-        self.axiom = Some(modules);
+        self.axiom = Some((modules, locations));
         Ok(())
     }
 
     fn patterns(
         &mut self,
         cur: &mut Cursor<'_>,
-        names: &mut Vec<String>,
+        names: &mut HashMap<String, u16>,
     ) -> Result<Vec<Pattern>, ParseError> {
         let mut out = Vec::new();
         loop {
@@ -277,13 +341,19 @@ impl GrammarParser {
                             cur.describe_next()
                         )));
                     };
-                    if names.contains(&name) {
+                    if names.contains_key(&name) {
                         return Err(cur.error_at(
                             at,
                             format!("parameter '{name}' is named twice in this production"),
                         ));
                     }
-                    names.push(name.clone());
+                    if names.len() >= MAX_BINDINGS {
+                        return Err(cur.error_at(
+                            at,
+                            format!("more than {MAX_BINDINGS} parameters in one production"),
+                        ));
+                    }
+                    names.insert(name.clone(), names.len() as u16);
                     params.push(name);
                     if cur.eat(')') {
                         break;
@@ -307,7 +377,7 @@ impl GrammarParser {
         {
             cur.set_pos(start);
         }
-        let mut names = Vec::new();
+        let mut names = HashMap::new();
         let head_at = {
             cur.skip_ws();
             cur.pos()
@@ -316,10 +386,7 @@ impl GrammarParser {
         let (left, predecessor) = if cur.eat('<') {
             let at = cur.pos();
             let pred = self.patterns(cur, &mut names)?;
-            if first
-                .iter()
-                .any(|p| p.symbol == crate::alphabet::PUSH || p.symbol == crate::alphabet::POP)
-            {
+            if first.iter().any(|p| p.symbol == PUSH || p.symbol == POP) {
                 return Err(cur.error_at(head_at, "a left context cannot contain '[' or ']'"));
             }
             (first, single(cur, pred, at)?)
@@ -331,8 +398,8 @@ impl GrammarParser {
         } else {
             Vec::new()
         };
-        let scope = Constants {
-            defined: &self.constants,
+        let scope = Names {
+            constants: &self.values,
             vars: &names,
         };
         let condition = if cur.eat(':') {
@@ -350,18 +417,19 @@ impl GrammarParser {
                 cur.describe_next()
             )));
         }
-        let successor = self.successor(cur, &names, 0)?;
+        let successor = self.successor(cur, &names, 0, &mut Vec::new())?;
         let weight = if cur.eat(':') {
+            cur.skip_ws();
             let at = cur.pos();
             let e = parse_expr(
                 cur,
-                &Constants {
-                    defined: &self.constants,
-                    vars: &[],
+                &Names {
+                    constants: &self.values,
+                    vars: no_vars(),
                 },
             )?;
             let w = e.eval_constant(0.0, 0);
-            if !is_constant(&e) || !w.is_finite() || w < 0.0 {
+            if !e.is_constant() || !w.is_finite() || w < 0.0 {
                 return Err(cur.error_at(
                     at,
                     "a probability must be a constant, finite and not negative",
@@ -387,11 +455,13 @@ impl GrammarParser {
         })
     }
 
+    /// Parses successor items up to `:` or `>`, noting where each top-level item starts.
     fn successor(
         &mut self,
         cur: &mut Cursor<'_>,
-        names: &[String],
+        names: &HashMap<String, u16>,
         depth: usize,
+        starts: &mut Vec<usize>,
     ) -> Result<Vec<SuccessorItem>, ParseError> {
         if depth > MAX_NESTING {
             return Err(cur.error(format!("choices nested more than {MAX_NESTING} deep")));
@@ -405,17 +475,18 @@ impl GrammarParser {
                 break;
             }
             cur.bump();
+            starts.push(pos);
             if c == '?' {
                 cur.expect('(', "'(' after '?'")?;
-                let scope = Constants {
-                    defined: &self.constants,
+                let scope = Names {
+                    constants: &self.values,
                     vars: names,
                 };
                 let probability = parse_expr(cur, &scope)?;
                 cur.expect(')', "')' after the choice's probability")?;
                 let mut branch = |cur: &mut Cursor<'_>| -> Result<Vec<SuccessorItem>, ParseError> {
                     cur.expect('<', "'<' to open a choice alternative")?;
-                    let items = self.successor(cur, names, depth + 1)?;
+                    let items = self.successor(cur, names, depth + 1, &mut Vec::new())?;
                     cur.expect('>', "'>' to close a choice alternative")?;
                     Ok(items)
                 };
@@ -429,8 +500,8 @@ impl GrammarParser {
                 continue;
             }
             let symbol = self.intern(cur, c, pos)?;
-            let scope = Constants {
-                defined: &self.constants,
+            let scope = Names {
+                constants: &self.values,
                 vars: names,
             };
             let mut args = Vec::new();
@@ -460,15 +531,5 @@ fn single(cur: &Cursor<'_>, mut patterns: Vec<Pattern>, at: usize) -> Result<Pat
             at,
             "expected one predecessor module (use '<' and '>' for contexts)",
         )),
-    }
-}
-
-fn is_constant(e: &Expr) -> bool {
-    match e {
-        Expr::Number(_) | Expr::Constant { .. } => true,
-        Expr::Unary(_, a) => is_constant(a),
-        Expr::Binary(_, a, b) => is_constant(a) && is_constant(b),
-        Expr::Call(f, args) => !f.is_random() && args.iter().all(is_constant),
-        _ => false,
     }
 }

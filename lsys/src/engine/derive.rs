@@ -1,12 +1,12 @@
 //! The rewriting engine: one derivation step streams the current word into the next.
 
-use crate::alphabet::{CUT, POP, PUSH};
-use crate::compile::{CItem, CPattern, CProduction, Span};
+use crate::engine::compile::{CItem, CPattern, CProduction, Span};
+use crate::engine::eval::eval;
+use crate::engine::lsystem::LSystem;
+use crate::engine::random::Random;
 use crate::error::DeriveError;
-use crate::expr::eval;
-use crate::grammar::LSystem;
-use crate::random::Random;
-use crate::word::Word;
+use crate::model::alphabet::{CUT, POP, PUSH};
+use crate::model::word::Word;
 
 /// Bounds that stop a derivation with an error before it exhausts memory or time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

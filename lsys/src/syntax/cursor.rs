@@ -1,6 +1,6 @@
 //! A character cursor over one line of grammar text that knows its line and column.
 
-use crate::error::ParseError;
+use crate::error::{Location, ParseError};
 
 pub(crate) struct Cursor<'a> {
     chars: &'a [char],
@@ -87,6 +87,19 @@ impl<'a> Cursor<'a> {
         match self.peek() {
             Some(c) => format!("'{c}'"),
             None => "end of line".to_string(),
+        }
+    }
+
+    /// The location of the cursor.
+    pub(crate) fn location(&self) -> Location {
+        self.location_of(self.pos)
+    }
+
+    /// The location of position `pos` on this line.
+    pub(crate) fn location_of(&self, pos: usize) -> Location {
+        Location {
+            line: self.line,
+            column: pos + 1,
         }
     }
 

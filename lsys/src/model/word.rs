@@ -1,11 +1,8 @@
 //! `Word`: a derived string of modules in structure-of-arrays form.
 
-use std::fmt;
-use std::str::FromStr;
 use std::sync::Arc;
 
-use crate::alphabet::{Alphabet, SymbolId};
-use crate::error::ParseError;
+use crate::model::alphabet::{Alphabet, SymbolId};
 
 /// A string of modules: symbol ids, and all parameters in one flat array.
 ///
@@ -61,17 +58,6 @@ impl Word {
             offsets: vec![0],
             params: Vec::new(),
         }
-    }
-
-    /// Parses modules written in grammar notation, with symbols of `alphabet` only.
-    /// Parameters may be constant expressions (`F(2*3)`).
-    pub fn parse(text: &str, alphabet: Arc<Alphabet>) -> Result<Word, ParseError> {
-        let modules = crate::parser::parse_modules(text, &mut |c| alphabet.id(c))?;
-        let mut w = Word::empty(alphabet);
-        for (s, p) in modules {
-            w.push(s, &p);
-        }
-        Ok(w)
     }
 
     /// The alphabet the symbol ids refer to.
@@ -141,42 +127,5 @@ impl Word {
     /// Bytes of heap memory held by the word's buffers.
     pub fn heap_bytes(&self) -> usize {
         self.symbols.capacity() * 2 + self.offsets.capacity() * 4 + self.params.capacity() * 8
-    }
-}
-
-impl FromStr for Word {
-    type Err = ParseError;
-
-    /// Parses a word, building an alphabet of the symbols it uses.
-    fn from_str(text: &str) -> Result<Word, ParseError> {
-        let mut alphabet = Alphabet::new();
-        let modules = crate::parser::parse_modules(text, &mut |c| alphabet.intern(c))?;
-        let mut w = Word::empty(Arc::new(alphabet));
-        for (s, p) in modules {
-            w.push(s, &p);
-        }
-        Ok(w)
-    }
-}
-
-impl fmt::Display for Word {
-    /// Writes the modules in grammar notation. Numbers print in Rust's shortest round-trip
-    /// form, so parsing the text gives back the same bits.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use fmt::Write;
-        for m in self.iter() {
-            f.write_char(m.symbol)?;
-            if !m.params.is_empty() {
-                f.write_char('(')?;
-                for (k, v) in m.params.iter().enumerate() {
-                    if k > 0 {
-                        f.write_char(',')?;
-                    }
-                    write!(f, "{v}")?;
-                }
-                f.write_char(')')?;
-            }
-        }
-        Ok(())
     }
 }

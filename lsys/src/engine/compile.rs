@@ -1,8 +1,8 @@
 //! The compiled form of a grammar that the engine runs: flat programs and per-symbol tables.
 
-use crate::alphabet::{Alphabet, SymbolId};
-use crate::expr::Op;
-use crate::grammar::{Production, SuccessorItem};
+use crate::engine::eval::Op;
+use crate::model::alphabet::{Alphabet, SymbolId};
+use crate::model::grammar::{Pattern, Production, SuccessorItem};
 
 /// A range into one of the flat tables.
 pub(crate) type Span = (u32, u32);
@@ -80,7 +80,7 @@ impl Compiled {
             });
             let successor = c.items_of(&p.successor);
             let (max_modules, max_params) = bound(&p.successor);
-            let pat = |v: &[crate::grammar::Pattern]| {
+            let pat = |v: &[Pattern]| {
                 v.iter()
                     .map(|q| CPattern {
                         symbol: q.symbol,

@@ -1,0 +1,302 @@
+//! Compiled expressions: postfix programs with constant subtrees folded, and their evaluator.
+
+use crate::engine::random::Random;
+use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp};
+
+/// One instruction of a compiled expression (postfix).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Op {
+    Num(f64),
+    Var(u16),
+    Gen,
+    Unary(UnaryOp),
+    Binary(BinaryOp),
+    Call(Function),
+}
+
+impl Expr {
+    /// Appends the postfix program for this expression, folding constant subtrees into one
+    /// number. Bottom-up in one pass, so the work is linear in the size of the tree.
+    pub(crate) fn compile(&self, out: &mut Vec<Op>) {
+        compile_folding(self, out);
+    }
+
+    fn compile_raw(&self, out: &mut Vec<Op>) {
+        match self {
+            Expr::Number(v) => out.push(Op::Num(*v)),
+            Expr::Constant { value, .. } => out.push(Op::Num(*value)),
+            Expr::Var { slot, .. } => out.push(Op::Var(*slot)),
+            Expr::Generation => out.push(Op::Gen),
+            Expr::Unary(op, e) => {
+                e.compile_raw(out);
+                out.push(Op::Unary(*op));
+            }
+            Expr::Binary(op, a, b) => {
+                a.compile_raw(out);
+                b.compile_raw(out);
+                out.push(Op::Binary(*op));
+            }
+            Expr::Call(f, args) => {
+                for a in args {
+                    a.compile_raw(out);
+                }
+                out.push(Op::Call(*f));
+            }
+        }
+    }
+
+    /// Evaluates the expression with no bindings (for the axiom, constants and weights).
+    pub fn eval_constant(&self, generation: f64, rng_seed: u64) -> f64 {
+        let mut ops = Vec::new();
+        self.compile_raw(&mut ops);
+        eval(
+            &ops,
+            &[],
+            generation,
+            &mut Random::new(rng_seed),
+            &mut Vec::new(),
+        )
+    }
+}
+
+/// Compiles `e` onto `out` and says whether its value is constant; a constant subtree is
+/// replaced by its value right away, so a parent only ever folds already-folded children.
+fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
+    let start = out.len();
+    let constant = match e {
+        Expr::Number(v) | Expr::Constant { value: v, .. } => {
+            out.push(Op::Num(*v));
+            return true;
+        }
+        Expr::Var { slot, .. } => {
+            out.push(Op::Var(*slot));
+            return false;
+        }
+        Expr::Generation => {
+            out.push(Op::Gen);
+            return false;
+        }
+        Expr::Unary(op, a) => {
+            let constant = compile_folding(a, out);
+            out.push(Op::Unary(*op));
+            constant
+        }
+        Expr::Binary(op, a, b) => {
+            let left = compile_folding(a, out);
+            let right = compile_folding(b, out);
+            out.push(Op::Binary(*op));
+            left && right
+        }
+        Expr::Call(f, args) => {
+            let mut constant = !f.is_random();
+            for a in args {
+                constant &= compile_folding(a, out);
+            }
+            out.push(Op::Call(*f));
+            constant
+        }
+    };
+    if constant {
+        let value = eval(
+            &out[start..],
+            &[],
+            0.0,
+            &mut Random::new(0),
+            &mut Vec::new(),
+        );
+        out.truncate(start);
+        out.push(Op::Num(value));
+    }
+    constant
+}
+
+/// Runs a compiled program. Unbound variables read as 0 (the parser never produces them).
+#[inline]
+pub(crate) fn eval(
+    ops: &[Op],
+    vars: &[f64],
+    generation: f64,
+    rng: &mut Random,
+    stack: &mut Vec<f64>,
+) -> f64 {
+    // Most arguments are a lone number or parameter: skip the stack machine for them.
+    match ops {
+        [Op::Num(v)] => return *v,
+        [Op::Var(k)] => return vars.get(*k as usize).copied().unwrap_or(0.0),
+        _ => {}
+    }
+    stack.clear();
+    for op in ops {
+        match *op {
+            Op::Num(v) => stack.push(v),
+            Op::Var(k) => stack.push(vars.get(k as usize).copied().unwrap_or(0.0)),
+            Op::Gen => stack.push(generation),
+            Op::Unary(u) => {
+                let a = stack.pop().unwrap_or(0.0);
+                stack.push(match u {
+                    UnaryOp::Neg => -a,
+                    UnaryOp::Not => f64::from(u8::from(a == 0.0)),
+                });
+            }
+            Op::Binary(b) => {
+                let r = stack.pop().unwrap_or(0.0);
+                let l = stack.pop().unwrap_or(0.0);
+                stack.push(b.apply(l, r));
+            }
+            Op::Call(f) => {
+                let n = f.arity();
+                let at = stack.len().saturating_sub(n);
+                let mut args = [0.0; 2];
+                for (slot, v) in args.iter_mut().zip(&stack[at..]) {
+                    *slot = *v;
+                }
+                stack.truncate(at);
+                stack.push(f.apply(&args[..n.max(1)], rng));
+            }
+        }
+    }
+    stack.pop().unwrap_or(0.0)
+}
+
+impl BinaryOp {
+    fn apply(self, a: f64, b: f64) -> f64 {
+        let truth = |t: bool| if t { 1.0 } else { 0.0 };
+        match self {
+            BinaryOp::Add => a + b,
+            BinaryOp::Sub => a - b,
+            BinaryOp::Mul => a * b,
+            BinaryOp::Div => a / b,
+            BinaryOp::Pow => a.powf(b),
+            BinaryOp::Lt => truth(a < b),
+            BinaryOp::Le => truth(a <= b),
+            BinaryOp::Gt => truth(a > b),
+            BinaryOp::Ge => truth(a >= b),
+            BinaryOp::Eq => truth(a == b),
+            BinaryOp::Ne => truth(a != b),
+            BinaryOp::And => truth(a != 0.0 && b != 0.0),
+            BinaryOp::Or => truth(a != 0.0 || b != 0.0),
+        }
+    }
+}
+
+impl Function {
+    fn apply(self, args: &[f64], rng: &mut Random) -> f64 {
+        let a = args.first().copied().unwrap_or(0.0);
+        let b = args.get(1).copied().unwrap_or(0.0);
+        match self {
+            Function::Sin => a.sin(),
+            Function::Cos => a.cos(),
+            Function::Tan => a.tan(),
+            Function::Asin => a.asin(),
+            Function::Acos => a.acos(),
+            Function::Atan => a.atan(),
+            Function::Atan2 => a.atan2(b),
+            Function::Sqrt => a.sqrt(),
+            Function::Exp => a.exp(),
+            Function::Log => a.ln(),
+            Function::Abs => a.abs(),
+            Function::Floor => a.floor(),
+            Function::Ceil => a.ceil(),
+            Function::Min => a.min(b),
+            Function::Max => a.max(b),
+            Function::Uniform => a + (b - a) * rng.unit(),
+            Function::Ran => a * rng.unit(),
+            Function::Nran => a + b * rng.normal(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::cursor::Cursor;
+    use crate::syntax::expr_parser::{Scope, parse_expr};
+
+    struct NoNames;
+    impl Scope for NoNames {
+        fn var(&self, name: &str) -> Option<u16> {
+            (name == "x").then_some(0)
+        }
+        fn constant(&self, name: &str) -> Option<f64> {
+            (name == "k").then_some(10.0)
+        }
+    }
+
+    fn value(text: &str, x: f64) -> f64 {
+        let chars: Vec<char> = text.chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let mut ops = Vec::new();
+        e.compile(&mut ops);
+        eval(&ops, &[x], 3.0, &mut Random::new(0), &mut Vec::new())
+    }
+
+    #[test]
+    fn precedence_follows_mathematics() {
+        assert_eq!(value("1+2*3", 0.0), 7.0);
+        assert_eq!(value("-2^2", 0.0), -4.0);
+        assert_eq!(value("2^3^2", 0.0), 512.0);
+        assert_eq!(value("1 < 2 && 3 > 2 || 0", 0.0), 1.0);
+        assert_eq!(value("(1+2)*x", 4.0), 12.0);
+        assert_eq!(value("k/4 - #", 0.0), -0.5);
+        assert_eq!(value("!0 + !5", 0.0), 1.0);
+    }
+
+    #[test]
+    fn constant_subtrees_fold_to_one_number() {
+        let chars: Vec<char> = "k*2+sin(0)".chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let mut ops = Vec::new();
+        e.compile(&mut ops);
+        assert_eq!(ops, vec![Op::Num(20.0)]);
+    }
+
+    #[test]
+    fn printing_parses_back_to_the_same_tree() {
+        for text in [
+            "1+2*3",
+            "-(x^2)",
+            "min(x,k)/(1-x)",
+            "!(x>=1)&&#<3",
+            "x-(1-x)",
+            "-x^-x^2",
+            "(-x)^2",
+            "x- -x",
+            "1<2<3",
+            "!!x",
+            "2^(x+1)",
+        ] {
+            let chars: Vec<char> = text.chars().collect();
+            let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+            let printed: Vec<char> = e.to_string().chars().collect();
+            let again = parse_expr(&mut Cursor::new(&printed, 1), &NoNames).unwrap();
+            assert_eq!(again, e, "{text}");
+        }
+    }
+
+    /// Found by the fuzzer: fully parenthesised printing of a long sum nested past the limit.
+    #[test]
+    fn long_chains_print_without_nesting() {
+        let text = (0..200)
+            .map(|i| format!("x*{i}"))
+            .collect::<Vec<_>>()
+            .join("+");
+        let chars: Vec<char> = text.chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let printed: Vec<char> = e.to_string().chars().collect();
+        assert!(!printed.contains(&'('));
+        assert_eq!(
+            parse_expr(&mut Cursor::new(&printed, 1), &NoNames).unwrap(),
+            e
+        );
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_stack_overflow() {
+        let text = "(".repeat(10_000) + "1" + &")".repeat(10_000);
+        let chars: Vec<char> = text.chars().collect();
+        assert!(parse_expr(&mut Cursor::new(&chars, 1), &NoNames).is_err());
+        let text = "-".repeat(10_000) + "1";
+        let chars: Vec<char> = text.chars().collect();
+        assert!(parse_expr(&mut Cursor::new(&chars, 1), &NoNames).is_err());
+    }
+}

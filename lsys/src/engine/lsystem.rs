@@ -1,0 +1,236 @@
+//! [`LSystem`]: a grammar checked and compiled for the engine.
+
+use std::sync::Arc;
+
+use crate::engine::compile::Compiled;
+use crate::error::GrammarError;
+use crate::model::alphabet::{Alphabet, SymbolId};
+use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
+use crate::model::grammar::{ModuleTemplate, Production, SuccessorItem};
+use crate::model::word::Word;
+
+/// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
+///
+/// Build one with [`LSystem::parse`] (or `str::parse`) and derive words with
+/// [`LSystem::derive`]. `Display` prints grammar text that parses back to an equal system.
+#[derive(Debug, Clone)]
+pub struct LSystem {
+    pub(crate) alphabet: Arc<Alphabet>,
+    pub(crate) constants: Vec<(String, Expr)>,
+    pub(crate) ignore: Vec<SymbolId>,
+    pub(crate) axiom: Vec<ModuleTemplate>,
+    pub(crate) productions: Vec<Production>,
+    pub(crate) compiled: Compiled,
+    /// The axiom evaluated once, since its parameters are constants.
+    pub(crate) axiom_word: Word,
+}
+
+impl PartialEq for LSystem {
+    fn eq(&self, other: &Self) -> bool {
+        self.alphabet.chars() == other.alphabet.chars()
+            && self.constants == other.constants
+            && self.ignore == other.ignore
+            && self.axiom == other.axiom
+            && self.productions == other.productions
+    }
+}
+
+impl LSystem {
+    /// Builds a system from its parts, checking that every symbol is in `alphabet` and every
+    /// variable is bound.
+    pub fn from_parts(
+        alphabet: Alphabet,
+        constants: Vec<(String, Expr)>,
+        ignore: Vec<SymbolId>,
+        axiom: Vec<ModuleTemplate>,
+        productions: Vec<Production>,
+    ) -> Result<LSystem, GrammarError> {
+        let known = |s: SymbolId| s.index() < alphabet.len();
+        for (name, e) in &constants {
+            // Depth first: every later check walks the tree recursively.
+            if e.depth() > MAX_EXPR_DEPTH {
+                return Err(GrammarError::InvalidConstant {
+                    name: name.clone(),
+                    message: format!("expression deeper than {MAX_EXPR_DEPTH} levels"),
+                });
+            }
+            if !e.is_constant() || !e.eval_constant(0.0, 0).is_finite() {
+                return Err(GrammarError::InvalidConstant {
+                    name: name.clone(),
+                    message: "value must be constant and finite".to_string(),
+                });
+            }
+        }
+        for (module, m) in axiom.iter().enumerate() {
+            let bad = |message: &str| GrammarError::InvalidAxiom {
+                module,
+                message: message.to_string(),
+            };
+            if !known(m.symbol) {
+                return Err(bad("unknown symbol"));
+            }
+            if m.args.iter().any(|a| a.depth() > MAX_EXPR_DEPTH) {
+                return Err(bad("a parameter expression is too deep"));
+            }
+            if m.args.iter().any(|a| a.slots_used() > 0) {
+                return Err(bad("uses a parameter variable"));
+            }
+        }
+        if ignore.iter().any(|&s| !known(s)) {
+            return Err(GrammarError::InvalidIgnore);
+        }
+        for (index, p) in productions.iter().enumerate() {
+            let bad = |message: &str| GrammarError::InvalidProduction {
+                index,
+                message: message.to_string(),
+            };
+            if !expressions_within_depth(p) {
+                return Err(bad(&format!(
+                    "an expression is deeper than {MAX_EXPR_DEPTH} levels or choices nest deeper than {MAX_NESTING}"
+                )));
+            }
+            let patterns = p.left.iter().chain([&p.predecessor]).chain(&p.right);
+            if patterns.clone().any(|pat| !known(pat.symbol)) {
+                return Err(bad("unknown symbol"));
+            }
+            if patterns
+                .clone()
+                .any(|pat| pat.params.len() > u8::MAX as usize)
+            {
+                return Err(bad("more than 255 parameters on one module"));
+            }
+            let slots = p.binding_count();
+            if p.condition.as_ref().is_some_and(|c| c.slots_used() > slots) {
+                return Err(bad("condition uses an unbound parameter"));
+            }
+            if !items_valid(&p.successor, slots, &known, 0) {
+                return Err(bad(
+                    "successor uses an unknown symbol or unbound parameter, or nests too deep",
+                ));
+            }
+            if p.weight.is_some_and(|w| !(w.is_finite() && w >= 0.0)) {
+                return Err(bad("weight must be finite and not negative"));
+            }
+        }
+        let compiled = Compiled::new(&alphabet, &ignore, &productions);
+        let alphabet = Arc::new(alphabet);
+        let mut axiom_word = Word::empty(alphabet.clone());
+        let mut params = Vec::new();
+        for (module, m) in axiom.iter().enumerate() {
+            params.clear();
+            params.extend(m.args.iter().map(|a| a.eval_constant(0.0, 0)));
+            if let Some(v) = params.iter().find(|v| !v.is_finite()) {
+                return Err(GrammarError::InvalidAxiom {
+                    module,
+                    message: format!("parameter {v} is not finite"),
+                });
+            }
+            axiom_word.push(m.symbol, &params);
+        }
+        Ok(LSystem {
+            axiom_word,
+            alphabet,
+            constants,
+            ignore,
+            axiom,
+            productions,
+            compiled,
+        })
+    }
+
+    /// The symbols of this system.
+    pub fn alphabet(&self) -> &Arc<Alphabet> {
+        &self.alphabet
+    }
+
+    /// The `#define` constants in order, by name and defining expression.
+    pub fn constants(&self) -> &[(String, Expr)] {
+        &self.constants
+    }
+
+    /// The value of a `#define` constant.
+    pub fn constant(&self, name: &str) -> Option<f64> {
+        self.constants
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, e)| e.eval_constant(0.0, 0))
+    }
+
+    /// Symbols skipped when matching contexts (`#ignore`).
+    pub fn ignore(&self) -> &[SymbolId] {
+        &self.ignore
+    }
+
+    /// The axiom's modules.
+    pub fn axiom(&self) -> &[ModuleTemplate] {
+        &self.axiom
+    }
+
+    /// The productions in the order they are tried.
+    pub fn productions(&self) -> &[Production] {
+        &self.productions
+    }
+}
+
+fn items_valid(
+    items: &[SuccessorItem],
+    slots: usize,
+    known: &dyn Fn(SymbolId) -> bool,
+    depth: usize,
+) -> bool {
+    if depth > MAX_NESTING {
+        return false;
+    }
+    items.iter().all(|item| match item {
+        SuccessorItem::Module(m) => {
+            known(m.symbol) && m.args.iter().all(|a| a.slots_used() <= slots)
+        }
+        SuccessorItem::Choice {
+            probability,
+            then,
+            otherwise,
+        } => {
+            probability.slots_used() <= slots
+                && items_valid(then, slots, known, depth + 1)
+                && items_valid(otherwise, slots, known, depth + 1)
+        }
+    })
+}
+
+/// Whether every expression of the production is at most [`MAX_EXPR_DEPTH`] deep and its
+/// choices nest at most [`MAX_NESTING`] deep. Walks items with an explicit stack.
+fn expressions_within_depth(p: &Production) -> bool {
+    if p.condition
+        .as_ref()
+        .is_some_and(|c| c.depth() > MAX_EXPR_DEPTH)
+    {
+        return false;
+    }
+    let mut pending = vec![(&p.successor[..], 0usize)];
+    while let Some((items, nesting)) = pending.pop() {
+        if nesting > MAX_NESTING {
+            return false;
+        }
+        for item in items {
+            match item {
+                SuccessorItem::Module(m) => {
+                    if m.args.iter().any(|a| a.depth() > MAX_EXPR_DEPTH) {
+                        return false;
+                    }
+                }
+                SuccessorItem::Choice {
+                    probability,
+                    then,
+                    otherwise,
+                } => {
+                    if probability.depth() > MAX_EXPR_DEPTH {
+                        return false;
+                    }
+                    pending.push((then, nesting + 1));
+                    pending.push((otherwise, nesting + 1));
+                }
+            }
+        }
+    }
+    true
+}

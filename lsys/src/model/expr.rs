@@ -1,0 +1,246 @@
+//! Parameter expressions as a syntax tree: operators, functions and [`Expr`].
+//!
+//! Parsing lives in `syntax`, printing in `syntax::print`, compilation and evaluation in
+//! `engine`. Every walk over a tree that user input shapes is either bounded by
+//! [`MAX_EXPR_DEPTH`] (checked without recursion before any recursive walk) or iterative.
+
+/// Deepest nesting of parentheses, unary operators, calls and choices the parser accepts.
+pub(crate) const MAX_NESTING: usize = 64;
+
+/// Deepest expression tree the crate accepts, counting every operator level: `a+b+c` is two
+/// levels, since binary chains nest to the left. Grammars in the wild stay far below it; the
+/// bound keeps every recursive walk (compiling, printing, comparing) a few hundred frames deep.
+pub const MAX_EXPR_DEPTH: usize = 256;
+
+/// A unary operator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum UnaryOp {
+    /// `-x`
+    Neg,
+    /// `!x`: 1 when x is 0, else 0.
+    Not,
+}
+
+/// A binary operator. Comparisons and logic yield 1 for true and 0 for false.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BinaryOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `^`, right-associative power.
+    Pow,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `==`
+    Eq,
+    /// `!=`
+    Ne,
+    /// `&&`
+    And,
+    /// `||`
+    Or,
+}
+
+/// A built-in function. Trigonometric functions work in radians.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Function {
+    /// `sin(x)`
+    Sin,
+    /// `cos(x)`
+    Cos,
+    /// `tan(x)`
+    Tan,
+    /// `asin(x)`
+    Asin,
+    /// `acos(x)`
+    Acos,
+    /// `atan(x)`
+    Atan,
+    /// `atan2(y, x)`
+    Atan2,
+    /// `sqrt(x)`
+    Sqrt,
+    /// `exp(x)`
+    Exp,
+    /// `log(x)`, the natural logarithm.
+    Log,
+    /// `abs(x)`
+    Abs,
+    /// `floor(x)`
+    Floor,
+    /// `ceil(x)`
+    Ceil,
+    /// `min(a, b)`
+    Min,
+    /// `max(a, b)`
+    Max,
+    /// `uniform(a, b)`: a seeded uniform draw in `[a, b)`.
+    Uniform,
+    /// `ran(x)`: a seeded uniform draw in `[0, x)` (cpfg).
+    Ran,
+    /// `nran(mean, sd)`: a seeded normal draw (cpfg).
+    Nran,
+}
+
+pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
+    ("sin", Function::Sin, 1),
+    ("cos", Function::Cos, 1),
+    ("tan", Function::Tan, 1),
+    ("asin", Function::Asin, 1),
+    ("acos", Function::Acos, 1),
+    ("atan", Function::Atan, 1),
+    ("atan2", Function::Atan2, 2),
+    ("sqrt", Function::Sqrt, 1),
+    ("exp", Function::Exp, 1),
+    ("log", Function::Log, 1),
+    ("abs", Function::Abs, 1),
+    ("floor", Function::Floor, 1),
+    ("ceil", Function::Ceil, 1),
+    ("min", Function::Min, 2),
+    ("max", Function::Max, 2),
+    ("uniform", Function::Uniform, 2),
+    ("ran", Function::Ran, 1),
+    ("nran", Function::Nran, 2),
+];
+
+impl Function {
+    /// The name used in grammar text.
+    pub fn name(self) -> &'static str {
+        FUNCTIONS.iter().find(|f| f.1 == self).map_or("?", |f| f.0)
+    }
+
+    /// Number of arguments.
+    pub fn arity(self) -> usize {
+        FUNCTIONS.iter().find(|f| f.1 == self).map_or(0, |f| f.2)
+    }
+
+    /// Whether the function draws from the derivation's random stream.
+    pub fn is_random(self) -> bool {
+        matches!(self, Function::Uniform | Function::Ran | Function::Nran)
+    }
+}
+
+/// A parameter expression as written in the grammar.
+///
+/// Dropping a tree of any depth is safe (the drop is iterative); the parser and
+/// [`LSystem::from_parts`](crate::LSystem::from_parts) accept trees at most
+/// [`MAX_EXPR_DEPTH`] deep.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Expr {
+    /// A literal number.
+    Number(f64),
+    /// A `#define`d constant, kept by name for printing.
+    Constant {
+        /// The constant's name.
+        name: String,
+        /// Its value.
+        value: f64,
+    },
+    /// A formal parameter of the production, by name and binding slot.
+    Var {
+        /// The parameter's name.
+        name: String,
+        /// Its index among the production's bound parameters (left context, predecessor,
+        /// right context, in order).
+        slot: u16,
+    },
+    /// `#`: the generation being produced (1 in the first derivation step; 0 in the axiom).
+    Generation,
+    /// A unary operation.
+    Unary(UnaryOp, Box<Expr>),
+    /// A binary operation.
+    Binary(BinaryOp, Box<Expr>, Box<Expr>),
+    /// A function call.
+    Call(Function, Vec<Expr>),
+}
+
+impl Expr {
+    /// The depth of the tree: 1 for a leaf. Measured with an explicit stack, so any tree,
+    /// however deep, can be asked.
+    pub fn depth(&self) -> usize {
+        let mut deepest = 0;
+        let mut stack = vec![(self, 1usize)];
+        while let Some((e, d)) = stack.pop() {
+            deepest = deepest.max(d);
+            for child in e.children() {
+                stack.push((child, d + 1));
+            }
+        }
+        deepest
+    }
+
+    /// The direct subexpressions, left to right.
+    pub fn children(&self) -> impl Iterator<Item = &Expr> {
+        let (pair, args): ([Option<&Expr>; 2], &[Expr]) = match self {
+            Expr::Unary(_, e) => ([Some(e), None], &[]),
+            Expr::Binary(_, a, b) => ([Some(a), Some(b)], &[]),
+            Expr::Call(_, args) => ([None, None], args),
+            _ => ([None, None], &[]),
+        };
+        pair.into_iter().flatten().chain(args)
+    }
+
+    /// Whether the value is the same at every use: no parameters, no `#`, no random draws.
+    /// Only called on trees within [`MAX_EXPR_DEPTH`].
+    pub(crate) fn is_constant(&self) -> bool {
+        match self {
+            Expr::Number(_) | Expr::Constant { .. } => true,
+            Expr::Var { .. } | Expr::Generation => false,
+            Expr::Call(f, _) if f.is_random() => false,
+            _ => self.children().all(Expr::is_constant),
+        }
+    }
+
+    /// Highest variable slot used plus one. Only called on trees within [`MAX_EXPR_DEPTH`].
+    pub(crate) fn slots_used(&self) -> usize {
+        match self {
+            Expr::Var { slot, .. } => *slot as usize + 1,
+            _ => self.children().map(Expr::slots_used).max().unwrap_or(0),
+        }
+    }
+}
+
+impl Drop for Expr {
+    /// Takes the children apart onto a heap stack, so that dropping a chain millions of
+    /// levels deep (which only code building trees by hand can make) cannot overflow the
+    /// call stack.
+    fn drop(&mut self) {
+        fn detach(e: &mut Expr, out: &mut Vec<Expr>) {
+            match e {
+                Expr::Unary(_, a) => out.push(std::mem::replace(&mut **a, Expr::Generation)),
+                Expr::Binary(_, a, b) => {
+                    out.push(std::mem::replace(&mut **a, Expr::Generation));
+                    out.push(std::mem::replace(&mut **b, Expr::Generation));
+                }
+                Expr::Call(_, args) => out.append(args),
+                _ => {}
+            }
+        }
+        if matches!(
+            self,
+            Expr::Number(_) | Expr::Generation | Expr::Var { .. } | Expr::Constant { .. }
+        ) {
+            return;
+        }
+        let mut pending = Vec::new();
+        detach(self, &mut pending);
+        while let Some(mut e) = pending.pop() {
+            detach(&mut e, &mut pending);
+        }
+    }
+}

@@ -1,0 +1,70 @@
+//! The parts of a grammar: patterns, successor templates and productions.
+
+use crate::model::alphabet::SymbolId;
+use crate::model::expr::Expr;
+
+/// A module in a predecessor or context: a symbol and the names of its formal parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pattern {
+    /// The symbol to match.
+    pub symbol: SymbolId,
+    /// Formal parameter names; a module matches only with the same number of parameters.
+    pub params: Vec<String>,
+}
+
+/// A module to produce: a symbol and one expression per parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModuleTemplate {
+    /// The symbol to emit.
+    pub symbol: SymbolId,
+    /// Expressions for the parameters.
+    pub args: Vec<Expr>,
+}
+
+/// One element of a successor.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SuccessorItem {
+    /// Emit one module.
+    Module(ModuleTemplate),
+    /// A stochastic alternative (a sylva extension, written `?(p)<then><otherwise>`): with
+    /// probability `p` emit `then`, else `otherwise`. The draw is made independently each time
+    /// the production fires. The instancing crate uses it to decide each branch on its own.
+    Choice {
+        /// Probability of `then`, evaluated when the production fires; clamped to [0, 1].
+        probability: Expr,
+        /// Emitted with probability `p`.
+        then: Vec<SuccessorItem>,
+        /// Emitted with probability `1 - p`.
+        otherwise: Vec<SuccessorItem>,
+    },
+}
+
+/// A production `lc < pred > rc : condition -> successor : weight`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Production {
+    /// Left context, nearest module last. Empty when the production has none.
+    pub left: Vec<Pattern>,
+    /// The module this production rewrites.
+    pub predecessor: Pattern,
+    /// Right context, may contain `[` and `]` to enter or leave branches. Empty when none.
+    pub right: Vec<Pattern>,
+    /// The condition; `None` is always true.
+    pub condition: Option<Expr>,
+    /// What replaces the predecessor.
+    pub successor: Vec<SuccessorItem>,
+    /// Weight for stochastic choice; `None` makes the production deterministic.
+    pub weight: Option<f64>,
+}
+
+impl Production {
+    /// Number of parameters bound by the contexts and the predecessor together.
+    pub fn binding_count(&self) -> usize {
+        self.left
+            .iter()
+            .chain(std::iter::once(&self.predecessor))
+            .chain(&self.right)
+            .map(|p| p.params.len())
+            .sum()
+    }
+}

@@ -1,0 +1,7 @@
+//! The grammar model: plain data types that the syntax builds and the engine runs.
+//! Nothing here parses, prints or derives.
+
+pub(crate) mod alphabet;
+pub(crate) mod expr;
+pub(crate) mod grammar;
+pub(crate) mod word;

@@ -1,0 +1,322 @@
+//! The expression parser: precedence climbing with explicit depth accounting.
+//!
+//! Every tree it returns is at most [`MAX_EXPR_DEPTH`] deep, and parentheses, unary operators
+//! and calls nest at most [`MAX_NESTING`] deep, so the recursive descent itself stays shallow
+//! and every later walk over the tree is bounded. Binary chains are parsed in loops, so a long
+//! flat chain costs linear time up to the point where it is refused.
+
+use crate::error::ParseError;
+use crate::model::expr::{BinaryOp, Expr, FUNCTIONS, MAX_EXPR_DEPTH, MAX_NESTING, UnaryOp};
+use crate::syntax::cursor::Cursor;
+
+/// Names an expression may refer to.
+pub(crate) trait Scope {
+    /// The binding slot of a formal parameter.
+    fn var(&self, name: &str) -> Option<u16>;
+    /// The value of a constant.
+    fn constant(&self, name: &str) -> Option<f64>;
+}
+
+/// Parses one expression at the cursor. Stops before any character that cannot continue it.
+pub(crate) fn parse_expr(cur: &mut Cursor<'_>, scope: &dyn Scope) -> Result<Expr, ParseError> {
+    let parsed = ExprParser {
+        cur,
+        scope,
+        nesting: 0,
+    }
+    .or()?;
+    Ok(parsed.expr)
+}
+
+/// A subtree and its depth (1 for a leaf), kept together so no walk is needed to measure it.
+struct Parsed {
+    expr: Expr,
+    depth: usize,
+}
+
+impl Parsed {
+    fn leaf(expr: Expr) -> Parsed {
+        Parsed { expr, depth: 1 }
+    }
+}
+
+struct ExprParser<'c, 'a> {
+    cur: &'c mut Cursor<'a>,
+    scope: &'c dyn Scope,
+    nesting: usize,
+}
+
+impl ExprParser<'_, '_> {
+    fn nest(&mut self) -> Result<(), ParseError> {
+        self.nesting += 1;
+        if self.nesting > MAX_NESTING {
+            Err(self
+                .cur
+                .error(format!("expression nested more than {MAX_NESTING} deep")))
+        } else {
+            Ok(())
+        }
+    }
+
+    /// A node over `children`, refused at `at` when it would make the tree too deep.
+    fn node(
+        &self,
+        at: usize,
+        depth: usize,
+        expr: impl FnOnce() -> Expr,
+    ) -> Result<Parsed, ParseError> {
+        let depth = depth + 1;
+        if depth > MAX_EXPR_DEPTH {
+            return Err(self.cur.error_at(
+                at,
+                format!(
+                    "expression deeper than {MAX_EXPR_DEPTH} levels (each operator of a chain such as \
+                     a+b+c adds one): split it with parentheses or #define constants"
+                ),
+            ));
+        }
+        Ok(Parsed {
+            expr: expr(),
+            depth,
+        })
+    }
+
+    fn binary(&self, at: usize, op: BinaryOp, l: Parsed, r: Parsed) -> Result<Parsed, ParseError> {
+        self.node(at, l.depth.max(r.depth), || {
+            Expr::Binary(op, Box::new(l.expr), Box::new(r.expr))
+        })
+    }
+
+    /// Position of the next non-blank character, where an operator is about to be read.
+    fn here(&mut self) -> usize {
+        self.cur.skip_ws();
+        self.cur.pos()
+    }
+
+    fn or(&mut self) -> Result<Parsed, ParseError> {
+        let mut e = self.and()?;
+        loop {
+            let at = self.here();
+            if !self.cur.eat_str("||") {
+                return Ok(e);
+            }
+            let r = self.and()?;
+            e = self.binary(at, BinaryOp::Or, e, r)?;
+        }
+    }
+
+    fn and(&mut self) -> Result<Parsed, ParseError> {
+        let mut e = self.cmp()?;
+        loop {
+            let at = self.here();
+            if !self.cur.eat_str("&&") {
+                return Ok(e);
+            }
+            let r = self.cmp()?;
+            e = self.binary(at, BinaryOp::And, e, r)?;
+        }
+    }
+
+    fn cmp(&mut self) -> Result<Parsed, ParseError> {
+        let mut e = self.add()?;
+        loop {
+            let at = self.here();
+            let op = if self.cur.eat_str("<=") {
+                BinaryOp::Le
+            } else if self.cur.eat_str(">=") {
+                BinaryOp::Ge
+            } else if self.cur.eat_str("==") {
+                BinaryOp::Eq
+            } else if self.cur.eat_str("!=") {
+                BinaryOp::Ne
+            } else if self.cur.eat_str("<") {
+                BinaryOp::Lt
+            } else if self.cur.eat_str(">") {
+                BinaryOp::Gt
+            } else {
+                return Ok(e);
+            };
+            let r = self.add()?;
+            e = self.binary(at, op, e, r)?;
+        }
+    }
+
+    fn add(&mut self) -> Result<Parsed, ParseError> {
+        let mut e = self.mul()?;
+        loop {
+            let at = self.here();
+            // "->" ends a condition; it is not a subtraction.
+            let op = match (self.cur.peek(), self.cur.peek_at(1)) {
+                (Some('+'), _) => BinaryOp::Add,
+                (Some('-'), Some('>')) => return Ok(e),
+                (Some('-'), _) => BinaryOp::Sub,
+                _ => return Ok(e),
+            };
+            self.cur.bump();
+            let r = self.mul()?;
+            e = self.binary(at, op, e, r)?;
+        }
+    }
+
+    fn mul(&mut self) -> Result<Parsed, ParseError> {
+        let mut e = self.unary()?;
+        loop {
+            let at = self.here();
+            let op = if self.cur.eat('*') {
+                BinaryOp::Mul
+            } else if self.cur.eat('/') {
+                BinaryOp::Div
+            } else {
+                return Ok(e);
+            };
+            let r = self.unary()?;
+            e = self.binary(at, op, e, r)?;
+        }
+    }
+
+    fn unary(&mut self) -> Result<Parsed, ParseError> {
+        let at = self.here();
+        let op = match (self.cur.peek(), self.cur.peek_at(1)) {
+            (Some('-'), Some(c)) if c != '>' => Some(UnaryOp::Neg),
+            (Some('!'), Some(c)) if c != '=' => Some(UnaryOp::Not),
+            _ => None,
+        };
+        if let Some(op) = op {
+            self.cur.bump();
+            self.nest()?;
+            let e = self.unary()?;
+            self.nesting -= 1;
+            return self.node(at, e.depth, || Expr::Unary(op, Box::new(e.expr)));
+        }
+        self.pow()
+    }
+
+    fn pow(&mut self) -> Result<Parsed, ParseError> {
+        let base = self.atom()?;
+        let at = self.here();
+        if self.cur.eat('^') {
+            self.nest()?;
+            let exp = self.unary()?;
+            self.nesting -= 1;
+            return self.binary(at, BinaryOp::Pow, base, exp);
+        }
+        Ok(base)
+    }
+
+    fn atom(&mut self) -> Result<Parsed, ParseError> {
+        let start = self.here();
+        match self.cur.peek() {
+            Some('(') => {
+                self.cur.bump();
+                self.nest()?;
+                let e = self.or()?;
+                self.nesting -= 1;
+                self.cur.expect(')', "')' to close the parenthesis")?;
+                Ok(e)
+            }
+            Some('#') => {
+                self.cur.bump();
+                Ok(Parsed::leaf(Expr::Generation))
+            }
+            Some(c) if c.is_ascii_digit() || c == '.' => self.number(),
+            Some(c) if c.is_ascii_alphabetic() || c == '_' => {
+                let name = self.cur.ident().unwrap_or_default();
+                if self.cur.eat('(') {
+                    return self.call(name, start);
+                }
+                if let Some(slot) = self.scope.var(&name) {
+                    Ok(Parsed::leaf(Expr::Var { name, slot }))
+                } else if let Some(value) = self.scope.constant(&name) {
+                    Ok(Parsed::leaf(Expr::Constant { name, value }))
+                } else {
+                    Err(self.cur.error_at(
+                        start,
+                        format!("unknown name '{name}': not a parameter of this production nor a #define constant"),
+                    ))
+                }
+            }
+            _ => Err(self.cur.error(format!(
+                "expected a number, a name, '#' or '(' in an expression, found {}",
+                self.cur.describe_next()
+            ))),
+        }
+    }
+
+    fn call(&mut self, name: String, start: usize) -> Result<Parsed, ParseError> {
+        let Some(&(_, func, arity)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
+            return Err(self
+                .cur
+                .error_at(start, format!("unknown function '{name}'")));
+        };
+        self.nest()?;
+        let mut args = Vec::new();
+        let mut depth = 0;
+        if !self.cur.eat(')') {
+            loop {
+                if args.len() == arity {
+                    return Err(self.cur.error_at(
+                        start,
+                        format!("function '{name}' takes {arity} argument(s), more given"),
+                    ));
+                }
+                let a = self.or()?;
+                depth = depth.max(a.depth);
+                args.push(a.expr);
+                if self.cur.eat(')') {
+                    break;
+                }
+                self.cur.expect(',', "',' or ')' in the argument list")?;
+            }
+        }
+        self.nesting -= 1;
+        if args.len() != arity {
+            return Err(self.cur.error_at(
+                start,
+                format!(
+                    "function '{name}' takes {arity} argument(s), {} given",
+                    args.len()
+                ),
+            ));
+        }
+        self.node(start, depth, || Expr::Call(func, args))
+    }
+
+    fn number(&mut self) -> Result<Parsed, ParseError> {
+        let start = self.cur.pos();
+        let mut text = String::new();
+        while let Some(c) = self.cur.peek() {
+            if c.is_ascii_digit() || c == '.' {
+                text.push(c);
+                self.cur.bump();
+            } else if (c == 'e' || c == 'E')
+                && matches!(self.cur.peek_at(1), Some(d) if d.is_ascii_digit() || d == '-' || d == '+')
+            {
+                text.push(c);
+                self.cur.bump();
+                if let Some(s @ ('-' | '+')) = self.cur.peek() {
+                    text.push(s);
+                    self.cur.bump();
+                }
+            } else {
+                break;
+            }
+        }
+        match text.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Parsed::leaf(Expr::Number(v))),
+            _ => Err(self.cur.error_at(
+                start,
+                format!("'{}' is not a finite number", shorten(&text)),
+            )),
+        }
+    }
+}
+
+/// The first characters of a long token, for messages that must stay one line.
+fn shorten(text: &str) -> String {
+    const MAX: usize = 40;
+    if text.chars().count() <= MAX {
+        text.to_string()
+    } else {
+        text.chars().take(MAX).collect::<String>() + "..."
+    }
+}

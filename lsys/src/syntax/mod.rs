@@ -1,0 +1,7 @@
+//! Grammar text: the parser of grammars, expressions and words, and the printer back to text.
+
+pub(crate) mod cursor;
+pub(crate) mod expr_parser;
+pub(crate) mod parser;
+pub(crate) mod print;
+pub(crate) mod word_text;

@@ -1,0 +1,275 @@
+//! Printing: grammars, expressions and words back to the text the parser reads.
+
+use std::fmt;
+
+use crate::engine::lsystem::LSystem;
+use crate::model::alphabet::Alphabet;
+use crate::model::expr::{BinaryOp, Expr, UnaryOp};
+use crate::model::grammar::{ModuleTemplate, Pattern, SuccessorItem};
+use crate::model::word::Word;
+
+impl BinaryOp {
+    /// The operator as written in grammar text.
+    fn token(self) -> &'static str {
+        match self {
+            BinaryOp::Add => "+",
+            BinaryOp::Sub => "-",
+            BinaryOp::Mul => "*",
+            BinaryOp::Div => "/",
+            BinaryOp::Pow => "^",
+            BinaryOp::Lt => "<",
+            BinaryOp::Le => "<=",
+            BinaryOp::Gt => ">",
+            BinaryOp::Ge => ">=",
+            BinaryOp::Eq => "==",
+            BinaryOp::Ne => "!=",
+            BinaryOp::And => "&&",
+            BinaryOp::Or => "||",
+        }
+    }
+}
+
+impl BinaryOp {
+    /// Binding strength: higher binds tighter.
+    fn precedence(self) -> u8 {
+        match self {
+            BinaryOp::Or => 1,
+            BinaryOp::And => 2,
+            BinaryOp::Lt
+            | BinaryOp::Le
+            | BinaryOp::Gt
+            | BinaryOp::Ge
+            | BinaryOp::Eq
+            | BinaryOp::Ne => 3,
+            BinaryOp::Add | BinaryOp::Sub => 4,
+            BinaryOp::Mul | BinaryOp::Div => 5,
+            BinaryOp::Pow => 7,
+        }
+    }
+}
+
+const UNARY: u8 = 6;
+const ATOM: u8 = 8;
+
+impl Expr {
+    fn precedence(&self) -> u8 {
+        match self {
+            Expr::Binary(op, ..) => op.precedence(),
+            Expr::Unary(..) => UNARY,
+            _ => ATOM,
+        }
+    }
+}
+
+struct Child<'a>(&'a Expr, bool);
+
+impl fmt::Display for Child<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.1 {
+            write!(f, "({})", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
+impl fmt::Display for Expr {
+    /// Prints with the fewest parentheses that keep the tree, so that the text parses back to
+    /// the same tree and never nests deeper than the text it came from.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Expr::Number(v) if *v < 0.0 || (*v == 0.0 && v.is_sign_negative()) => {
+                write!(f, "(-{})", -v)
+            }
+            Expr::Number(v) => write!(f, "{v}"),
+            Expr::Constant { name, .. } | Expr::Var { name, .. } => f.write_str(name),
+            Expr::Generation => f.write_str("#"),
+            Expr::Unary(op, e) => {
+                let sign = if *op == UnaryOp::Neg { "-" } else { "!" };
+                write!(f, "{sign}{}", Child(e, e.precedence() < UNARY))
+            }
+            Expr::Binary(BinaryOp::Pow, a, b) => {
+                // The base is an atom; the exponent may be a unary or another power.
+                write!(
+                    f,
+                    "{}^{}",
+                    Child(a, a.precedence() < ATOM),
+                    Child(b, b.precedence() < UNARY)
+                )
+            }
+            Expr::Binary(op, a, b) => {
+                let p = op.precedence();
+                // Left-associative: the right operand needs parentheses at equal precedence.
+                write!(
+                    f,
+                    "{}{}{}",
+                    Child(a, a.precedence() < p),
+                    op.token(),
+                    Child(b, b.precedence() <= p)
+                )
+            }
+            Expr::Call(func, args) => {
+                write!(f, "{}(", func.name())?;
+                for (i, a) in args.iter().enumerate() {
+                    if i > 0 {
+                        f.write_str(",")?;
+                    }
+                    write!(f, "{a}")?;
+                }
+                f.write_str(")")
+            }
+        }
+    }
+}
+
+struct PatternsDisplay<'a>(&'a [Pattern], &'a Alphabet);
+
+impl fmt::Display for PatternsDisplay<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, p) in self.0.iter().enumerate() {
+            // Spaces keep "/*" and a leading "//" from reading back as comments.
+            if i > 0 {
+                f.write_str(" ")?;
+            }
+            write!(f, "{}", self.1.char(p.symbol))?;
+            if !p.params.is_empty() {
+                write!(f, "({})", p.params.join(","))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+struct ItemsDisplay<'a>(&'a [SuccessorItem], &'a Alphabet);
+
+impl fmt::Display for ItemsDisplay<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut previous: Option<&ModuleTemplate> = None;
+        for item in self.0 {
+            match item {
+                SuccessorItem::Module(m) => {
+                    separate(f, previous, m, self.1)?;
+                    write_template(f, m, self.1)?;
+                    previous = Some(m);
+                    continue;
+                }
+                SuccessorItem::Choice {
+                    probability,
+                    then,
+                    otherwise,
+                } => write!(
+                    f,
+                    "?({probability})<{}><{}>",
+                    ItemsDisplay(then, self.1),
+                    ItemsDisplay(otherwise, self.1)
+                )?,
+            }
+            previous = None;
+        }
+        Ok(())
+    }
+}
+
+/// Writes a space where two modules would otherwise print as the comment opener `/*`.
+fn separate(
+    f: &mut fmt::Formatter<'_>,
+    previous: Option<&ModuleTemplate>,
+    next: &ModuleTemplate,
+    alphabet: &Alphabet,
+) -> fmt::Result {
+    match previous {
+        Some(p)
+            if p.args.is_empty()
+                && alphabet.char(p.symbol) == '/'
+                && alphabet.char(next.symbol) == '*' =>
+        {
+            f.write_str(" ")
+        }
+        _ => Ok(()),
+    }
+}
+
+fn write_template(
+    f: &mut fmt::Formatter<'_>,
+    m: &ModuleTemplate,
+    alphabet: &Alphabet,
+) -> fmt::Result {
+    write!(f, "{}", alphabet.char(m.symbol))?;
+    if !m.args.is_empty() {
+        f.write_str("(")?;
+        for (i, a) in m.args.iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "{a}")?;
+        }
+        f.write_str(")")?;
+    }
+    Ok(())
+}
+
+impl fmt::Display for LSystem {
+    /// Writes the grammar in the notation [`LSystem::parse`] reads.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = &*self.alphabet;
+        for (name, e) in &self.constants {
+            writeln!(f, "#define {name} {e}")?;
+        }
+        if !self.ignore.is_empty() {
+            let s: Vec<String> = self.ignore.iter().map(|&s| a.char(s).to_string()).collect();
+            writeln!(f, "#ignore: {}", s.join(" "))?;
+        }
+        f.write_str("axiom: ")?;
+        let mut previous = None;
+        for m in &self.axiom {
+            separate(f, previous, m, a)?;
+            write_template(f, m, a)?;
+            previous = Some(m);
+        }
+        writeln!(f)?;
+        for p in &self.productions {
+            if !p.left.is_empty() {
+                write!(f, "{} < ", PatternsDisplay(&p.left, a))?;
+            }
+            write!(
+                f,
+                "{}",
+                PatternsDisplay(std::slice::from_ref(&p.predecessor), a)
+            )?;
+            if !p.right.is_empty() {
+                write!(f, " > {}", PatternsDisplay(&p.right, a))?;
+            }
+            if let Some(c) = &p.condition {
+                write!(f, " : {c}")?;
+            }
+            write!(f, " -> {}", ItemsDisplay(&p.successor, a))?;
+            if let Some(w) = p.weight {
+                write!(f, " : {w}")?;
+            }
+            writeln!(f)?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Word {
+    /// Writes the modules in grammar notation. Numbers print in Rust's shortest round-trip
+    /// form, so parsing the text gives back the same bits.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use fmt::Write;
+        for m in self.iter() {
+            f.write_char(m.symbol)?;
+            if !m.params.is_empty() {
+                f.write_char('(')?;
+                for (k, v) in m.params.iter().enumerate() {
+                    if k > 0 {
+                        f.write_char(',')?;
+                    }
+                    write!(f, "{v}")?;
+                }
+                f.write_char(')')?;
+            }
+        }
+        Ok(())
+    }
+}
