@@ -1,0 +1,159 @@
+//! Known answers for fixed seeds across the crates, one hash each. A change that alters any of
+//! these bytes must say why in its commit, and refresh the value here.
+//!
+//! The hash is FNV-1a over the raw bytes (little-endian floats and integers), written out
+//! here so that the pins do not depend on any hash in the library.
+
+use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::instancing::{HeroOptions, Similarity, build_cache};
+use sylva::lsys::preset;
+use sylva::terrain::{DiamondSquare, EdgeMode, HeightField};
+
+/// FNV-1a, 64 bits.
+#[derive(Debug)]
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Self {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+    fn bytes(&mut self, bytes: &[u8]) -> &mut Self {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+        self
+    }
+    fn f32s(&mut self, values: &[f32]) -> &mut Self {
+        values.iter().for_each(|v| {
+            self.bytes(&v.to_le_bytes());
+        });
+        self
+    }
+    fn u32s(&mut self, values: &[u32]) -> &mut Self {
+        values.iter().for_each(|v| {
+            self.bytes(&v.to_le_bytes());
+        });
+        self
+    }
+    fn similarity(&mut self, s: &Similarity) -> &mut Self {
+        self.f32s(&s.rotation.to_array())
+            .f32s(&s.translation.to_array())
+            .f32s(&[s.scale])
+    }
+}
+
+#[test]
+fn heightmap_of_seed_7_raw_and_smoothed() {
+    let mut map = DiamondSquare::new(129)
+        .with_seed(7)
+        .with_roughness(0.8)
+        .generate()
+        .unwrap();
+    let raw = Fnv::new().f32s(map.heights()).0;
+    map.smooth(2.0, EdgeMode::Mirror).unwrap();
+    let smooth = Fnv::new().f32s(map.heights()).0;
+    assert_eq!(
+        (raw, smooth),
+        (0xcbd2_3067_48b0_9248, 0xd612_5655_b751_6ad8),
+        "{raw:#x} {smooth:#x}"
+    );
+}
+
+#[test]
+fn derived_words_of_fixed_seeds() {
+    let mut h = Fnv::new();
+    for (name, generations, seed) in [
+        ("goe-random", 6, 3),
+        ("abop-honda", 8, 0),
+        ("abop-1.24f", 5, 0),
+    ] {
+        let word = preset(name)
+            .unwrap()
+            .lsystem()
+            .unwrap()
+            .derive(generations, seed)
+            .unwrap();
+        h.bytes(word.to_string().as_bytes());
+    }
+    assert_eq!(h.0, 0x34b0_f70b_db4d_9330, "{:#x}", h.0);
+}
+
+#[test]
+fn hero_cache_of_a_fixed_grammar_seed_and_budget() {
+    let mut h = Fnv::new();
+    for name in ["kenwood-leafy", "goe-random"] {
+        let grammar = preset(name).unwrap().lsystem().unwrap();
+        let options = HeroOptions::default()
+            .with_budget(2 << 20)
+            .with_generations(6)
+            .with_seed(11);
+        let cache = build_cache(&grammar, &options).unwrap().cache;
+        for v in &cache.vertices {
+            h.f32s(&v.position).f32s(&v.normal).f32s(&v.uv);
+        }
+        h.u32s(&cache.bark).u32s(&cache.foliage);
+        for i in &cache.instances {
+            h.u32s(&[
+                i.id,
+                i.age,
+                i.bark.0,
+                i.bark.1,
+                i.foliage.0,
+                i.foliage.1,
+                i.exits.0,
+                i.exits.1,
+            ])
+            .similarity(&i.frame_inverse);
+        }
+        for e in &cache.exits {
+            h.u32s(&[e.id, e.age]).similarity(&e.frame);
+        }
+    }
+    assert_eq!(h.0, 0x003b_31a9_0895_c168, "{:#x}", h.0);
+}
+
+#[test]
+fn forest_of_seed_1_trees_and_placements() {
+    let mut leafy = Species::from_preset("kenwood-leafy", 5).unwrap();
+    leafy.turtle.step = 0.6;
+    leafy.weight = 2.0;
+    let mut plant = Species::from_preset("abop-1.24e", 4).unwrap();
+    plant.turtle.step = 0.5;
+    let mut config = ForestConfig::new(vec![leafy, plant]);
+    config.budget = 2 << 20;
+    config.seed = 1;
+    let builder = ForestBuilder::new(config).unwrap();
+    let terrain = DiamondSquare::new(65)
+        .with_spacing(4.0)
+        .with_seed(1)
+        .with_amplitude(2.0)
+        .generate()
+        .unwrap();
+    let (lo, hi) = terrain.bounds();
+    let forest = builder.build(&terrain, Rect::new(lo, hi));
+    let mut trees = Fnv::new();
+    for t in &forest.trees {
+        trees
+            .f32s(&t.position)
+            .f32s(&[t.yaw, t.scale])
+            .u32s(&[t.seed, u32::from(t.species)]);
+    }
+    let mut placements = Fnv::new();
+    for batch in forest.batches().unwrap() {
+        placements.u32s(&[batch.variant as u32]);
+        for group in &batch.placements.groups {
+            placements.u32s(&[group.len() as u32]);
+            group.iter().for_each(|s| {
+                placements.similarity(s);
+            });
+        }
+    }
+    assert_eq!(
+        (forest.trees.len(), trees.0, placements.0),
+        (313, 0x4ff7_c767_fa36_ef3b, 0xd756_5001_9b3e_a1a8),
+        "{} {:#x} {:#x}",
+        forest.trees.len(),
+        trees.0,
+        placements.0
+    );
+}
