@@ -11,7 +11,7 @@ use sylva_terrain::HeightField;
 
 use crate::density::{Candidate, DensityModel, Rect, mix, unit};
 use crate::error::ForestError;
-use crate::patch::PatchDensity;
+use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
 
 /// Where on the terrain trees may stand.
@@ -191,16 +191,18 @@ impl ForestBuilder {
                 });
             }
         }
-        let mut density = PatchDensity::new(
-            canopies.iter().map(Canopy::radius).collect(),
-            config.species.iter().map(|s| s.weight.max(0.0)).collect(),
-        );
         // Trees grow up to 1 + variation times their measured size.
-        density.patch *= 1.0 + config.scale_variation;
-        density
-            .canopy_radii
-            .iter_mut()
-            .for_each(|r| *r *= 1.0 + config.scale_variation);
+        let grown = 1.0 + config.scale_variation;
+        let mut density = PatchDensity::new(
+            canopies
+                .iter()
+                .zip(&config.species)
+                .map(|(canopy, species)| PatchSpecies {
+                    canopy_radius: canopy.radius() * grown,
+                    weight: species.weight.max(0.0),
+                })
+                .collect(),
+        );
         density.spacing_factor = config.spacing_factor;
         density.seedlings_per_patch = config.seedlings_per_patch;
         let stats = ForestStats {

@@ -188,6 +188,15 @@ pub fn write_glb<W: Write>(
         let variant = forest.variants.get(batch.variant).ok_or_else(|| {
             ForestError::InvalidExport(format!("batch of unknown variant {}", batch.variant))
         })?;
+        if batch.placements.groups.len() != variant.cache.instances.len() {
+            return Err(ForestError::InvalidExport(format!(
+                "batch of variant {} has {} instance groups, but the forest's variant has {} \
+                 instances: the batches were made by another forest",
+                batch.variant,
+                batch.placements.groups.len(),
+                variant.cache.instances.len()
+            )));
+        }
         let used: Vec<usize> = (0..batch.placements.groups.len())
             .filter(|&i| !batch.placements.groups[i].is_empty())
             .collect();
@@ -237,6 +246,14 @@ pub fn write_glb<W: Write>(
         );
         for i in used {
             let inst = &cache.instances[i];
+            if inst.bark.0 as usize + inst.bark.1 as usize > cache.bark.len()
+                || inst.foliage.0 as usize + inst.foliage.1 as usize > cache.foliage.len()
+            {
+                return Err(ForestError::InvalidExport(format!(
+                    "instance {i} of variant {} spans past its cache's indices",
+                    batch.variant
+                )));
+            }
             let mut primitives = Vec::new();
             for (view, (start, count), material) in [
                 (bark_view, inst.bark, bark_material),

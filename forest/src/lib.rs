@@ -41,5 +41,5 @@ pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantBatches,
 };
 pub use gltf::{GltfOptions, write_glb};
-pub use patch::PatchDensity;
+pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, Species};

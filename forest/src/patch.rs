@@ -25,10 +25,9 @@ use crate::density::{Candidate, DensityModel, Rect, hash, mix, unit};
 pub struct PatchDensity {
     /// Patch side length.
     pub patch: f32,
-    /// Canopy radius per species.
-    pub canopy_radii: Vec<f32>,
-    /// Relative frequency per species.
-    pub weights: Vec<f32>,
+    /// Canopy radius and weight of each species, indexed by species. One list, so that a
+    /// species can never have a radius without a weight or the other way round.
+    pub species: Vec<PatchSpecies>,
     /// Minimum trunk spacing as a multiple of the larger canopy radius (at most 2, so that
     /// conflicts stay between neighbouring patches).
     pub spacing_factor: f32,
@@ -36,6 +35,15 @@ pub struct PatchDensity {
     pub seedlings_per_patch: u32,
     /// `r0` of the elimination probability, as a multiple of the canopy radius.
     pub seedling_clearance: f32,
+}
+
+/// What the density model knows of one species.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchSpecies {
+    /// Canopy radius in metres.
+    pub canopy_radius: f32,
+    /// Relative frequency (any scale; species of weight 0 or less never appear).
+    pub weight: f32,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -53,32 +61,58 @@ const TRIES: u64 = 16;
 
 impl PatchDensity {
     /// A model whose patch side is the largest canopy diameter.
-    pub fn new(canopy_radii: Vec<f32>, weights: Vec<f32>) -> Self {
-        let patch = canopy_radii.iter().copied().fold(0.0f32, f32::max) * 2.0;
+    ///
+    /// ```
+    /// use sylva_forest::{DensityModel, PatchDensity, PatchSpecies, Rect};
+    /// use sylva_terrain::glam::Vec2;
+    ///
+    /// let oak = PatchSpecies { canopy_radius: 6.0, weight: 2.0 };
+    /// let birch = PatchSpecies { canopy_radius: 3.0, weight: 1.0 };
+    /// let model = PatchDensity::new(vec![oak, birch]);
+    /// assert_eq!(model.patch, 12.0);
+    /// let mut trees = Vec::new();
+    /// model.candidates(Rect::new(Vec2::ZERO, Vec2::splat(120.0)), 7, &mut trees);
+    /// assert!(trees.iter().filter(|t| !t.seedling).count() > 50);
+    /// ```
+    pub fn new(species: Vec<PatchSpecies>) -> Self {
+        let patch = species
+            .iter()
+            .map(|s| s.canopy_radius)
+            .fold(0.0f32, f32::max)
+            * 2.0;
         PatchDensity {
             patch,
-            canopy_radii,
-            weights,
+            species,
             spacing_factor: 1.0,
             seedlings_per_patch: 3,
             seedling_clearance: 0.6,
         }
     }
 
+    /// A species index drawn by weight; only called when some weight is positive, so the
+    /// index is always in range.
     fn pick_species(&self, h: u64) -> usize {
-        let total: f32 = self.weights.iter().sum();
+        let weight = |s: &PatchSpecies| s.weight.max(0.0);
+        let total: f32 = self.species.iter().map(weight).sum();
         let mut u = unit(h) * total;
-        for (i, &w) in self.weights.iter().enumerate() {
-            if u < w {
+        for (i, s) in self.species.iter().enumerate() {
+            if u < weight(s) {
                 return i;
             }
-            u -= w;
+            u -= weight(s);
         }
-        self.weights.iter().rposition(|&w| w > 0.0).unwrap_or(0)
+        self.species
+            .iter()
+            .rposition(|s| s.weight > 0.0)
+            .unwrap_or(0)
+    }
+
+    fn radius(&self, species: usize) -> f32 {
+        self.species.get(species).map_or(0.0, |s| s.canopy_radius)
     }
 
     fn spacing(&self, a: usize, b: usize) -> f32 {
-        let r = self.canopy_radii[a].max(self.canopy_radii[b]);
+        let r = self.radius(a).max(self.radius(b));
         (self.spacing_factor.clamp(0.0, 2.0) * r).min(self.patch)
     }
 
@@ -155,7 +189,7 @@ impl PatchDensity {
 impl DensityModel for PatchDensity {
     fn candidates(&self, region: Rect, seed: u64, out: &mut Vec<Candidate>) {
         let usable_patch = self.patch.is_finite() && self.patch > 0.0;
-        if region.is_empty() || !usable_patch || !self.weights.iter().any(|&w| w > 0.0) {
+        if region.is_empty() || !usable_patch || !self.species.iter().any(|s| s.weight > 0.0) {
             return;
         }
         let cell = |v: f32| (v / self.patch).floor() as i64;
@@ -229,7 +263,7 @@ impl PatchDensity {
                         .min_by(|a, b| a.0.total_cmp(&b.0));
                     let eliminate = match nearest {
                         Some((d, s)) => {
-                            let r0 = self.seedling_clearance * self.canopy_radii[s];
+                            let r0 = self.seedling_clearance * self.radius(s);
                             if d <= 0.0 {
                                 1.0
                             } else {

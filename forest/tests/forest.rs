@@ -5,7 +5,7 @@ use std::path::Path;
 use proptest::prelude::*;
 use sylva_forest::{
     Candidate, DensityModel, ForestBuilder, ForestConfig, ForestError, GltfOptions, PatchDensity,
-    Rect, Species, write_glb,
+    PatchSpecies, Rect, Species, write_glb,
 };
 use sylva_terrain::glam::Vec2;
 use sylva_terrain::{DiamondSquare, FlatPlane, HeightField};
@@ -34,6 +34,14 @@ fn plane(side: f32) -> FlatPlane {
     }
 }
 
+/// A species of weight 1 with canopy radius `r`.
+fn share(r: f32) -> PatchSpecies {
+    PatchSpecies {
+        canopy_radius: r,
+        weight: 1.0,
+    }
+}
+
 fn canopy_candidates(model: &PatchDensity, region: Rect, seed: u64) -> Vec<Candidate> {
     let mut out = Vec::new();
     model.candidates(region, seed, &mut out);
@@ -48,7 +56,7 @@ proptest! {
     /// and no patch holds more than one canopy tree.
     #[test]
     fn canopy_spacing_holds_after_the_fix(seed: u64, r1 in 2.0f32..10.0, r2 in 2.0f32..10.0, factor in 0.5f32..2.0) {
-        let mut model = PatchDensity::new(vec![r1, r2], vec![1.0, 1.0]);
+        let mut model = PatchDensity::new(vec![share(r1), share(r2)]);
         model.spacing_factor = factor;
         let region = Rect::new(Vec2::splat(-150.0), Vec2::splat(150.0));
         let trees = canopy_candidates(&model, region, seed);
@@ -77,7 +85,7 @@ proptest! {
 /// canopy tree. Over many patches, the survival fraction per distance band must follow it.
 #[test]
 fn seedlings_thin_out_near_canopy_trees() {
-    let mut model = PatchDensity::new(vec![8.0], vec![1.0]);
+    let mut model = PatchDensity::new(vec![share(8.0)]);
     model.seedlings_per_patch = 40;
     model.seedling_clearance = 1.0;
     let region = Rect::new(Vec2::splat(0.0), Vec2::splat(800.0));
@@ -351,7 +359,7 @@ fn impossible_configurations_are_errors() {
 /// Large regions are processed in blocks of patches; the trees must not depend on it.
 #[test]
 fn large_regions_in_blocks_equal_small_tiles() {
-    let mut model = PatchDensity::new(vec![0.5], vec![1.0]);
+    let mut model = PatchDensity::new(vec![share(0.5)]);
     model.seedlings_per_patch = 1;
     let whole_region = Rect::new(Vec2::ZERO, Vec2::splat(300.0));
     let mut whole = Vec::new();
@@ -370,4 +378,46 @@ fn large_regions_in_blocks_equal_small_tiles() {
     b.sort_unstable();
     assert!(a.len() > 50_000);
     assert_eq!(a, b);
+}
+
+/// Found in review: batches of one forest handed to the writer with another forest indexed
+/// past the other forest's instances.
+#[test]
+fn batches_of_another_forest_are_refused_not_a_panic() {
+    let small = builder(1).build(
+        &plane(40.0),
+        Rect::new(Vec2::splat(-40.0), Vec2::splat(40.0)),
+    );
+    let mut other_config = ForestConfig::new(small_species());
+    other_config.budget = 8 << 20;
+    let other = ForestBuilder::new(other_config).unwrap().build(
+        &plane(40.0),
+        Rect::new(Vec2::splat(-40.0), Vec2::splat(40.0)),
+    );
+    let foreign = other.batches().unwrap();
+    assert_ne!(
+        foreign[0].placements.groups.len(),
+        small.variants[0].cache.instances.len(),
+        "the two forests' caches must differ for this test to mean anything"
+    );
+    let err = write_glb(&small, &foreign, None, &GltfOptions::default(), Vec::new()).unwrap_err();
+    assert!(
+        matches!(err, ForestError::InvalidExport(ref m) if m.contains("another forest")),
+        "{err}"
+    );
+}
+
+/// More species than the density model was told of, or a model edited to fewer species, must
+/// never index out of bounds: the species list pairs each radius with its weight.
+#[test]
+fn density_species_come_in_pairs() {
+    let mut model = PatchDensity::new(vec![share(3.0), share(5.0)]);
+    model.species.truncate(1);
+    let mut out = Vec::new();
+    model.candidates(Rect::new(Vec2::ZERO, Vec2::splat(100.0)), 3, &mut out);
+    assert!(out.iter().all(|c| c.species == 0));
+    model.species.clear();
+    out.clear();
+    model.candidates(Rect::new(Vec2::ZERO, Vec2::splat(100.0)), 3, &mut out);
+    assert!(out.is_empty());
 }
