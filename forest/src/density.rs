@@ -59,25 +59,3 @@ pub trait DensityModel {
     /// Appends the candidates whose positions lie in `region`.
     fn candidates(&self, region: Rect, seed: u64, out: &mut Vec<Candidate>);
 }
-
-#[inline]
-pub(crate) fn mix(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
-/// A hash of a seed and integer coordinates.
-#[inline]
-pub(crate) fn hash(seed: u64, i: i64, j: i64, salt: u64) -> u64 {
-    mix(seed
-        ^ mix((i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)
-            ^ (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f)
-            ^ salt.wrapping_mul(0x1656_67b1_9e37_79f9)))
-}
-
-/// Uniform in [0, 1) from a hash.
-#[inline]
-pub(crate) fn unit(h: u64) -> f32 {
-    (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
-}

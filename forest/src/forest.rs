@@ -9,7 +9,9 @@ use sylva_instancing::{
 };
 use sylva_terrain::HeightField;
 
-use crate::density::{Candidate, DensityModel, Rect, mix, unit};
+use sylva_base::hash::{mix, unit_f32 as unit};
+
+use crate::density::{Candidate, DensityModel, Rect};
 use crate::error::ForestError;
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};

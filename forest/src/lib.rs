@@ -42,4 +42,4 @@ pub use forest::{
 };
 pub use gltf::{GltfOptions, write_glb};
 pub use patch::{PatchDensity, PatchSpecies};
-pub use species::{Canopy, Species};
+pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};

@@ -3,7 +3,9 @@
 
 use glam::Vec2;
 
-use crate::density::{Candidate, DensityModel, Rect, hash, mix, unit};
+use sylva_base::hash::{hash_cell as hash, mix, unit_f32 as unit};
+
+use crate::density::{Candidate, DensityModel, Rect};
 
 /// Patch-based density management (thesis 5.3.3 and 7.10).
 ///

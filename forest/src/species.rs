@@ -3,10 +3,13 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use sylva_lsys::LSystem;
+use sylva_lsys::{GrammarFileError, LSystem};
 use sylva_turtle::{Skeleton, TurtleOptions, interpret};
 
 use crate::error::ForestError;
+
+/// Largest species file read, in bytes: real ones are a few hundred.
+pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
 
 /// A tree species.
 #[derive(Debug, Clone)]
@@ -134,9 +137,11 @@ impl Species {
     /// ```
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ForestError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| ForestError::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
+        let text = sylva_base::text_file::read(path, MAX_SPECIES_FILE_BYTES).map_err(|e| {
+            ForestError::Io {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            }
         })?;
         Self::parse_file(&text, path)
     }
@@ -179,13 +184,14 @@ impl Species {
             Some(p) => (p.lsystem()?, Some(p.angle as f32)),
             None => {
                 let gpath: PathBuf = path.parent().unwrap_or(Path::new(".")).join(grammar_ref);
-                let gtext = std::fs::read_to_string(&gpath)
-                    .map_err(|e| err(*gl, *gc, format!("grammar '{grammar_ref}': {e}")))?;
-                let g = LSystem::parse(&gtext).map_err(|e| ForestError::SpeciesFile {
-                    file: gpath.clone(),
-                    line: e.location.line,
-                    column: e.location.column,
-                    message: e.message.clone(),
+                let g = LSystem::from_file(&gpath).map_err(|e| match e {
+                    GrammarFileError::Parse { path, error } => ForestError::SpeciesFile {
+                        file: path,
+                        line: error.location.line,
+                        column: error.location.column,
+                        message: error.message,
+                    },
+                    other => err(*gl, *gc, format!("grammar '{grammar_ref}': {other}")),
                 })?;
                 (g, None)
             }

@@ -421,3 +421,23 @@ fn density_species_come_in_pairs() {
     model.candidates(Rect::new(Vec2::ZERO, Vec2::splat(100.0)), 3, &mut out);
     assert!(out.is_empty());
 }
+
+/// Found in review: a species file naming `grammar: /dev/zero` made the forest example read
+/// until it was killed (21 GB resident after 60 s).
+#[test]
+#[cfg(unix)]
+fn a_grammar_path_to_an_endless_device_is_an_error() {
+    let err =
+        Species::parse_file("grammar: /dev/zero\n", Path::new("/tmp/zero.species")).unwrap_err();
+    let ForestError::SpeciesFile {
+        line,
+        column,
+        message,
+        ..
+    } = err
+    else {
+        panic!("{err}");
+    };
+    assert_eq!((line, column), (1, 10));
+    assert!(message.contains("larger than the limit"), "{message}");
+}

@@ -6,9 +6,9 @@ use glam::{Quat, Vec3};
 
 use crate::cache::InstanceCache;
 use crate::error::InstancingError;
-use crate::hash::mix;
 use crate::hero::ROOT;
 use crate::similarity::Similarity;
+use sylva_base::hash::mix;
 
 /// A placed tree, compact: 28 bytes. Its branches are expanded on demand, deterministically
 /// from `seed`.

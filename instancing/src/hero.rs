@@ -7,9 +7,9 @@ use sylva_turtle::{Command, TurtleOptions, interpret};
 
 use crate::cache::{CANDIDATE_BYTES, EXIT_BYTES, INSTANCE_BYTES, Instance, InstanceCache};
 use crate::error::InstancingError;
-use crate::hash::mix;
 use crate::recorder::HeroRecorder;
 use crate::rewrite::{InstancingGrammar, Markers, probability_at_ages};
+use sylva_base::hash::mix;
 
 /// Settings for [`build_cache`].
 ///

@@ -52,7 +52,6 @@ mod assemble;
 mod builder;
 mod cache;
 mod error;
-mod hash;
 mod hero;
 mod recorder;
 mod rewrite;

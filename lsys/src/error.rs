@@ -122,3 +122,21 @@ pub enum DeriveError {
         value: f64,
     },
 }
+
+/// A grammar file that could not be read or parsed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum GrammarFileError {
+    /// The file could not be read, is not text or is larger than
+    /// [`MAX_GRAMMAR_BYTES`](crate::MAX_GRAMMAR_BYTES).
+    #[error(transparent)]
+    File(#[from] sylva_base::text_file::TextFileError),
+    /// The text has an error at the location given.
+    #[error("{}:{}:{}: {}", path.display(), error.location.line, error.location.column, error.message)]
+    Parse {
+        /// The file.
+        path: std::path::PathBuf,
+        /// Where and what.
+        error: ParseError,
+    },
+}

@@ -89,7 +89,7 @@ mod syntax;
 
 pub use engine::derive::{Deriver, Limits};
 pub use engine::lsystem::LSystem;
-pub use error::{DeriveError, GrammarError, Location, ParseError};
+pub use error::{DeriveError, GrammarError, GrammarFileError, Location, ParseError};
 pub use model::alphabet::{Alphabet, CUT, POP, PUSH, RESERVED, SymbolId};
 pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
@@ -106,6 +106,27 @@ impl LSystem {
     /// ```
     pub fn parse(text: &str) -> Result<LSystem, ParseError> {
         syntax::parser::parse(text)
+    }
+}
+
+impl LSystem {
+    /// Reads and parses a grammar file of at most [`MAX_GRAMMAR_BYTES`]. Errors name the file,
+    /// line and column.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("sylva-lsys-doctest.lsys");
+    /// std::fs::write(&path, "axiom: A\nA -> B(").unwrap();
+    /// let err = sylva_lsys::LSystem::from_file(&path).unwrap_err();
+    /// assert!(err.to_string().ends_with("sylva-lsys-doctest.lsys:2:8: expected a number, a name, '#' or '(' in an expression, found end of line"));
+    /// # std::fs::remove_file(&path).ok();
+    /// ```
+    pub fn from_file(path: impl AsRef<std::path::Path>) -> Result<LSystem, GrammarFileError> {
+        let path = path.as_ref();
+        let text = sylva_base::text_file::read(path, MAX_GRAMMAR_BYTES as u64)?;
+        LSystem::parse(&text).map_err(|error| GrammarFileError::Parse {
+            path: path.to_path_buf(),
+            error,
+        })
     }
 }
 
