@@ -7,7 +7,6 @@
 //! Without a grammar it derives the bundled preset `abop-1.24a`. Errors go to stderr with a
 //! non-zero exit status.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use std::process::ExitCode;
@@ -38,7 +37,7 @@ fn parse_args() -> Result<Args, String> {
             "--preset" => args.preset = Some(common::parse_value::<String>("--preset", it.next())?),
             "--help" | "-h" => {
                 let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-                return Err(format!("{USAGE}\npresets: {}", names.join(", ")));
+                common::print_help(&format!("{USAGE}\npresets: {}", names.join(", ")));
             }
             s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
             s => args.file = Some(s.to_string()),
@@ -55,13 +54,7 @@ fn run() -> Result<String, String> {
                 "give a grammar file or --preset, not both\n{USAGE}"
             ));
         }
-        (Some(path), None) => {
-            let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-            (
-                LSystem::parse(&text).map_err(|e| format!("{path}: {e}"))?,
-                4,
-            )
-        }
+        (Some(path), None) => (LSystem::from_file(path).map_err(|e| e.to_string())?, 4),
         (None, name) => {
             let name = name.as_deref().unwrap_or("abop-1.24a");
             let p =

@@ -10,7 +10,6 @@
 //! species (the files in `examples/species/`) and writes `forest.glb` and
 //! `forest_height.png`. `--stats` prints one JSON line of figures instead of the summary.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use std::path::Path;
@@ -76,7 +75,7 @@ fn parse() -> Result<Args, String> {
             "--out" => a.out = common::parse_value("--out", it.next())?,
             "--heightmap" => a.heightmap = common::parse_value("--heightmap", it.next())?,
             "--stats" => a.stats = true,
-            "--help" | "-h" => return Err(USAGE.into()),
+            "--help" | "-h" => common::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
     }

@@ -8,7 +8,6 @@
 //! `--stats` prints one JSON line of figures. `--naive N` also builds N trees the naive way
 //! (derive and mesh each in full) and reports the speedup in trees per second.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use std::process::ExitCode;
@@ -57,7 +56,7 @@ fn parse() -> Result<Args, String> {
             "--naive" => a.naive = common::parse_value("--naive", it.next())?,
             "--choices" => a.choices = common::parse_value("--choices", it.next())?,
             "--stats" => a.stats = true,
-            "--help" | "-h" => return Err(USAGE.into()),
+            "--help" | "-h" => common::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
     }

@@ -7,7 +7,6 @@
 //!
 //! Prints min, max and mean height and the time taken.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use std::process::ExitCode;
@@ -38,7 +37,7 @@ fn run() -> Result<(), String> {
             "--wrap" => wrap = true,
             "--raw" => raw = true,
             "--out" => out = common::parse_value::<String>("--out", it.next())?,
-            "--help" | "-h" => return Err(USAGE.to_string()),
+            "--help" | "-h" => common::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
     }

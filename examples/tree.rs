@@ -7,7 +7,6 @@
 //!
 //! Without arguments it writes the bundled ternary tree to `tree.obj`.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use std::process::ExitCode;
@@ -41,7 +40,7 @@ fn run() -> Result<(), String> {
             }
             "--caps" => caps = true,
             "--out" => out = common::parse_value::<String>("--out", it.next())?,
-            "--help" | "-h" => return Err(USAGE.to_string()),
+            "--help" | "-h" => common::print_help(USAGE),
             s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
             s => file = Some(s.to_string()),
         }
@@ -52,14 +51,11 @@ fn run() -> Result<(), String> {
                 "give a grammar file or --preset, not both\n{USAGE}"
             ));
         }
-        (Some(path), None) => {
-            let text = std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
-            (
-                LSystem::parse(&text).map_err(|e| format!("{path}: {e}"))?,
-                TurtleOptions::default(),
-                4,
-            )
-        }
+        (Some(path), None) => (
+            LSystem::from_file(&path).map_err(|e| e.to_string())?,
+            TurtleOptions::default(),
+            4,
+        ),
         (None, name) => {
             let name = name.unwrap_or_else(|| "abop-ternary".to_string());
             let p = preset(&name).ok_or_else(|| format!("no preset called '{name}'"))?;

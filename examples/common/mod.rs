@@ -25,6 +25,12 @@ where
     v.parse().map_err(|e| format!("{name} '{v}': {e}"))
 }
 
+/// Prints the usage to stdout and exits with success, as `--help` should.
+pub(crate) fn print_help(usage: &str) -> ! {
+    println!("{usage}");
+    std::process::exit(0)
+}
+
 /// Ends an example: errors go to stderr with a failure status.
 pub(crate) fn finish(result: Result<(), String>) -> std::process::ExitCode {
     match result {

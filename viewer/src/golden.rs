@@ -3,22 +3,16 @@
 //! committed reference image. Runs on any adapter, Mesa's software drivers included.
 //!
 //! Without an adapter the test reports and passes, unless `SYLVA_REQUIRE_GPU` is set (CI sets
-//! it after installing lavapipe). `SYLVA_BLESS=1` rewrites the reference image.
+//! it after installing lavapipe). `SYLVA_BLESS=1` rewrites the reference image:
+//! `SYLVA_BLESS=1 cargo test -p sylva-viewer golden`.
 
-#[allow(dead_code, reason = "the windowed viewer uses parts the test does not")]
-#[path = "../examples/viewer/render.rs"]
-mod render;
-#[allow(dead_code, reason = "the windowed viewer uses parts the test does not")]
-#[path = "../examples/viewer/scene.rs"]
-mod scene;
-
-use render::{ID_BARK, ID_LEAF, ID_TERRAIN, Mode};
-use scene::{Camera, Scene, SceneOptions};
+use crate::render::{self, ID_BARK, ID_LEAF, ID_TERRAIN, Mode};
+use crate::scene::{self, Camera, Scene, SceneOptions};
 
 const SIZE: (u32, u32) = (320, 180);
 const GOLDEN: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/golden/viewer_default.png"
+    "/tests/golden/default_scene.png"
 );
 
 fn read_png(path: &str) -> Option<Vec<u8>> {

@@ -1,7 +1,7 @@
 //! A minimal wgpu viewer: walk through the forest, or render one frame headless.
 //!
 //! ```text
-//! cargo run --release --example viewer -- [--grammar PRESET | --species FILE...] [--seed S]
+//! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
 //!     [--screenshot PATH [--size WxH] [--ids] [--frames N]]
 //! ```
@@ -13,8 +13,9 @@
 //! renders one frame offscreen and writes a PNG; without a GPU it runs on Mesa's software
 //! drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
-#[path = "../common/mod.rs"]
-mod common;
+mod cli;
+#[cfg(test)]
+mod golden;
 mod render;
 mod scene;
 mod window;
@@ -33,7 +34,7 @@ struct Args {
     frames: u32,
 }
 
-const USAGE: &str = "usage: viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES] [--budget-mb MB] \
+const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES] [--budget-mb MB] \
                      [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N]]";
 
 fn parse() -> Result<Args, String> {
@@ -50,20 +51,20 @@ fn parse() -> Result<Args, String> {
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
-            "--seed" => seed = common::parse_value("--seed", it.next())?,
-            "--area" => side = common::parse_value("--area", it.next())?,
-            "--budget-mb" => budget_mb = common::parse_value("--budget-mb", it.next())?,
-            "--grammar" => grammar = Some(common::parse_value("--grammar", it.next())?),
-            "--species" => files.push(common::parse_value("--species", it.next())?),
+            "--seed" => seed = cli::parse_value("--seed", it.next())?,
+            "--area" => side = cli::parse_value("--area", it.next())?,
+            "--budget-mb" => budget_mb = cli::parse_value("--budget-mb", it.next())?,
+            "--grammar" => grammar = Some(cli::parse_value("--grammar", it.next())?),
+            "--species" => files.push(cli::parse_value("--species", it.next())?),
             "--camera" => {
-                camera = Some(Camera::parse(&common::parse_value::<String>(
+                camera = Some(Camera::parse(&cli::parse_value::<String>(
                     "--camera",
                     it.next(),
                 )?)?)
             }
-            "--screenshot" => screenshot = Some(common::parse_value("--screenshot", it.next())?),
+            "--screenshot" => screenshot = Some(cli::parse_value("--screenshot", it.next())?),
             "--size" => {
-                let s: String = common::parse_value("--size", it.next())?;
+                let s: String = cli::parse_value("--size", it.next())?;
                 let (w, h) = s
                     .split_once('x')
                     .ok_or(format!("--size '{s}': expected WxH"))?;
@@ -76,8 +77,8 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--ids" => ids = true,
-            "--frames" => frames = common::parse_value("--frames", it.next())?,
-            "--help" | "-h" => return Err(USAGE.into()),
+            "--frames" => frames = cli::parse_value("--frames", it.next())?,
+            "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
     }
@@ -180,5 +181,5 @@ fn run() -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    common::finish(run())
+    cli::finish(run())
 }

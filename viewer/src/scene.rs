@@ -51,15 +51,15 @@ pub(crate) struct SceneOptions {
 pub(crate) const DEFAULT_SPECIES: [(&str, &str); 3] = [
     (
         "examples/species/leafy.species",
-        include_str!("../species/leafy.species"),
+        include_str!("../../examples/species/leafy.species"),
     ),
     (
         "examples/species/ternary.species",
-        include_str!("../species/ternary.species"),
+        include_str!("../../examples/species/ternary.species"),
     ),
     (
         "examples/species/honda.species",
-        include_str!("../species/honda.species"),
+        include_str!("../../examples/species/honda.species"),
     ),
 ];
 
