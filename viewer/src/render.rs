@@ -482,6 +482,27 @@ pub(crate) async fn device(
     Ok((adapter, device, queue))
 }
 
+/// Mesa's Vulkan device-select layer looks for a Wayland compositor while adapters are
+/// enumerated, and where there is no desktop session (CI, servers) libwayland prints
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment." to stderr. Offscreen
+/// rendering needs no compositor, so in exactly that case, and only while the adapter is
+/// requested, stderr is silenced; the guard restores it when dropped.
+#[cfg(unix)]
+fn quiet_wayland_probe() -> Option<gag::Gag> {
+    let no_session = std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|d| d.is_empty());
+    if no_session {
+        gag::Gag::stderr().ok()
+    } else {
+        None
+    }
+}
+
+/// Elsewhere there is no Wayland probe to quiet.
+#[cfg(not(unix))]
+fn quiet_wayland_probe() -> Option<()> {
+    None
+}
+
 /// An offscreen target with its device: renders frames and reads them back.
 pub(crate) struct Offscreen {
     device: wgpu::Device,
@@ -501,7 +522,10 @@ impl Offscreen {
     pub(crate) async fn new(scene: &Scene, width: u32, height: u32) -> Result<Offscreen, String> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let (adapter, device, queue) = device(&instance, None).await?;
+        let (adapter, device, queue) = {
+            let _quiet = quiet_wayland_probe();
+            device(&instance, None).await?
+        };
         let format = wgpu::TextureFormat::Rgba8UnormSrgb;
         let renderer = Renderer::new(&device, format, scene);
         let (colour, view, depth) = targets(&device, format, width, height, true);
