@@ -2,7 +2,7 @@
 //! the same grammars (the closest Rust peer: structure-of-arrays, bytecode expressions).
 //!
 //! Grammars are written with spaces between modules because symbios reads multi-letter names;
-//! sylva ignores the spaces. Throughput counts every module produced over all steps.
+//! sylva ignores the spaces. Throughput counts every module produced over all generations.
 
 use std::hint::black_box;
 
@@ -14,7 +14,7 @@ struct Case {
     defines: &'static [&'static str],
     axiom: String,
     rules: &'static [&'static str],
-    steps: u32,
+    generations: u32,
 }
 
 fn cases() -> Vec<Case> {
@@ -24,7 +24,7 @@ fn cases() -> Vec<Case> {
             defines: &[],
             axiom: "X".into(),
             rules: &["X -> F [ + X ] F [ - X ] + X", "F -> F F"],
-            steps: 9,
+            generations: 9,
         },
         Case {
             name: "honda_tree",
@@ -42,7 +42,7 @@ fn cases() -> Vec<Case> {
                 "B(l,w) -> !(w) F(l) [ -(a2) $ C(l*r2,w*wr) ] C(l*r1,w*wr)",
                 "C(l,w) -> !(w) F(l) [ +(a2) $ B(l*r2,w*wr) ] B(l*r1,w*wr)",
             ],
-            steps: 15,
+            generations: 15,
         },
         Case {
             name: "ternary_tree",
@@ -59,21 +59,21 @@ fn cases() -> Vec<Case> {
                 "F(l) -> F(l*lr)",
                 "!(w) -> !(w*vr)",
             ],
-            steps: 8,
+            generations: 8,
         },
         Case {
             name: "stochastic_bush",
             defines: &[],
             axiom: "A".into(),
             rules: &["A -> F [ + A ] A : 0.5", "A -> F [ - A ] [ & A ] : 0.5"],
-            steps: 18,
+            generations: 18,
         },
         Case {
             name: "context_signal",
             defines: &[],
             axiom: "A(1) B(1) C(1) ".repeat(100_000),
             rules: &["A(x) < B(y) > C(z) -> B(x+y+z)"],
-            steps: 1,
+            generations: 1,
         },
     ]
 }
@@ -108,25 +108,31 @@ fn rewriting(crit: &mut Criterion) {
     group.sample_size(10);
     for case in cases() {
         let grammar = LSystem::parse(&sylva_source(&case)).expect("grammar parses");
-        let produced: u64 = (1..=case.steps)
+        let produced: u64 = (1..=case.generations)
             .map(|n| grammar.derive(n, 1).expect("derives").len() as u64)
             .sum();
         // Both engines must agree on the size of what they build, or the ratio means nothing.
         let mut check = symbios_system(&case);
-        check.derive(case.steps as usize).expect("symbios derives");
-        let ours = grammar.derive(case.steps, 1).expect("derives").len();
+        check
+            .derive(case.generations as usize)
+            .expect("symbios derives");
+        let ours = grammar.derive(case.generations, 1).expect("derives").len();
         if !case.name.starts_with("stochastic") {
             assert_eq!(check.state.len(), ours, "{}: engines disagree", case.name);
         }
         group.throughput(Throughput::Elements(produced));
         group.bench_function(format!("sylva/{}", case.name), |b| {
-            b.iter(|| grammar.derive(black_box(case.steps), 1).expect("derives"))
+            b.iter(|| {
+                grammar
+                    .derive(black_box(case.generations), 1)
+                    .expect("derives")
+            })
         });
         group.bench_function(format!("symbios/{}", case.name), |b| {
             b.iter_batched(
                 || symbios_system(&case),
                 |mut sys| {
-                    sys.derive(black_box(case.steps as usize))
+                    sys.derive(black_box(case.generations as usize))
                         .expect("symbios derives")
                 },
                 BatchSize::LargeInput,

@@ -12,11 +12,11 @@ fn trees() -> Vec<(&'static str, Word, TurtleOptions)> {
         .into_iter()
         .map(|name| {
             let p = preset(name).expect("bundled");
-            let steps = if name == "abop-honda" { 14 } else { 7 };
+            let generations = if name == "abop-honda" { 14 } else { 7 };
             let word = p
                 .lsystem()
                 .expect("parses")
-                .derive(steps, 0)
+                .derive(generations, 0)
                 .expect("derives");
             (name, word, TurtleOptions::for_preset(p))
         })
@@ -49,7 +49,7 @@ fn meshing(c: &mut Criterion) {
                     // Reuses the buffers, as a hero-tree loop does.
                     builder.mesh.vertices.clear();
                     builder.mesh.bark.clear();
-                    builder.mesh.foliage.clear();
+                    builder.mesh.leaves.clear();
                     interpret(black_box(&word), &options, &mut builder).expect("interprets");
                     builder.mesh.vertices.len()
                 })

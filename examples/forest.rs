@@ -217,7 +217,7 @@ fn run() -> Result<(), String> {
             ms(export_time),
             written.bytes,
             common::peak_rss() as f64 / (1 << 20) as f64,
-            std::mem::size_of::<sylva::instancing::CompactTree>(),
+            size_of::<sylva::instancing::CompactTree>(),
         );
     } else {
         println!(

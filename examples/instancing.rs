@@ -84,7 +84,7 @@ fn run() -> Result<(), String> {
     let args = parse()?;
     let p = preset(&args.preset).ok_or_else(|| format!("no preset called '{}'", args.preset))?;
     let grammar = p.lsystem().map_err(|e| e.to_string())?;
-    let generations = args.generations.unwrap_or(p.steps.min(7));
+    let generations = args.generations.unwrap_or(p.generations.min(7));
     // Instances are rigid: no tropism for instanced species.
     let mut turtle = TurtleOptions::default()
         .with_angle(p.angle as f32)
@@ -145,7 +145,7 @@ fn run() -> Result<(), String> {
             s.instances,
             s.exits,
             placements as f64 / args.trees.max(1) as f64,
-            std::mem::size_of::<CompactTree>(),
+            size_of::<CompactTree>(),
             placements as f64 * 32.0 / args.trees.max(1) as f64,
             placements as f64 / expand_s,
             common::peak_rss() as f64 / (1 << 20) as f64,

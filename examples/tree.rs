@@ -1,7 +1,7 @@
 //! Derives a tree, meshes it with the turtle and writes a Wavefront OBJ file.
 //!
 //! ```text
-//! cargo run --release --example tree -- [GRAMMAR_FILE | --preset NAME] [--steps N] [--seed S]
+//! cargo run --release --example tree -- [GRAMMAR_FILE | --preset NAME] [--generations N] [--seed S]
 //!     [--angle DEG] [--shape cylinder|frustum] [--sides K] [--caps] [--out tree.obj]
 //! ```
 //!
@@ -14,20 +14,22 @@ use std::process::ExitCode;
 use sylva::lsys::{LSystem, preset};
 use sylva::turtle::{BranchShape, MeshBuilder, TurtleOptions, interpret, write_obj};
 
-const USAGE: &str = "usage: tree [GRAMMAR_FILE | --preset NAME] [--steps N] [--seed S] [--angle DEG] \
+const USAGE: &str = "usage: tree [GRAMMAR_FILE | --preset NAME] [--generations N] [--seed S] [--angle DEG] \
                      [--shape cylinder|frustum] [--sides K] [--caps] [--out tree.obj]";
 
 fn run() -> Result<(), String> {
     let mut file = None;
     let mut preset_name = None;
-    let (mut steps, mut seed, mut angle, mut shape, mut sides, mut caps) =
+    let (mut generations, mut seed, mut angle, mut shape, mut sides, mut caps) =
         (None, 0u64, None, BranchShape::Frustum, 8u32, false);
     let mut out = String::from("tree.obj");
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
             "--preset" => preset_name = Some(common::parse_value::<String>("--preset", it.next())?),
-            "--steps" => steps = Some(common::parse_value::<u32>("--steps", it.next())?),
+            "--generations" => {
+                generations = Some(common::parse_value::<u32>("--generations", it.next())?)
+            }
             "--seed" => seed = common::parse_value("--seed", it.next())?,
             "--sides" => sides = common::parse_value("--sides", it.next())?,
             "--angle" => angle = Some(common::parse_value::<f32>("--angle", it.next())?),
@@ -45,7 +47,7 @@ fn run() -> Result<(), String> {
             s => file = Some(s.to_string()),
         }
     }
-    let (grammar, mut options, default_steps) = match (file, preset_name) {
+    let (grammar, mut options, default_generations) = match (file, preset_name) {
         (Some(_), Some(_)) => {
             return Err(format!(
                 "give a grammar file or --preset, not both\n{USAGE}"
@@ -62,7 +64,7 @@ fn run() -> Result<(), String> {
             (
                 p.lsystem().map_err(|e| e.to_string())?,
                 TurtleOptions::for_preset(p),
-                p.steps,
+                p.generations,
             )
         }
     };
@@ -74,7 +76,7 @@ fn run() -> Result<(), String> {
         .with_radial_segments(sides)
         .with_caps(caps);
     let word = grammar
-        .derive(steps.unwrap_or(default_steps), seed)
+        .derive(generations.unwrap_or(default_generations), seed)
         .map_err(|e| e.to_string())?;
     let mut builder = MeshBuilder::new(&options);
     let stats = interpret(&word, &options, &mut builder).map_err(|e| e.to_string())?;

@@ -91,17 +91,10 @@ fn hero_cache_of_a_fixed_grammar_seed_and_budget() {
         for v in &cache.vertices {
             h.f32s(&v.position).f32s(&v.normal).f32s(&v.uv);
         }
-        h.u32s(&cache.bark).u32s(&cache.foliage);
+        h.u32s(&cache.bark).u32s(&cache.leaves);
         for i in &cache.instances {
             h.u32s(&[
-                i.id,
-                i.age,
-                i.bark.0,
-                i.bark.1,
-                i.foliage.0,
-                i.foliage.1,
-                i.exits.0,
-                i.exits.1,
+                i.id, i.age, i.bark.0, i.bark.1, i.leaves.0, i.leaves.1, i.exits.0, i.exits.1,
             ])
             .similarity(&i.frame_inverse);
         }

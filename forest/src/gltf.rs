@@ -206,7 +206,7 @@ pub fn write_glb<W: Write>(
         let cache = &variant.cache;
         let species = &forest.species[variant.species];
         let n = cache.vertices.len() as u32;
-        if cache.bark.iter().chain(&cache.foliage).any(|&i| i >= n) {
+        if cache.bark.iter().chain(&cache.leaves).any(|&i| i >= n) {
             return Err(ForestError::InvalidExport(
                 "instance index out of range".into(),
             ));
@@ -224,9 +224,9 @@ pub fn write_glb<W: Write>(
                 Some(ELEMENT_ARRAY_BUFFER),
             )
         });
-        let leaf_view = (!cache.foliage.is_empty()).then(|| {
+        let leaf_view = (!cache.leaves.is_empty()).then(|| {
             doc.view(
-                bytemuck::cast_slice(&cache.foliage),
+                bytemuck::cast_slice(&cache.leaves),
                 None,
                 Some(ELEMENT_ARRAY_BUFFER),
             )
@@ -247,7 +247,7 @@ pub fn write_glb<W: Write>(
         for i in used {
             let inst = &cache.instances[i];
             if inst.bark.0 as usize + inst.bark.1 as usize > cache.bark.len()
-                || inst.foliage.0 as usize + inst.foliage.1 as usize > cache.foliage.len()
+                || inst.leaves.0 as usize + inst.leaves.1 as usize > cache.leaves.len()
             {
                 return Err(ForestError::InvalidExport(format!(
                     "instance {i} of variant {} spans past its cache's indices",
@@ -257,7 +257,7 @@ pub fn write_glb<W: Write>(
             let mut primitives = Vec::new();
             for (view, (start, count), material) in [
                 (bark_view, inst.bark, bark_material),
-                (leaf_view, inst.foliage, leaf_material),
+                (leaf_view, inst.leaves, leaf_material),
             ] {
                 if let (Some(view), true) = (view, count > 0) {
                     let acc = doc.accessor(

@@ -40,6 +40,6 @@ pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantBatches,
 };
-pub use gltf::{GltfOptions, write_glb};
+pub use gltf::{GlbStats, GltfOptions, write_glb};
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};

@@ -19,7 +19,7 @@ pub struct Species {
     pub name: String,
     /// The grammar.
     pub grammar: LSystem,
-    /// Derivation steps of a canopy tree.
+    /// Generations of a canopy tree.
     pub generations: u32,
     /// Derivation steps of a seedling (fewer than `generations`).
     pub seedling_generations: u32,

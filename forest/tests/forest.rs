@@ -278,7 +278,7 @@ fn exported_glb_is_well_formed_and_counts_match() {
                 .groups
                 .iter()
                 .zip(&cache.instances)
-                .filter(|(_, i)| i.bark.1 + i.foliage.1 > 0)
+                .filter(|(_, i)| i.bark.1 + i.leaves.1 > 0)
                 .map(|(g, _)| g.len())
                 .sum::<usize>()
         })

@@ -58,7 +58,7 @@ impl TreeBuilder for InstancedBuilder<'_> {
             .groups
             .iter()
             .zip(&self.cache.instances)
-            .map(|(g, inst)| g.len() as u64 * u64::from(inst.bark.1 + inst.foliage.1) / 3)
+            .map(|(g, inst)| g.len() as u64 * u64::from(inst.bark.1 + inst.leaves.1) / 3)
             .sum();
         Ok(BuildReport {
             trees: trees.len(),

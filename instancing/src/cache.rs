@@ -14,8 +14,8 @@ pub struct Instance {
     pub age: u32,
     /// Bark triangles: `bark[start..start + count]` of the cache's index buffer.
     pub bark: (u32, u32),
-    /// Foliage triangles: a range of the cache's foliage index buffer.
-    pub foliage: (u32, u32),
+    /// Leaf triangles: a range of the cache's leaf index buffer.
+    pub leaves: (u32, u32),
     /// The inverse of the instance's frame M in its hero tree: placing it at a desired frame D
     /// uses T = D * M^-1.
     pub frame_inverse: Similarity,
@@ -36,9 +36,9 @@ pub struct Exit {
 }
 
 /// Bytes one instance's metadata costs against the budget.
-pub const INSTANCE_BYTES: usize = std::mem::size_of::<Instance>();
+pub const INSTANCE_BYTES: usize = size_of::<Instance>();
 /// Bytes one exit point costs against the budget.
-pub const EXIT_BYTES: usize = std::mem::size_of::<Exit>();
+pub const EXIT_BYTES: usize = size_of::<Exit>();
 /// Bytes one lookup candidate costs against the budget (its index and its exit count).
 pub const CANDIDATE_BYTES: usize = 8;
 
@@ -49,8 +49,8 @@ pub struct InstanceCache {
     pub vertices: Vec<Vertex>,
     /// The shared bark index buffer.
     pub bark: Vec<u32>,
-    /// The shared foliage index buffer.
-    pub foliage: Vec<u32>,
+    /// The shared leaf index buffer.
+    pub leaves: Vec<u32>,
     /// All instances.
     pub instances: Vec<Instance>,
     /// All exit points.
@@ -80,8 +80,8 @@ impl InstanceCache {
 
     /// Bytes used: geometry, instance metadata, exits and lookup candidates.
     pub fn bytes(&self) -> usize {
-        self.vertices.len() * std::mem::size_of::<Vertex>()
-            + (self.bark.len() + self.foliage.len()) * 4
+        self.vertices.len() * size_of::<Vertex>()
+            + (self.bark.len() + self.leaves.len()) * 4
             + self.instances.len() * INSTANCE_BYTES
             + self.exits.len() * EXIT_BYTES
             + self.candidates.len() * CANDIDATE_BYTES

@@ -24,7 +24,7 @@ use sylva_base::hash::mix;
 pub struct HeroOptions {
     /// Bytes the cache may use: geometry, instance metadata, exits and the lookup table.
     pub budget: usize,
-    /// Derivation steps of every tree of the species.
+    /// Generations of every tree of the species.
     pub generations: u32,
     /// Seed of the hero trees.
     pub seed: u64,
@@ -279,11 +279,11 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
         let (v0, b0, f0) = (
             cache.vertices.len() as u32,
             cache.bark.len() as u32,
-            cache.foliage.len() as u32,
+            cache.leaves.len() as u32,
         );
         cache.vertices.extend_from_slice(&mesh.vertices);
         cache.bark.extend(mesh.bark.iter().map(|&i| i + v0));
-        cache.foliage.extend(mesh.foliage.iter().map(|&i| i + v0));
+        cache.leaves.extend(mesh.leaves.iter().map(|&i| i + v0));
         for &i in &accepted {
             let r = &rec.instances[i];
             let inverse = r.frame.inverse();
@@ -300,7 +300,7 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
                 id: r.id,
                 age: r.age,
                 bark: (b0 + r.bark.0, r.bark.1 - r.bark.0),
-                foliage: (f0 + r.foliage.0, r.foliage.1 - r.foliage.0),
+                leaves: (f0 + r.leaves.0, r.leaves.1 - r.leaves.0),
                 frame_inverse: inverse,
                 exits: (e0, cache.exits.len() as u32 - e0),
             });

@@ -18,8 +18,8 @@ pub struct RecordedInstance {
     pub frame: Similarity,
     /// Bark index range (start, end) in the hero mesh.
     pub bark: (u32, u32),
-    /// Foliage index range (start, end).
-    pub foliage: (u32, u32),
+    /// Leaf index range (start, end).
+    pub leaves: (u32, u32),
     /// Exit range (start, end) into [`HeroRecorder::exits`].
     pub exits: (u32, u32),
     /// Order in which its start marker appeared.
@@ -32,7 +32,7 @@ struct Open {
     age: u32,
     frame: Similarity,
     bark: u32,
-    foliage: u32,
+    leaves: u32,
     exits: u32,
     order: u32,
 }
@@ -104,7 +104,7 @@ impl GeometrySink for HeroRecorder {
                 age,
                 frame: Similarity::from_frame(frame),
                 bark: mesh.bark.len() as u32,
-                foliage: mesh.foliage.len() as u32,
+                leaves: mesh.leaves.len() as u32,
                 exits: self.exits.len() as u32,
                 order: self.started,
             });
@@ -118,7 +118,7 @@ impl GeometrySink for HeroRecorder {
                     age,
                     frame: o.frame,
                     bark: (o.bark, mesh.bark.len() as u32),
-                    foliage: (o.foliage, mesh.foliage.len() as u32),
+                    leaves: (o.leaves, mesh.leaves.len() as u32),
                     exits: (o.exits, self.exits.len() as u32),
                     start_order: o.order,
                 });

@@ -32,7 +32,7 @@ fn assembled_triangles(cache: &InstanceCache, tree: &CompactTree) -> Vec<Tri> {
     Assembler::new()
         .expand_with(cache, tree, |i, t| {
             let inst = &cache.instances[i as usize];
-            let ranges = [(&cache.bark, inst.bark), (&cache.foliage, inst.foliage)];
+            let ranges = [(&cache.bark, inst.bark), (&cache.leaves, inst.leaves)];
             for (indices, (start, count)) in ranges {
                 for tri in indices[start as usize..(start + count) as usize].chunks_exact(3) {
                     out.push([0, 1, 2].map(|k| {
@@ -178,14 +178,14 @@ fn splice(
     }
 }
 
-/// Whether `word` can be derived from `symbol` in exactly `steps` steps of a context-free
+/// Whether `word` can be derived from `symbol` in exactly `generations` rewrites of a context-free
 /// non-parametric grammar (each module rewritten by one of its productions, or copied when it
-/// has none). Dynamic programming over (position, symbol, steps) -> reachable end positions.
+/// has none). Dynamic programming over (position, symbol, generations) -> reachable end positions.
 fn derivable(
     word: &[char],
     rules: &HashMap<char, Vec<Vec<char>>>,
     symbol: char,
-    steps: u32,
+    generations: u32,
 ) -> bool {
     fn ends(
         w: &[char],
@@ -230,7 +230,7 @@ fn derivable(
         memo.insert((at, s, k), out.clone());
         out
     }
-    ends(word, rules, 0, symbol, steps, &mut HashMap::new()).contains(&word.len())
+    ends(word, rules, 0, symbol, generations, &mut HashMap::new()).contains(&word.len())
 }
 
 #[test]

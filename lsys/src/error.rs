@@ -81,27 +81,28 @@ pub enum GrammarError {
 #[non_exhaustive]
 pub enum DeriveError {
     /// The word grew past [`Limits::max_modules`](crate::Limits::max_modules).
-    /// Derive fewer steps or raise the limit if the memory is really there.
-    #[error("derivation step {step} would exceed the limit of {limit} modules")]
+    /// Derive fewer generations or raise the limit if the memory is really there.
+    #[error("generation {generation} would exceed the limit of {limit} modules")]
     TooManyModules {
-        /// The step (1-based) that hit the limit.
-        step: u32,
+        /// The generation (1-based) that hit the limit.
+        generation: u32,
         /// The limit in force.
         limit: usize,
     },
     /// The word's parameters grew past [`Limits::max_params`](crate::Limits::max_params).
-    /// Derive fewer steps or raise the limit.
-    #[error("derivation step {step} would exceed the limit of {limit} parameters")]
+    /// Derive fewer generations or raise the limit.
+    #[error("generation {generation} would exceed the limit of {limit} parameters")]
     TooManyParams {
-        /// The step (1-based) that hit the limit.
-        step: u32,
+        /// The generation (1-based) that hit the limit.
+        generation: u32,
         /// The limit in force.
         limit: usize,
     },
-    /// More steps were asked for than [`Limits::max_steps`](crate::Limits::max_steps) allows.
-    #[error("{requested} derivation steps requested, the limit is {limit}")]
-    TooManySteps {
-        /// Steps asked for.
+    /// More generations were asked for than
+    /// [`Limits::max_generations`](crate::Limits::max_generations) allows.
+    #[error("{requested} generations requested, the limit is {limit}")]
+    TooManyGenerations {
+        /// Generations asked for.
         requested: u32,
         /// The limit in force.
         limit: u32,
@@ -109,11 +110,11 @@ pub enum DeriveError {
     /// An expression produced infinity or NaN (for example a division by zero).
     /// Guard the production with a condition or change the constants.
     #[error(
-        "derivation step {step}: parameter {index} of module '{symbol}' is not finite ({value})"
+        "generation {generation}: parameter {index} of module '{symbol}' is not finite ({value})"
     )]
     NonFiniteParameter {
-        /// The step (1-based) in which it happened.
-        step: u32,
+        /// The generation (1-based) in which it happened.
+        generation: u32,
         /// The module's symbol.
         symbol: char,
         /// Which parameter (0-based).

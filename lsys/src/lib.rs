@@ -56,7 +56,7 @@
 //!
 //! [`LSystem::derive`] is a pure function of the grammar, the step count and the seed: one
 //! PCG stream (`rand_pcg::Pcg64Mcg`) is consumed in word order. Words grow exponentially, so
-//! every derivation runs under [`Limits`] (modules, parameters, steps) and returns
+//! every derivation runs under [`Limits`] (modules, parameters, generations) and returns
 //! [`DeriveError`] instead of exhausting memory:
 //!
 //! ```

@@ -13,8 +13,8 @@ pub struct Preset {
     pub description: &'static str,
     /// The grammar text.
     pub source: &'static str,
-    /// Number of derivation steps of the published figure.
-    pub steps: u32,
+    /// Generations of the published figure.
+    pub generations: u32,
     /// Default turning angle in degrees, for symbols without a parameter.
     pub angle: f64,
     /// Tropism direction and susceptibility `e` of the published figure, if any.
@@ -29,12 +29,12 @@ impl Preset {
 }
 
 macro_rules! preset {
-    ($name:literal, $desc:literal, $steps:expr, $angle:expr, $tropism:expr) => {
+    ($name:literal, $desc:literal, $generations:expr, $angle:expr, $tropism:expr) => {
         Preset {
             name: $name,
             description: $desc,
             source: include_str!(concat!("../presets/", $name, ".lsys")),
-            steps: $steps,
+            generations: $generations,
             angle: $angle,
             tropism: $tropism,
         }

@@ -2,10 +2,10 @@
 
 use sylva_lsys::{DeriveError, LSystem, Limits, PRESETS, Word};
 
-fn derive(src: &str, steps: u32) -> String {
+fn derive(src: &str, generations: u32) -> String {
     LSystem::parse(src)
         .unwrap()
-        .derive(steps, 1)
+        .derive(generations, 1)
         .unwrap()
         .to_string()
 }
@@ -188,7 +188,7 @@ fn explosive_growth_fails_fast_with_a_clear_error() {
     assert_eq!(
         g.derive_with(10, 0, &small).unwrap_err(),
         DeriveError::TooManyModules {
-            step: 7,
+            generation: 7,
             limit: 100
         }
     );
@@ -198,8 +198,8 @@ fn explosive_growth_fails_fast_with_a_clear_error() {
         Err(DeriveError::TooManyParams { .. })
     ));
     assert!(matches!(
-        g.derive_with(5, 0, &Limits::default().with_max_steps(4)),
-        Err(DeriveError::TooManySteps {
+        g.derive_with(5, 0, &Limits::default().with_max_generations(4)),
+        Err(DeriveError::TooManyGenerations {
             requested: 5,
             limit: 4
         })
@@ -257,7 +257,7 @@ fn every_preset_parses_derives_and_prints_back() {
     for p in PRESETS {
         let g = p.lsystem().unwrap_or_else(|e| panic!("{}: {e}", p.name));
         let w = g
-            .derive(p.steps, 42)
+            .derive(p.generations, 42)
             .unwrap_or_else(|e| panic!("{}: {e}", p.name));
         assert!(w.len() > 10, "{}", p.name);
         let reparsed = LSystem::parse(&g.to_string()).unwrap();

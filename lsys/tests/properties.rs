@@ -42,10 +42,10 @@ proptest! {
     }
 
     #[test]
-    fn d0l_length_follows_growth_matrix((axiom, succ) in common::d0l(), steps in 0u32..7) {
+    fn d0l_length_follows_growth_matrix((axiom, succ) in common::d0l(), generations in 0u32..7) {
         let src = format!("axiom: {axiom}\nA -> {}\nB -> {}\nC -> {}", succ[0], succ[1], succ[2]);
         let g = LSystem::parse(&src).unwrap();
-        // counts[i] after n steps = counts after n-1 steps times the growth matrix M[i][j]
+        // counts[i] after n generations = counts after n-1 generations times the growth matrix M[i][j]
         // (number of letter j in the successor of letter i).
         let idx = |c: char| (c as u8 - b'A') as usize;
         let mut m = [[0u64; 3]; 3];
@@ -54,12 +54,12 @@ proptest! {
         }
         let mut v = [0u64; 3];
         for c in axiom.chars() { v[idx(c)] += 1; }
-        for _ in 0..steps {
+        for _ in 0..generations {
             let mut next = [0u64; 3];
             for i in 0..3 { for j in 0..3 { next[j] += v[i] * m[i][j]; } }
             v = next;
         }
-        let w = g.derive(steps, 0).unwrap();
+        let w = g.derive(generations, 0).unwrap();
         prop_assert_eq!(w.len() as u64, v.iter().sum::<u64>());
     }
 
@@ -92,7 +92,7 @@ proptest! {
     #[test]
     fn grammar_like_text_never_panics(src in common::grammar_like_text(), seed: u64) {
         if let Ok(g) = LSystem::parse(&src) {
-            let limits = Limits::default().with_max_modules(10_000).with_max_params(10_000).with_max_steps(6);
+            let limits = Limits::default().with_max_modules(10_000).with_max_params(10_000).with_max_generations(6);
             let _ = g.derive_with(6, seed, &limits);
             let _ = LSystem::parse(&g.to_string()).unwrap();
         }

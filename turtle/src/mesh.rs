@@ -26,7 +26,7 @@ pub enum Material {
     /// Branch tubes.
     Bark,
     /// Polygons and leaves.
-    Foliage,
+    Leaf,
 }
 
 /// Vertex buffer shared by two index lists, one per [`Material`].
@@ -37,26 +37,25 @@ pub struct Mesh {
     /// Triangles of branch tubes (three indices each).
     pub bark: Vec<u32>,
     /// Triangles of polygons and leaves.
-    pub foliage: Vec<u32>,
+    pub leaves: Vec<u32>,
 }
 
 impl Mesh {
     /// Number of triangles of both materials.
     pub fn triangle_count(&self) -> usize {
-        (self.bark.len() + self.foliage.len()) / 3
+        (self.bark.len() + self.leaves.len()) / 3
     }
 
     /// Bytes of vertex and index data.
     pub fn byte_size(&self) -> usize {
-        self.vertices.len() * std::mem::size_of::<Vertex>()
-            + (self.bark.len() + self.foliage.len()) * 4
+        self.vertices.len() * size_of::<Vertex>() + (self.bark.len() + self.leaves.len()) * 4
     }
 
     /// Indices of one material.
     pub fn indices(&self, material: Material) -> &[u32] {
         match material {
             Material::Bark => &self.bark,
-            Material::Foliage => &self.foliage,
+            Material::Leaf => &self.leaves,
         }
     }
 
@@ -72,7 +71,7 @@ impl Mesh {
         let t = *transform;
         self.bark
             .chunks_exact(3)
-            .chain(self.foliage.chunks_exact(3))
+            .chain(self.leaves.chunks_exact(3))
             .map(move |tri| {
                 [tri[0], tri[1], tri[2]]
                     .map(|i| t.transform_point3(Vec3::from(self.vertices[i as usize].position)))
@@ -189,7 +188,7 @@ impl MeshBuilder {
                 uv,
             });
         }
-        self.mesh.foliage.extend_from_slice(&[
+        self.mesh.leaves.extend_from_slice(&[
             first,
             first + 1,
             first + 2,
@@ -273,7 +272,7 @@ impl GeometrySink for MeshBuilder {
         }
         for i in 1..vertices.len() as u32 - 1 {
             self.mesh
-                .foliage
+                .leaves
                 .extend_from_slice(&[first, first + i, first + i + 1]);
         }
     }

@@ -5,7 +5,7 @@ use std::io::{self, Write};
 use crate::mesh::Mesh;
 
 /// Writes `mesh` as OBJ with normals and texture coordinates, in two groups `bark` and
-/// `foliage`.
+/// `leaves`.
 ///
 /// ```
 /// let mut out = Vec::new();
@@ -29,7 +29,7 @@ pub fn write_obj<W: Write>(mesh: &Mesh, out: W) -> io::Result<()> {
     for v in &mesh.vertices {
         writeln!(w, "vt {} {}", v.uv[0], v.uv[1])?;
     }
-    for (name, indices) in [("bark", &mesh.bark), ("foliage", &mesh.foliage)] {
+    for (name, indices) in [("bark", &mesh.bark), ("leaves", &mesh.leaves)] {
         if indices.is_empty() {
             continue;
         }

@@ -40,7 +40,11 @@ fn segment_count_equals_drawing_steps() {
         "kenwood-leafy",
     ] {
         let p = preset(name).unwrap();
-        let w = p.lsystem().unwrap().derive(p.steps.min(6), 0).unwrap();
+        let w = p
+            .lsystem()
+            .unwrap()
+            .derive(p.generations.min(6), 0)
+            .unwrap();
         let draws = w.iter().filter(|m| m.symbol == 'F').count() as u32;
         // F inside a polygon outlines it instead of drawing; these grammars have none.
         let stats = interpret(&w, &TurtleOptions::for_preset(p), &mut NullSink).unwrap();
@@ -147,7 +151,7 @@ fn caps_close_tube_ends() {
 }
 
 #[test]
-fn polygons_and_leaves_become_foliage() {
+fn polygons_and_leaves_use_the_leaf_material() {
     let leafy = preset("kenwood-leafy").unwrap();
     let w = leafy.lsystem().unwrap().derive(3, 0).unwrap();
     let o = TurtleOptions::for_preset(leafy);
@@ -157,9 +161,9 @@ fn polygons_and_leaves_become_foliage() {
     assert_eq!(stats.polygons, leaves);
     // Each leaf outline has 6 points (the start and six moves, the last returning to the
     // start), so 4 fan triangles.
-    assert_eq!(b.mesh.foliage.len() as u32, leaves * 4 * 3);
+    assert_eq!(b.mesh.leaves.len() as u32, leaves * 4 * 3);
     let quad = mesh("J", &TurtleOptions::default());
-    assert_eq!(quad.foliage.len(), 6);
+    assert_eq!(quad.leaves.len(), 6);
     assert_eq!(quad.vertices[0].normal, [0.0, 0.0, 1.0]);
 }
 
@@ -218,7 +222,7 @@ fn bad_words_give_errors_not_panics() {
             .all(|v| v.position.iter().all(|c| c.is_finite()))
     );
     // Unclosed brackets and polygons at the end of the word are simply dropped.
-    assert_eq!(mesh("[F{.f+f", &TurtleOptions::default()).foliage.len(), 0);
+    assert_eq!(mesh("[F{.f+f", &TurtleOptions::default()).leaves.len(), 0);
     let deep = "[".repeat(100);
     let w: Word = deep.parse().unwrap();
     let mut o = TurtleOptions::default();
@@ -337,7 +341,7 @@ proptest! {
                 prop_assert!(v.position.iter().chain(&v.normal).chain(&v.uv).all(|c| c.is_finite()));
             }
             let n = m.vertices.len() as u32;
-            prop_assert!(m.bark.iter().chain(&m.foliage).all(|&i| i < n));
+            prop_assert!(m.bark.iter().chain(&m.leaves).all(|&i| i < n));
         }
     }
 }

@@ -90,7 +90,7 @@ fn parse() -> Result<Args, String> {
         (Some(name), true) => {
             let p = sylva::lsys::preset(&name).ok_or(format!("no preset called '{name}'"))?;
             vec![
-                sylva::forest::Species::from_preset(p.name, p.steps.min(6))
+                sylva::forest::Species::from_preset(p.name, p.generations.min(6))
                     .map_err(|e| e.to_string())?,
             ]
         }

@@ -55,7 +55,7 @@ pub(crate) enum Mode {
 struct VariantBuffers {
     vertices: wgpu::Buffer,
     bark: Option<wgpu::Buffer>,
-    foliage: Option<wgpu::Buffer>,
+    leaves: Option<wgpu::Buffer>,
 }
 
 struct Draw {
@@ -149,7 +149,7 @@ impl Renderer {
                 }],
             })
         };
-        let globals_layout = uniform_layout(false, std::mem::size_of::<Globals>() as u64);
+        let globals_layout = uniform_layout(false, size_of::<Globals>() as u64);
         let material_layout = uniform_layout(true, 32);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
@@ -191,7 +191,7 @@ impl Renderer {
         };
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
-            size: std::mem::size_of::<Globals>() as u64,
+            size: size_of::<Globals>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -240,7 +240,7 @@ impl Renderer {
                     wgpu::BufferUsages::VERTEX,
                 ),
                 bark: index_buffer(device, "bark indices", &v.bark),
-                foliage: index_buffer(device, "leaf indices", &v.foliage),
+                leaves: index_buffer(device, "leaf indices", &v.leaves),
             })
             .collect();
         let mut all: Vec<InstanceRaw> = Vec::new();
@@ -248,7 +248,7 @@ impl Renderer {
         for g in &scene.groups {
             let first = all.len() as u64;
             all.extend_from_slice(&g.instances);
-            for (bark, range) in [(true, g.bark), (false, g.foliage)] {
+            for (bark, range) in [(true, g.bark), (false, g.leaves)] {
                 if range.1 > 0 {
                     draws.push(Draw {
                         variant: g.variant,
@@ -389,7 +389,7 @@ impl Renderer {
         let mut bound: Option<(usize, bool)> = None;
         for d in &self.draws {
             let v = &self.variants[d.variant];
-            let indices = if d.bark { &v.bark } else { &v.foliage };
+            let indices = if d.bark { &v.bark } else { &v.leaves };
             let Some(indices) = indices else { continue };
             if bound != Some((d.variant, d.bark)) {
                 pass.set_vertex_buffer(0, v.vertices.slice(..));

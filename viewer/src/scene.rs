@@ -18,7 +18,7 @@ pub(crate) struct InstanceRaw {
 pub(crate) struct VariantGeometry {
     pub(crate) vertices: Vec<Vertex>,
     pub(crate) bark: Vec<u32>,
-    pub(crate) foliage: Vec<u32>,
+    pub(crate) leaves: Vec<u32>,
     pub(crate) bark_colour: [f32; 3],
     pub(crate) leaf_colour: [f32; 3],
 }
@@ -27,7 +27,7 @@ pub(crate) struct VariantGeometry {
 pub(crate) struct Group {
     pub(crate) variant: usize,
     pub(crate) bark: (u32, u32),
-    pub(crate) foliage: (u32, u32),
+    pub(crate) leaves: (u32, u32),
     pub(crate) instances: Vec<InstanceRaw>,
 }
 
@@ -99,7 +99,7 @@ impl Scene {
                 VariantGeometry {
                     vertices: v.cache.vertices.clone(),
                     bark: v.cache.bark.clone(),
-                    foliage: v.cache.foliage.clone(),
+                    leaves: v.cache.leaves.clone(),
                     bark_colour: s.bark,
                     leaf_colour: s.leaf,
                 }
@@ -109,13 +109,13 @@ impl Scene {
         for b in &batches {
             let cache = &forest.variants[b.variant].cache;
             for (inst, placements) in cache.instances.iter().zip(&b.placements.groups) {
-                if placements.is_empty() || inst.bark.1 + inst.foliage.1 == 0 {
+                if placements.is_empty() || inst.bark.1 + inst.leaves.1 == 0 {
                     continue;
                 }
                 groups.push(Group {
                     variant: b.variant,
                     bark: inst.bark,
-                    foliage: inst.foliage,
+                    leaves: inst.leaves,
                     instances: placements
                         .iter()
                         .map(|t| InstanceRaw {

@@ -16,8 +16,8 @@ pub struct Limits {
     pub max_modules: usize,
     /// Most parameters a word may hold in total. Default 40 million (320 MB).
     pub max_params: usize,
-    /// Most derivation steps one call may run. Default 10,000.
-    pub max_steps: u32,
+    /// Most generations one call may derive. Default 10,000.
+    pub max_generations: u32,
 }
 
 impl Limits {
@@ -25,7 +25,7 @@ impl Limits {
     pub const DEFAULT: Limits = Limits {
         max_modules: 10_000_000,
         max_params: 40_000_000,
-        max_steps: 10_000,
+        max_generations: 10_000,
     };
 
     /// Sets [`Limits::max_modules`].
@@ -40,9 +40,9 @@ impl Limits {
         self
     }
 
-    /// Sets [`Limits::max_steps`].
-    pub fn with_max_steps(mut self, n: u32) -> Self {
-        self.max_steps = n;
+    /// Sets [`Limits::max_generations`].
+    pub fn with_max_generations(mut self, n: u32) -> Self {
+        self.max_generations = n;
         self
     }
 }
@@ -59,26 +59,31 @@ impl LSystem {
         self.axiom_word.clone()
     }
 
-    /// Derives `steps` generations from the axiom with the default [`Limits`].
+    /// Derives `generations` generations from the axiom with the default [`Limits`].
     ///
-    /// The result is a pure function of the grammar, `steps` and `seed`.
+    /// The result is a pure function of the grammar, `generations` and `seed`.
     ///
     /// ```
     /// let algae: sylva_lsys::LSystem = "axiom: A\nA -> AB\nB -> A".parse().unwrap();
     /// assert_eq!(algae.derive(4, 0).unwrap().to_string(), "ABAABABA");
     /// ```
-    pub fn derive(&self, steps: u32, seed: u64) -> Result<Word, DeriveError> {
-        self.derive_with(steps, seed, &Limits::DEFAULT)
+    pub fn derive(&self, generations: u32, seed: u64) -> Result<Word, DeriveError> {
+        self.derive_with(generations, seed, &Limits::DEFAULT)
     }
 
-    /// Derives `steps` generations under explicit limits.
-    pub fn derive_with(&self, steps: u32, seed: u64, limits: &Limits) -> Result<Word, DeriveError> {
+    /// Derives `generations` generations under explicit limits.
+    pub fn derive_with(
+        &self,
+        generations: u32,
+        seed: u64,
+        limits: &Limits,
+    ) -> Result<Word, DeriveError> {
         let mut d = Deriver::new(self, seed, *limits);
-        d.derive_from(self.axiom_word(), 0, steps)
+        d.derive_from(self.axiom_word(), 0, generations)
     }
 }
 
-/// Rewrites words step by step, reusing its buffers; [`LSystem::derive`] wraps it.
+/// Rewrites words generation by generation, reusing its buffers; [`LSystem::derive`] wraps it.
 #[derive(Debug)]
 pub struct Deriver<'g> {
     grammar: &'g LSystem,
@@ -107,32 +112,37 @@ impl<'g> Deriver<'g> {
         }
     }
 
-    /// Derives `steps` generations starting from `word`, which is taken to be generation
-    /// `generation` (so `#` in the first step is `generation + 1`).
+    /// Derives `generations` more generations from `word`, which is taken to be generation
+    /// `generation` (so `#` in the first rewrite is `generation + 1`).
     pub fn derive_from(
         &mut self,
         word: Word,
         generation: u32,
-        steps: u32,
+        generations: u32,
     ) -> Result<Word, DeriveError> {
-        if steps > self.limits.max_steps {
-            return Err(DeriveError::TooManySteps {
-                requested: steps,
-                limit: self.limits.max_steps,
+        if generations > self.limits.max_generations {
+            return Err(DeriveError::TooManyGenerations {
+                requested: generations,
+                limit: self.limits.max_generations,
             });
         }
         let mut current = word;
         let mut next = Word::empty(current.alphabet.clone());
-        for k in 1..=steps {
-            self.step(&current, &mut next, generation.saturating_add(k))?;
+        for k in 1..=generations {
+            self.rewrite(&current, &mut next, generation.saturating_add(k))?;
             std::mem::swap(&mut current, &mut next);
         }
         Ok(current)
     }
 
-    /// One parallel rewriting step from `cur` into `out` (cleared first); `generation` is the
-    /// value of `#`.
-    pub fn step(&mut self, cur: &Word, out: &mut Word, generation: u32) -> Result<(), DeriveError> {
+    /// One parallel rewrite of `cur` into `out` (cleared first), producing generation
+    /// `generation` (the value of `#`).
+    pub fn rewrite(
+        &mut self,
+        cur: &Word,
+        out: &mut Word,
+        generation: u32,
+    ) -> Result<(), DeriveError> {
         out.clear();
         out.alphabet = cur.alphabet.clone();
         // Most grammars grow: reserving the current size saves the first reallocations.
@@ -202,13 +212,13 @@ impl<'g> Deriver<'g> {
         }
         if out.len() > self.limits.max_modules {
             return Err(DeriveError::TooManyModules {
-                step: generation,
+                generation,
                 limit: self.limits.max_modules,
             });
         }
         if out.params.len() > self.limits.max_params {
             return Err(DeriveError::TooManyParams {
-                step: generation,
+                generation,
                 limit: self.limits.max_params,
             });
         }
@@ -218,16 +228,21 @@ impl<'g> Deriver<'g> {
         Ok(())
     }
 
-    fn check_room(&self, out: &Word, prod: &CProduction, step: u32) -> Result<(), DeriveError> {
+    fn check_room(
+        &self,
+        out: &Word,
+        prod: &CProduction,
+        generation: u32,
+    ) -> Result<(), DeriveError> {
         if out.len() + prod.max_modules as usize > self.limits.max_modules {
             return Err(DeriveError::TooManyModules {
-                step,
+                generation,
                 limit: self.limits.max_modules,
             });
         }
         if out.params.len() + prod.max_params as usize > self.limits.max_params {
             return Err(DeriveError::TooManyParams {
-                step,
+                generation,
                 limit: self.limits.max_params,
             });
         }
@@ -468,7 +483,7 @@ impl<'g> Deriver<'g> {
                         );
                         if !v.is_finite() {
                             return Err(DeriveError::NonFiniteParameter {
-                                step,
+                                generation: step,
                                 symbol: self.grammar.alphabet.char(symbol),
                                 index: (a - args.0) as usize,
                                 value: v,
