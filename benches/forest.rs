@@ -1,5 +1,5 @@
 //! The whole job for 10,000 and 100,000 trees: instance caches from hero trees, terrain,
-//! placement, expansion into instanced batches; and glTF export at 10,000 trees.
+//! placement, expansion into instanced placed; and glTF export at 10,000 trees.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -43,7 +43,7 @@ fn job(trees: usize) -> (Forest, Heightmap, usize) {
     map.smooth(2.0, EdgeMode::Mirror).expect("valid");
     let forest = builder.build(&map, Rect::new(Vec2::ZERO, Vec2::splat(side)));
     let placed = forest
-        .batches()
+        .placements()
         .expect("complete")
         .iter()
         .map(|b| b.placements.count)
@@ -60,7 +60,7 @@ fn whole_job(c: &mut Criterion) {
         group.bench_function(format!("{n}_trees"), |b| b.iter(|| job(black_box(n))));
     }
     let (forest, map, _) = job(10_000);
-    let batches = forest.batches().expect("complete");
+    let placed = forest.placements().expect("complete");
     let mesh = map.mesh(1).expect("valid");
     group.throughput(Throughput::Elements(forest.trees.len() as u64));
     group.bench_function("export_glb_10000_trees", |b| {
@@ -68,7 +68,7 @@ fn whole_job(c: &mut Criterion) {
             let mut out = Vec::new();
             write_glb(
                 &forest,
-                &batches,
+                &placed,
                 Some(&mesh),
                 &GltfOptions::default(),
                 &mut out,

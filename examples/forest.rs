@@ -169,18 +169,17 @@ fn run() -> Result<(), String> {
     let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
     let (forest, placement_time) =
         phase(args.stats, "placing trees", || builder.build(&map, region));
-    let (batches, expand_time) =
-        phase(args.stats, "expanding trees into instanced batches", || {
-            forest.batches()
-        });
-    let batches = batches.map_err(|e| e.to_string())?;
-    let placements: usize = batches.iter().map(|b| b.placements.count).sum();
+    let (placed, expand_time) = phase(args.stats, "expanding trees into instanced placed", || {
+        forest.placements()
+    });
+    let placed = placed.map_err(|e| e.to_string())?;
+    let placements: usize = placed.iter().map(|b| b.placements.count).sum();
 
     let (written, export_time) = phase(args.stats, "writing glTF", || -> Result<_, String> {
         let file = std::fs::File::create(&args.out).map_err(|e| format!("{}: {e}", args.out))?;
         let stats = write_glb(
             &forest,
-            &batches,
+            &placed,
             Some(&terrain_mesh),
             &GltfOptions::default(),
             file,
@@ -202,7 +201,7 @@ fn run() -> Result<(), String> {
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     if args.stats {
         println!(
-            "{{\"trees\":{},\"canopy_trees\":{},\"seedlings\":{seedlings},\"species\":{},\"area_m\":{side:.1},\"patch_m\":{patch:.2},\"heroes\":{},\"cache_bytes\":{},\"instances_placed\":{},\"empty_placements\":{},\"instance_nodes\":{},\"hero_ms\":{:.1},\"placement_ms\":{:.1},\"expand_ms\":{:.1},\"export_ms\":{:.1},\"glb_bytes\":{},\"peak_rss_mb\":{:.1},\"bytes_per_tree\":{}}}",
+            "{{\"trees\":{},\"canopy_trees\":{},\"seedlings\":{seedlings},\"species\":{},\"area_m\":{side:.1},\"patch_m\":{patch:.2},\"heroes\":{},\"cache_bytes\":{},\"placements\":{},\"empty_placements\":{},\"instance_nodes\":{},\"hero_ms\":{:.1},\"placement_ms\":{:.1},\"expand_ms\":{:.1},\"export_ms\":{:.1},\"glb_bytes\":{},\"peak_rss_mb\":{:.1},\"bytes_per_tree\":{}}}",
             forest.trees.len(),
             forest.trees.len() - seedlings,
             forest.species.len(),

@@ -132,9 +132,9 @@ fn forest_of_seed_1_trees_and_placements() {
             .u32s(&[t.seed, u32::from(t.species)]);
     }
     let mut placements = Fnv::new();
-    for batch in forest.batches().unwrap() {
-        placements.u32s(&[batch.variant as u32]);
-        for group in &batch.placements.groups {
+    for variant_placements in forest.placements().unwrap() {
+        placements.u32s(&[variant_placements.variant as u32]);
+        for group in &variant_placements.placements.groups {
             placements.u32s(&[group.len() as u32]);
             group.iter().for_each(|s| {
                 placements.similarity(s);

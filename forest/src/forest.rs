@@ -1,4 +1,4 @@
-//! Forests: caches per species and maturity, trees placed on a terrain, instanced batches.
+//! Forests: caches per species and maturity, trees placed on a terrain, instanced placements.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -302,7 +302,7 @@ impl ForestBuilder {
 
 /// The placements of one variant's instances, ready for instanced draws.
 #[derive(Debug, Clone)]
-pub struct VariantBatches {
+pub struct VariantPlacements {
     /// Index into [`Forest::variants`].
     pub variant: usize,
     /// Grouped placements of its instances.
@@ -311,12 +311,12 @@ pub struct VariantBatches {
 
 impl Forest {
     /// Expands every tree into placements grouped per variant and instance.
-    pub fn batches(&self) -> Result<Vec<VariantBatches>, ForestError> {
-        let mut out: Vec<VariantBatches> = self
+    pub fn placements(&self) -> Result<Vec<VariantPlacements>, ForestError> {
+        let mut out: Vec<VariantPlacements> = self
             .variants
             .iter()
             .enumerate()
-            .map(|(i, v)| VariantBatches {
+            .map(|(i, v)| VariantPlacements {
                 variant: i,
                 placements: Placements::for_cache(&v.cache),
             })

@@ -8,7 +8,7 @@ use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use crate::error::ForestError;
-use crate::forest::{Forest, VariantBatches};
+use crate::forest::{Forest, VariantPlacements};
 
 /// Export settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -146,14 +146,14 @@ fn check_normals<'a>(normals: impl Iterator<Item = &'a [f32; 3]>) -> Result<(), 
     Ok(())
 }
 
-/// Writes `forest` (with its expanded `batches`) and optionally a terrain mesh as a binary
+/// Writes `forest` (with its expanded placements, `placed`) and optionally a terrain mesh as a binary
 /// glTF. The file declares EXT_mesh_gpu_instancing in `extensionsUsed`; every node of an
 /// instance mesh carries TRANSLATION, ROTATION and SCALE accessors of equal count, float
 /// components and unit quaternions. Everything is checked before a byte is written: on error
 /// `out` is untouched.
 pub fn write_glb<W: Write>(
     forest: &Forest,
-    batches: &[VariantBatches],
+    placed: &[VariantPlacements],
     terrain: Option<&TerrainMesh>,
     options: &GltfOptions,
     mut out: W,
@@ -184,21 +184,27 @@ pub fn write_glb<W: Write>(
         doc.nodes
             .push(json!({ "name": "terrain", "mesh": doc.meshes.len() - 1 }));
     }
-    for batch in batches {
-        let variant = forest.variants.get(batch.variant).ok_or_else(|| {
-            ForestError::InvalidExport(format!("batch of unknown variant {}", batch.variant))
-        })?;
-        if batch.placements.groups.len() != variant.cache.instances.len() {
+    for variant_placements in placed {
+        let variant = forest
+            .variants
+            .get(variant_placements.variant)
+            .ok_or_else(|| {
+                ForestError::InvalidExport(format!(
+                    "variant_placements of unknown variant {}",
+                    variant_placements.variant
+                ))
+            })?;
+        if variant_placements.placements.groups.len() != variant.cache.instances.len() {
             return Err(ForestError::InvalidExport(format!(
-                "batch of variant {} has {} instance groups, but the forest's variant has {} \
-                 instances: the batches were made by another forest",
-                batch.variant,
-                batch.placements.groups.len(),
+                "variant_placements of variant {} has {} instance groups, but the forest's variant has {} \
+                 instances: the placements were made by another forest",
+                variant_placements.variant,
+                variant_placements.placements.groups.len(),
                 variant.cache.instances.len()
             )));
         }
-        let used: Vec<usize> = (0..batch.placements.groups.len())
-            .filter(|&i| !batch.placements.groups[i].is_empty())
+        let used: Vec<usize> = (0..variant_placements.placements.groups.len())
+            .filter(|&i| !variant_placements.placements.groups[i].is_empty())
             .collect();
         if used.is_empty() {
             continue;
@@ -251,7 +257,7 @@ pub fn write_glb<W: Write>(
             {
                 return Err(ForestError::InvalidExport(format!(
                     "instance {i} of variant {} spans past its cache's indices",
-                    batch.variant
+                    variant_placements.variant
                 )));
             }
             let mut primitives = Vec::new();
@@ -274,7 +280,7 @@ pub fn write_glb<W: Write>(
             if primitives.is_empty() {
                 continue;
             }
-            let transforms = &batch.placements.groups[i];
+            let transforms = &variant_placements.placements.groups[i];
             let mut t = Vec::with_capacity(transforms.len() * 3);
             let mut r = Vec::with_capacity(transforms.len() * 4);
             let mut s = Vec::with_capacity(transforms.len() * 3);

@@ -1,5 +1,5 @@
 //! Forests: species, patch-based density management, placement on any terrain, instanced
-//! batches and glTF export.
+//! placements and glTF export.
 //!
 //! ```
 //! use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
@@ -13,8 +13,8 @@
 //! let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
 //! let forest = builder.build(&ground, Rect::new(Vec2::ZERO, Vec2::splat(200.0)));
 //! assert!(!forest.trees.is_empty());
-//! let batches = forest.batches()?;
-//! assert!(batches.iter().map(|b| b.placements.count).sum::<usize>() >= forest.trees.len());
+//! let placed = forest.placements()?;
+//! assert!(placed.iter().map(|b| b.placements.count).sum::<usize>() >= forest.trees.len());
 //! # Ok::<(), sylva_forest::ForestError>(())
 //! ```
 //!
@@ -38,7 +38,7 @@ mod species;
 pub use density::{Candidate, DensityModel, Rect};
 pub use error::ForestError;
 pub use forest::{
-    Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantBatches,
+    Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
 pub use gltf::{GlbStats, GltfOptions, write_glb};
 pub use patch::{PatchDensity, PatchSpecies};

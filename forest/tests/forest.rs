@@ -241,11 +241,11 @@ fn exported_glb_is_well_formed_and_counts_match() {
         .unwrap();
     let (lo, hi) = map.bounds();
     let forest = b.build(&map, Rect::new(lo, hi));
-    let batches = forest.batches().unwrap();
+    let placed = forest.placements().unwrap();
     let mut bytes = Vec::new();
     let stats = write_glb(
         &forest,
-        &batches,
+        &placed,
         Some(&map.mesh(1).unwrap()),
         &GltfOptions::default(),
         &mut bytes,
@@ -269,11 +269,11 @@ fn exported_glb_is_well_formed_and_counts_match() {
             placements += count("TRANSLATION");
         }
     }
-    let drawable: usize = batches
+    let drawable: usize = placed
         .iter()
-        .map(|batch| {
-            let cache = &forest.variants[batch.variant].cache;
-            batch
+        .map(|variant_placements| {
+            let cache = &forest.variants[variant_placements.variant].cache;
+            variant_placements
                 .placements
                 .groups
                 .iter()
@@ -380,10 +380,10 @@ fn large_regions_in_blocks_equal_small_tiles() {
     assert_eq!(a, b);
 }
 
-/// Found in review: batches of one forest handed to the writer with another forest indexed
+/// Found in review: placed of one forest handed to the writer with another forest indexed
 /// past the other forest's instances.
 #[test]
-fn batches_of_another_forest_are_refused_not_a_panic() {
+fn placements_of_another_forest_are_refused_not_a_panic() {
     let small = builder(1).build(
         &plane(40.0),
         Rect::new(Vec2::splat(-40.0), Vec2::splat(40.0)),
@@ -394,7 +394,7 @@ fn batches_of_another_forest_are_refused_not_a_panic() {
         &plane(40.0),
         Rect::new(Vec2::splat(-40.0), Vec2::splat(40.0)),
     );
-    let foreign = other.batches().unwrap();
+    let foreign = other.placements().unwrap();
     assert_ne!(
         foreign[0].placements.groups.len(),
         small.variants[0].cache.instances.len(),

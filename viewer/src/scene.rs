@@ -90,7 +90,7 @@ impl Scene {
             .map_err(|e| e.to_string())?;
         let terrain = map.mesh(1).map_err(|e| e.to_string())?;
         let forest = builder.build(&map, Rect::new(Vec2::ZERO, Vec2::splat(side)));
-        let batches = forest.batches().map_err(|e| e.to_string())?;
+        let placed = forest.placements().map_err(|e| e.to_string())?;
         let variants = forest
             .variants
             .iter()
@@ -106,7 +106,7 @@ impl Scene {
             })
             .collect();
         let mut groups = Vec::new();
-        for b in &batches {
+        for b in &placed {
             let cache = &forest.variants[b.variant].cache;
             for (inst, placements) in cache.instances.iter().zip(&b.placements.groups) {
                 if placements.is_empty() || inst.bark.1 + inst.leaves.1 == 0 {
