@@ -148,6 +148,8 @@ impl Species {
 
     /// Parses species-file text; `path` names the file in errors and anchors relative paths.
     pub fn parse_file(text: &str, path: &Path) -> Result<Self, ForestError> {
+        // Editors on Windows may start the file with a byte-order mark; it is not text.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let err = |line: usize, column: usize, message: String| ForestError::SpeciesFile {
             file: path.to_path_buf(),
             line,

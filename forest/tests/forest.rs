@@ -441,3 +441,29 @@ fn a_grammar_path_to_an_endless_device_is_an_error() {
     assert_eq!((line, column), (1, 10));
     assert!(message.contains("larger than the limit"), "{message}");
 }
+
+/// Hostile species files end in an error with a place, or in a species; never a panic.
+#[test]
+fn hostile_species_files() {
+    let file = Path::new("hostile.species");
+    let long_value = format!("grammar: kenwood-leafy\nname: {}\n", "x".repeat(1 << 20));
+    assert!(Species::parse_file(&long_value, file).is_ok());
+    let many_keys = "grammar: kenwood-leafy\n".to_string() + &"weight: 1\n".repeat(100_000);
+    assert!(Species::parse_file(&many_keys, file).is_ok());
+    assert!(Species::parse_file("\u{feff}grammar: kenwood-leafy\n", file).is_ok());
+    for (text, line) in [
+        ("grammar: kenwood-leafy\nweight: NaN\n", 2),
+        ("grammar: kenwood-leafy\nweight: inf\n", 2),
+        ("grammar: kenwood-leafy\nbark: 1 2\n", 2),
+        ("grammar: kenwood-leafy\ngenerations: 99999999999\n", 2),
+        ("grammar: kenwood-leafy\nleaf_size: -1 -1\n", 2),
+        ("grammar: \u{0}\n", 1),
+        ("\u{feff}grammar: kenwood-leafy\nnonsense\n", 2),
+        ("\u{feff}\u{feff}grammar: kenwood-leafy\n", 1),
+    ] {
+        match Species::parse_file(text, file) {
+            Err(ForestError::SpeciesFile { line: l, .. }) => assert_eq!(l, line, "{text:?}"),
+            other => panic!("{text:?}: {other:?}"),
+        }
+    }
+}

@@ -158,6 +158,12 @@ fn oversized_text_is_refused_before_parsing() {
 }
 
 #[test]
+fn a_byte_order_mark_is_not_part_of_the_grammar() {
+    let g = LSystem::parse("\u{feff}axiom: A\nA -> AB").unwrap();
+    assert_eq!(g.derive(2, 0).unwrap().to_string(), "ABB");
+}
+
+#[test]
 fn hostile_bytes_never_panic() {
     for text in [
         "\0\0\0",
@@ -178,6 +184,7 @@ fn hostile_bytes_never_panic() {
         "axiom: A()",
         "axiom: A\nA -> B(sin())",
         "axiom: A\nA -> B(atan2(1,2,3,4,5,6))",
+        "\u{feff}\u{feff}axiom: A",
     ] {
         let _ = LSystem::parse(text);
         let _ = text.parse::<Word>();

@@ -271,3 +271,64 @@ proptest! {
         prop_assert_eq!(m, build());
     }
 }
+
+/// A PNG whose header claims `side` x `side` 16-bit grey samples but whose data is one
+/// empty compressed block: what a hostile or truncated file looks like.
+fn forged_png(side: u32) -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xedb8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+    fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let start = out.len();
+        out.extend_from_slice(kind);
+        out.extend_from_slice(data);
+        let crc = crc32(&out[start..]);
+        out.extend_from_slice(&crc.to_be_bytes());
+    }
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut header = Vec::new();
+    header.extend_from_slice(&side.to_be_bytes());
+    header.extend_from_slice(&side.to_be_bytes());
+    header.extend_from_slice(&[16, 0, 0, 0, 0]); // 16-bit greyscale, no interlace
+    chunk(&mut png, b"IHDR", &header);
+    chunk(&mut png, b"tEXt", b"sylva:heights\x000 1 1");
+    chunk(
+        &mut png,
+        b"IDAT",
+        &[0x78, 0x01, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01],
+    );
+    chunk(&mut png, b"IEND", &[]);
+    png
+}
+
+/// Headers that promise more than the file holds, or more than any heightmap may be, end in
+/// an error; the largest legal size is read only as far as the data goes.
+#[test]
+fn forged_png_headers_are_errors_not_allocations() {
+    for side in [3, 4097, 16_385, 16_386, 100_000, u32::MAX] {
+        let result = Heightmap::read_png16(Cursor::new(forged_png(side)), None);
+        assert!(result.is_err(), "side {side}");
+    }
+    // The forgery is a well-formed PNG apart from its missing rows: a real 3 x 3 map reads.
+    let m = Heightmap::flat(3, 1.0).unwrap();
+    let mut png = Vec::new();
+    m.write_png16(&mut png).unwrap();
+    assert_eq!(
+        Heightmap::read_png16(Cursor::new(png), None)
+            .unwrap()
+            .size(),
+        3
+    );
+}

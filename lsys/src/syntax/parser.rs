@@ -97,6 +97,8 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
             format!("grammar text longer than {MAX_GRAMMAR_BYTES} bytes"),
         ));
     }
+    // Editors on Windows may start the file with a byte-order mark; it is not text.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let src: Vec<char> = text.chars().collect();
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser {
