@@ -1,28 +1,40 @@
-//! Command-line plumbing: flag values, `--help` and the exit status.
+//! Command-line plumbing: flags and their values, `--help`, and the exit status.
 
-/// Parses the value that follows flag `name`, naming the flag in the error.
-pub(crate) fn parse_value<T: std::str::FromStr>(
-    name: &str,
-    value: Option<String>,
-) -> Result<T, String>
-where
-    T::Err: std::fmt::Display,
-{
-    let text = value.ok_or_else(|| format!("{name} needs a value"))?;
-    text.parse().map_err(|e| format!("{name} '{text}': {e}"))
+use std::str::FromStr;
+
+/// The program's arguments, read flag by flag.
+#[derive(Debug)]
+pub(crate) struct Flags {
+    args: std::iter::Skip<std::env::Args>,
+}
+
+impl Flags {
+    /// The arguments after the program name.
+    pub(crate) fn from_env() -> Self {
+        Flags {
+            args: std::env::args().skip(1),
+        }
+    }
+
+    /// The next flag, if any.
+    pub(crate) fn next_flag(&mut self) -> Option<String> {
+        self.args.next()
+    }
+
+    /// The value after `flag`, parsed; the error names the flag and the text.
+    pub(crate) fn value<T: FromStr>(&mut self, flag: &str) -> Result<T, String>
+    where
+        T::Err: std::fmt::Display,
+    {
+        let Some(text) = self.args.next() else {
+            return Err(format!("{flag} needs a value"));
+        };
+        text.parse().map_err(|e| format!("{flag} '{text}': {e}"))
+    }
 }
 
 /// Prints the usage to stdout and exits with success, as `--help` should.
 pub(crate) fn print_help(usage: &str) -> ! {
     println!("{usage}");
     std::process::exit(0)
-}
-
-/// The exit status of a run: errors go to stderr with a failure status.
-pub(crate) fn finish(result: Result<(), String>) -> std::process::ExitCode {
-    if let Err(e) = result {
-        eprintln!("error: {e}");
-        return std::process::ExitCode::FAILURE;
-    }
-    std::process::ExitCode::SUCCESS
 }

@@ -48,23 +48,18 @@ fn parse() -> Result<Args, String> {
     let mut size = (1280u32, 720u32);
     let mut ids = false;
     let mut frames = 0u32;
-    let mut it = std::env::args().skip(1);
-    while let Some(a) = it.next() {
+    let mut flags = cli::Flags::from_env();
+    while let Some(a) = flags.next_flag() {
         match a.as_str() {
-            "--seed" => seed = cli::parse_value("--seed", it.next())?,
-            "--area" => side = cli::parse_value("--area", it.next())?,
-            "--budget-mb" => budget_mb = cli::parse_value("--budget-mb", it.next())?,
-            "--grammar" => grammar = Some(cli::parse_value("--grammar", it.next())?),
-            "--species" => files.push(cli::parse_value("--species", it.next())?),
-            "--camera" => {
-                camera = Some(Camera::parse(&cli::parse_value::<String>(
-                    "--camera",
-                    it.next(),
-                )?)?)
-            }
-            "--screenshot" => screenshot = Some(cli::parse_value("--screenshot", it.next())?),
+            "--seed" => seed = flags.value("--seed")?,
+            "--area" => side = flags.value("--area")?,
+            "--budget-mb" => budget_mb = flags.value("--budget-mb")?,
+            "--grammar" => grammar = Some(flags.value("--grammar")?),
+            "--species" => files.push(flags.value("--species")?),
+            "--camera" => camera = Some(Camera::parse(&flags.value::<String>("--camera")?)?),
+            "--screenshot" => screenshot = Some(flags.value("--screenshot")?),
             "--size" => {
-                let s: String = cli::parse_value("--size", it.next())?;
+                let s: String = flags.value("--size")?;
                 let (w, h) = s
                     .split_once('x')
                     .ok_or(format!("--size '{s}': expected WxH"))?;
@@ -77,7 +72,7 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--ids" => ids = true,
-            "--frames" => frames = cli::parse_value("--frames", it.next())?,
+            "--frames" => frames = flags.value("--frames")?,
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -181,5 +176,11 @@ fn run() -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    cli::finish(run())
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
 }

@@ -93,85 +93,74 @@ impl ExprParser<'_, '_> {
         self.cur.pos()
     }
 
-    fn or(&mut self) -> Result<Parsed, ParseError> {
-        let mut e = self.and()?;
+    /// One left-associative precedence level: operands come from `operand`; `operator`
+    /// consumes the next operator of this level and names it, or returns `None` to end the
+    /// chain. A loop, not recursion, so a chain's length never deepens the call stack.
+    fn chain(
+        &mut self,
+        operand: fn(&mut Self) -> Result<Parsed, ParseError>,
+        operator: fn(&mut Self) -> Option<BinaryOp>,
+    ) -> Result<Parsed, ParseError> {
+        let mut e = operand(self)?;
         loop {
             let at = self.here();
-            if !self.cur.eat_str("||") {
+            let Some(op) = operator(self) else {
                 return Ok(e);
-            }
-            let r = self.and()?;
-            e = self.binary(at, BinaryOp::Or, e, r)?;
+            };
+            let r = operand(self)?;
+            e = self.binary(at, op, e, r)?;
         }
+    }
+
+    fn or(&mut self) -> Result<Parsed, ParseError> {
+        self.chain(Self::and, |p| p.cur.eat_str("||").then_some(BinaryOp::Or))
     }
 
     fn and(&mut self) -> Result<Parsed, ParseError> {
-        let mut e = self.cmp()?;
-        loop {
-            let at = self.here();
-            if !self.cur.eat_str("&&") {
-                return Ok(e);
-            }
-            let r = self.cmp()?;
-            e = self.binary(at, BinaryOp::And, e, r)?;
-        }
+        self.chain(Self::cmp, |p| p.cur.eat_str("&&").then_some(BinaryOp::And))
     }
 
     fn cmp(&mut self) -> Result<Parsed, ParseError> {
-        let mut e = self.add()?;
-        loop {
-            let at = self.here();
-            let op = if self.cur.eat_str("<=") {
-                BinaryOp::Le
-            } else if self.cur.eat_str(">=") {
-                BinaryOp::Ge
-            } else if self.cur.eat_str("==") {
-                BinaryOp::Eq
-            } else if self.cur.eat_str("!=") {
-                BinaryOp::Ne
-            } else if self.cur.eat_str("<") {
-                BinaryOp::Lt
-            } else if self.cur.eat_str(">") {
-                BinaryOp::Gt
-            } else {
-                return Ok(e);
-            };
-            let r = self.add()?;
-            e = self.binary(at, op, e, r)?;
-        }
+        self.chain(Self::add, |p| {
+            // Two-character operators first, so that "<=" is not read as "<".
+            [
+                ("<=", BinaryOp::Le),
+                (">=", BinaryOp::Ge),
+                ("==", BinaryOp::Eq),
+                ("!=", BinaryOp::Ne),
+                ("<", BinaryOp::Lt),
+                (">", BinaryOp::Gt),
+            ]
+            .into_iter()
+            .find(|(token, _)| p.cur.eat_str(token))
+            .map(|(_, op)| op)
+        })
     }
 
     fn add(&mut self) -> Result<Parsed, ParseError> {
-        let mut e = self.mul()?;
-        loop {
-            let at = self.here();
+        self.chain(Self::mul, |p| {
             // "->" ends a condition; it is not a subtraction.
-            let op = match (self.cur.peek(), self.cur.peek_at(1)) {
+            let op = match (p.cur.peek(), p.cur.peek_at(1)) {
                 (Some('+'), _) => BinaryOp::Add,
-                (Some('-'), Some('>')) => return Ok(e),
-                (Some('-'), _) => BinaryOp::Sub,
-                _ => return Ok(e),
+                (Some('-'), Some(c)) if c != '>' => BinaryOp::Sub,
+                (Some('-'), None) => BinaryOp::Sub,
+                _ => return None,
             };
-            self.cur.bump();
-            let r = self.mul()?;
-            e = self.binary(at, op, e, r)?;
-        }
+            p.cur.bump();
+            Some(op)
+        })
     }
 
     fn mul(&mut self) -> Result<Parsed, ParseError> {
-        let mut e = self.unary()?;
-        loop {
-            let at = self.here();
-            let op = if self.cur.eat('*') {
-                BinaryOp::Mul
-            } else if self.cur.eat('/') {
-                BinaryOp::Div
+        self.chain(Self::unary, |p| {
+            if p.cur.eat('*') {
+                Some(BinaryOp::Mul)
+            } else if p.cur.eat('/') {
+                Some(BinaryOp::Div)
             } else {
-                return Ok(e);
-            };
-            let r = self.unary()?;
-            e = self.binary(at, op, e, r)?;
-        }
+                None
+            }
+        })
     }
 
     fn unary(&mut self) -> Result<Parsed, ParseError> {
