@@ -39,7 +39,8 @@ impl ParseError {
     }
 }
 
-/// A grammar that cannot be used as built (only from [`LSystem::from_parts`]; text input
+/// A grammar that cannot be used as built (only from
+/// [`LSystem::from_parts`](crate::LSystem::from_parts); text input
 /// reports a [`ParseError`](crate::ParseError) instead).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
