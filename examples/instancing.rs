@@ -121,6 +121,17 @@ fn run() -> Result<(), String> {
     }
     let expand_s = t2.elapsed().as_secs_f64();
     let max_uses = uses.iter().copied().max().unwrap_or(0);
+    // Variety: the share of the first 10,000 trees whose composition no other of them has.
+    let sample = &forest[..forest.len().min(10_000)];
+    let mut compositions = std::collections::HashMap::new();
+    for tree in sample {
+        let c = assembler
+            .composition(&built.cache, tree)
+            .map_err(|e| e.to_string())?;
+        *compositions.entry(c).or_insert(0u32) += 1;
+    }
+    let unique = compositions.values().filter(|&&n| n == 1).count();
+    let distinct = unique as f64 / sample.len().max(1) as f64;
 
     let mut naive_rate = None;
     if args.naive > 0 {
@@ -134,7 +145,7 @@ fn run() -> Result<(), String> {
     let s = &built.stats;
     if args.stats {
         println!(
-            "{{\"preset\":\"{}\",\"generations\":{generations},\"trees\":{},\"budget_mb\":{},\"heroes\":{},\"rejected_heroes\":{},\"hero_ms\":{hero_ms:.1},\"placement_ms\":{placement_ms:.1},\"expand_ms\":{:.1},\"cache_bytes\":{},\"instances\":{},\"exits\":{},\"placements\":{placements},\"instances_per_tree\":{:.2},\"compact_bytes_per_tree\":{},\"expanded_bytes_per_tree\":{:.0},\"max_uses\":{max_uses},\"placements_per_s\":{:.0},\"peak_rss_mb\":{:.1},\"instanced_trees_per_s\":{instanced_rate:.0},\"naive_trees_per_s\":{},\"speedup\":{},\"checksum\":{checksum:.1}}}",
+            "{{\"preset\":\"{}\",\"generations\":{generations},\"trees\":{},\"budget_mb\":{},\"heroes\":{},\"rejected_heroes\":{},\"hero_ms\":{hero_ms:.1},\"placement_ms\":{placement_ms:.1},\"expand_ms\":{:.1},\"cache_bytes\":{},\"instances\":{},\"exits\":{},\"placements\":{placements},\"instances_per_tree\":{:.2},\"compact_bytes_per_tree\":{},\"expanded_bytes_per_tree\":{:.0},\"max_uses\":{max_uses},\"distinct_compositions\":{distinct:.4},\"instanced_ages\":{},\"placements_per_s\":{:.0},\"peak_rss_mb\":{:.1},\"instanced_trees_per_s\":{instanced_rate:.0},\"naive_trees_per_s\":{},\"speedup\":{},\"checksum\":{checksum:.1}}}",
             p.name,
             args.trees,
             args.budget_mb,
@@ -147,6 +158,7 @@ fn run() -> Result<(), String> {
             placements as f64 / args.trees.max(1) as f64,
             size_of::<CompactTree>(),
             placements as f64 * 32.0 / args.trees.max(1) as f64,
+            s.instanced_ages,
             placements as f64 / expand_s,
             common::peak_rss() as f64 / (1 << 20) as f64,
             naive_rate.map_or("null".into(), |r| format!("{r:.1}")),

@@ -41,6 +41,13 @@ impl CompactTree {
 }
 
 /// Bounds and choices of one tree's assembly.
+///
+/// The root instance is drawn uniformly among the whole-tree candidates that have exits (all
+/// of them when none has). Each exit is filled
+/// with a complete candidate of its key (a whole branch subtree, no exits of its own) when
+/// the key has any, drawn uniformly and never one the tree already uses while up to
+/// [`REPEAT_PROBES`] draws find an unused one; a key without complete candidates takes the
+/// fewest-exit of [`AssemblyLimits::choices`] random candidates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct AssemblyLimits {
@@ -48,11 +55,15 @@ pub struct AssemblyLimits {
     pub max_depth: u32,
     /// Most instances one tree may place.
     pub max_instances: usize,
-    /// Candidates drawn at random for each exit; the one with the fewest exits of its own is
-    /// used. 1 is a uniform choice (most variety); more lean towards whole branches, so trees
-    /// need fewer placements and expand faster. Default 2.
+    /// Candidates drawn at random for an exit whose key has no complete candidate; the one
+    /// with the fewest exits of its own is used. Default 2.
     pub choices: u32,
 }
+
+/// Draws an exit makes among its key's complete candidates looking for one its tree does not
+/// use yet: the same instance appears twice in one tree only when its key has fewer complete
+/// candidates than this, or than the tree has exits of that key.
+pub const REPEAT_PROBES: usize = 16;
 
 impl Default for AssemblyLimits {
     fn default() -> Self {
@@ -111,6 +122,8 @@ fn pick(seed: u32, counter: u32, n: usize) -> usize {
 #[derive(Debug, Default)]
 pub struct Assembler {
     stack: Vec<(u32, u32, Similarity, u32)>,
+    /// Instances the current tree uses, to avoid repeats within one crown.
+    used: Vec<u32>,
     /// Limits applied to every tree.
     pub limits: AssemblyLimits,
 }
@@ -131,6 +144,7 @@ impl Assembler {
         mut place: impl FnMut(u32, Similarity),
     ) -> Result<usize, InstancingError> {
         self.stack.clear();
+        self.used.clear();
         self.stack.push((ROOT.0, ROOT.1, tree.root(), 0));
         let mut placed = 0usize;
         let mut counter = 0u32;
@@ -143,18 +157,42 @@ impl Assembler {
                 // Heroes guarantee a candidate for every exit; only a foreign cache gets here.
                 return Err(InstancingError::AssemblyLimit("missing instance"));
             }
-            // A few random candidates, the one with the fewest exits kept (ties: the first):
-            // trees stay as varied as the cache but lean towards whole branches over
-            // fragments, and need fewer placements.
-            let mut best = pick(tree.seed, counter, candidates.len());
-            for k in 1..self.limits.choices.max(1) {
-                let other = pick(tree.seed, counter.wrapping_add(k), candidates.len());
-                if exits[other] < exits[best] {
-                    best = other;
+            let complete = exits.partition_point(|&e| e == 0);
+            let chosen = if depth == 0 {
+                // The root: a crown with exits when there are any (a whole hero would make
+                // every tree that draws it the same tree), so crowns differ from tree to tree.
+                let crowns = &candidates[complete.min(candidates.len() - 1)..];
+                let crowns = if complete < candidates.len() {
+                    crowns
+                } else {
+                    candidates
+                };
+                let k = pick(tree.seed, counter, crowns.len());
+                counter = counter.wrapping_add(1);
+                crowns[k]
+            } else if complete > 0 {
+                // A whole branch, preferably one this tree does not show yet.
+                let start = pick(tree.seed, counter, complete);
+                counter = counter.wrapping_add(1);
+                let probes = complete.min(REPEAT_PROBES);
+                (0..probes)
+                    .map(|k| candidates[(start + k * (complete / probes)) % complete])
+                    // Past a few dozen placements the check would cost more than a repeat.
+                    .find(|c| self.used.len() > 64 || !self.used.contains(c))
+                    .unwrap_or(candidates[start])
+            } else {
+                // No whole branch of this key: the fewest-exit of a few random candidates.
+                let mut best = pick(tree.seed, counter, candidates.len());
+                for k in 1..self.limits.choices.max(1) {
+                    let other = pick(tree.seed, counter.wrapping_add(k), candidates.len());
+                    if exits[other] < exits[best] {
+                        best = other;
+                    }
                 }
-            }
-            counter = counter.wrapping_add(self.limits.choices.max(1));
-            let chosen = candidates[best];
+                counter = counter.wrapping_add(self.limits.choices.max(1));
+                candidates[best]
+            };
+            self.used.push(chosen);
             let instance = &cache.instances[chosen as usize];
             place(chosen, desired.mul(&instance.frame_inverse));
             placed += 1;
@@ -167,6 +205,19 @@ impl Assembler {
             }
         }
         Ok(placed)
+    }
+
+    /// A fingerprint of a tree's composition: the instances it places, in order. Instances
+    /// fix their relative transforms, so two trees of one cache with equal fingerprints are
+    /// copies of each other up to their root transform.
+    pub fn composition(
+        &mut self,
+        cache: &InstanceCache,
+        tree: &CompactTree,
+    ) -> Result<u64, InstancingError> {
+        let mut h = 0x243f_6a88_85a3_08d3u64;
+        self.expand_with(cache, tree, |i, _| h = mix(h ^ u64::from(i)))?;
+        Ok(h)
     }
 
     /// Expands `trees` (all of the species whose cache is `cache`) into grouped placements.

@@ -94,7 +94,8 @@ impl InstanceCache {
         self.lookup_with_exits(id, age).0
     }
 
-    /// Candidates for (id, age) and their exit counts.
+    /// Candidates for (id, age) and their exit counts, fewest exits first (stable), so the
+    /// complete candidates are a prefix.
     #[inline]
     pub(crate) fn lookup_with_exits(&self, id: u32, age: u32) -> (&[u32], &[u32]) {
         if age >= self.ages {
@@ -129,7 +130,9 @@ impl InstanceCache {
         self.candidates.clear();
         self.candidate_exits.clear();
         self.table.clear();
-        for l in lists {
+        for mut l in lists {
+            // Complete candidates (no exits) first, so assembly finds them as a prefix.
+            l.sort_by_key(|&i| self.instances[i as usize].exits.1);
             self.table
                 .push((self.candidates.len() as u32, l.len() as u32));
             let instances = &self.instances;

@@ -13,12 +13,25 @@ use sylva_base::hash::mix;
 
 /// Settings for [`build_cache`].
 ///
-/// **Probability schedule.** Hero `k` is derived with instancing probability
-/// `P = p_min + (p_max - p_min) * fill`, where `fill` is the fraction of the budget already
-/// used (Kenwood: instancing grows more aggressive as memory becomes scarce). A branch whose
-/// (id, age) has no instance in the cache yet is always recorded, never instanced, so every
-/// exit of every cached instance has at least one candidate and every assembled tree is
-/// complete without deriving anything at assembly time.
+/// **Granularity** (Kenwood: an instance carries its whole branch subtree, so a tree is a few
+/// large instances). Hero creation runs in two phases:
+///
+/// 1. *Whole heroes* fill the first [`HeroOptions::complete_share`] of the budget with
+///    instancing probability 0: every branch of every such hero is recorded whole, so each
+///    branch key (id, age) gets complete candidates, instances without exits.
+/// 2. *Crowns*: later heroes instance only the big branches, those introduced at generations
+///    1 to A, where A is the deepest generation at which a whole hero has at most twice
+///    [`HeroOptions::max_tree_exits`] branches introduced up to it. Their root instances are a
+///    trunk with a few exits each (a root with more than `max_tree_exits` is not kept), and
+///    assembly fills every exit with a complete candidate, so a tree is one root placement
+///    plus at most `max_tree_exits` branch placements.
+///
+/// **Probability schedule.** In the second phase hero `k` instances each eligible branch with
+/// `P = p_min + (p_max - p_min) * fill`, where `fill` is the fraction of the second phase's
+/// budget already used (Kenwood: instancing grows more aggressive as memory becomes scarce).
+/// A branch whose (id, age) has no instance in the cache yet is always recorded, never
+/// instanced, so every exit of every cached instance has at least one candidate and every
+/// assembled tree is complete without deriving anything at assembly time.
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct HeroOptions {
@@ -46,6 +59,11 @@ pub struct HeroOptions {
     pub limits: Limits,
     /// Keep each instance's word (for validation and debugging; counted in the budget).
     pub keep_words: bool,
+    /// Share of the budget filled first with whole heroes (probability 0), in `[0, 1]`.
+    pub complete_share: f64,
+    /// Most branches a hero of the second phase may leave as exits: bounds the placements
+    /// per assembled tree to `1 + max_tree_exits`. At least 1.
+    pub max_tree_exits: u32,
 }
 
 impl Default for HeroOptions {
@@ -63,6 +81,8 @@ impl Default for HeroOptions {
             markers: Markers::default(),
             limits: Limits::default(),
             keep_words: false,
+            complete_share: 0.5,
+            max_tree_exits: 12,
         }
     }
 }
@@ -111,6 +131,13 @@ impl HeroOptions {
         self
     }
 
+    /// Sets [`HeroOptions::complete_share`] and [`HeroOptions::max_tree_exits`].
+    pub fn with_granularity(mut self, complete_share: f64, max_tree_exits: u32) -> Self {
+        self.complete_share = complete_share;
+        self.max_tree_exits = max_tree_exits;
+        self
+    }
+
     /// Sets [`HeroOptions::keep_words`].
     pub fn with_words(mut self, keep: bool) -> Self {
         self.keep_words = keep;
@@ -136,6 +163,8 @@ pub struct HeroStats {
     pub exits: usize,
     /// Instancing probability of the last hero.
     pub final_probability: f64,
+    /// Branches introduced at generations 1 to this age may be instanced (A above).
+    pub instanced_ages: u32,
 }
 
 /// A cache plus, when asked for, each instance's word.
@@ -176,6 +205,12 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
             "cap_per_key must be at least 1 and generations at most 64".into(),
         ));
     }
+    if !(0.0..=1.0).contains(&options.complete_share) || options.max_tree_exits == 0 {
+        return Err(InstancingError::BadParameter(format!(
+            "complete_share {} must lie in [0, 1] and max_tree_exits {} be at least 1",
+            options.complete_share, options.max_tree_exits
+        )));
+    }
     let ig = InstancingGrammar::new(grammar, options.markers)?;
     let mut turtle = options.turtle.clone();
     for c in [
@@ -197,21 +232,34 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
     let mut rejections = 0;
     let mut smallest_rejected = usize::MAX;
     let mut grammar_cache: Option<(u64, Vec<Vec<u32>>, LSystem)> = None;
+    // Known after the first (whole) hero: the branches introduced up to this age are eligible.
+    let mut instanced_ages: Option<u32> = None;
+    let whole_budget = options.budget as f64 * options.complete_share;
     for k in 0..options.max_heroes {
         let fill = used as f64 / options.budget.max(1) as f64;
         if fill >= 0.999 {
             break;
         }
-        let mut p = options.p_min + (options.p_max - options.p_min) * fill.min(1.0);
-        if rejections > 0 {
-            p = options.p_max;
-        }
+        let p = match instanced_ages {
+            Some(_) if (used as f64) >= whole_budget => {
+                let crowns = ((used as f64 - whole_budget)
+                    / (options.budget as f64 - whole_budget).max(1.0))
+                .clamp(0.0, 1.0);
+                if rejections > 0 {
+                    options.p_max
+                } else {
+                    options.p_min + (options.p_max - options.p_min) * crowns
+                }
+            }
+            _ => 0.0,
+        };
+        let eligible = instanced_ages.unwrap_or(0);
         // Rebuild the rewritten grammar only when the probability (in steps of 1/64) or the
         // set of known (id, age) keys changed.
         let p_step = (p * 64.0).round() as u64;
         let known: Vec<Vec<u32>> = (0..ids)
             .map(|id| {
-                (0..ages)
+                (1..ages.min(eligible + 1))
                     .filter(|&a| !lists[(id * ages + a) as usize].is_empty())
                     .collect()
             })
@@ -239,6 +287,11 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
                 .filter(|&i| {
                     let r = &rec.instances[i];
                     if r.id >= ids || r.age >= ages {
+                        return false;
+                    }
+                    // A crown with more exits than a tree may have placements is not kept
+                    // as a root; its branches still are.
+                    if (r.id, r.age) == ROOT && r.exits.1 - r.exits.0 > options.max_tree_exits {
                         return false;
                     }
                     let slot = (r.id * ages + r.age) as usize;
@@ -276,6 +329,9 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
             continue;
         }
         rejections = 0;
+        if instanced_ages.is_none() {
+            instanced_ages = Some(eligible_ages(&rec, options.max_tree_exits));
+        }
         let (v0, b0, f0) = (
             cache.vertices.len() as u32,
             cache.bark.len() as u32,
@@ -321,6 +377,7 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
     }
     cache.index(ids, ages);
     debug_assert_eq!(cache.bytes() + word_bytes, used);
+    stats.instanced_ages = instanced_ages.unwrap_or(0);
     stats.time = start.elapsed();
     stats.bytes = cache.bytes() + word_bytes;
     stats.instances = cache.instances.len();
@@ -330,6 +387,31 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
         words,
         stats,
     })
+}
+
+/// The deepest age A such that the hero (whole, as the first one is) has at most twice
+/// `max_exits` branches introduced at generations 1 to A; at least 1.
+fn eligible_ages(hero: &HeroRecorder, max_exits: u32) -> u32 {
+    let mut per_age: Vec<u32> = Vec::new();
+    for r in hero.instances.iter().filter(|r| (r.id, r.age) != ROOT) {
+        let a = r.age as usize;
+        if per_age.len() <= a {
+            per_age.resize(a + 1, 0);
+        }
+        per_age[a] += 1;
+    }
+    // Twice the bound: not every eligible branch is instanced, and crowns over the bound are
+    // not kept as roots.
+    let mut total = 0u32;
+    let mut deepest = 1;
+    for (age, &n) in per_age.iter().enumerate().skip(1) {
+        total = total.saturating_add(n);
+        if total > max_exits.saturating_mul(2) {
+            break;
+        }
+        deepest = age as u32;
+    }
+    deepest
 }
 
 /// The sub-word of every start..stop marker pair, in order of the start markers.

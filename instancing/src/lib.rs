@@ -57,7 +57,7 @@ mod recorder;
 mod rewrite;
 mod similarity;
 
-pub use assemble::{Assembler, AssemblyLimits, CompactTree, Placements};
+pub use assemble::{Assembler, AssemblyLimits, CompactTree, Placements, REPEAT_PROBES};
 pub use builder::{BuildReport, InstancedBuilder, NaiveBuilder, TreeBuilder};
 pub use cache::{CANDIDATE_BYTES, EXIT_BYTES, Exit, INSTANCE_BYTES, Instance, InstanceCache};
 pub use error::InstancingError;

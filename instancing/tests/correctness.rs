@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use proptest::prelude::*;
 use sylva_instancing::{
     Assembler, CompactTree, HeroOptions, InstanceCache, InstancingError, InstancingGrammar,
-    Markers, Similarity, build_cache,
+    Markers, REPEAT_PROBES, Similarity, build_cache,
 };
 use sylva_lsys::{LSystem, Word, preset};
 use sylva_turtle::glam::Vec3;
@@ -441,32 +441,91 @@ proptest! {
     }
 }
 
-/// More candidates per exit lean towards whole branches: fewer placements, same validity.
+/// Kenwood's granularity: a tree is a few large instances (one crown plus whole branches),
+/// and trees are varied: almost every tree's composition is its own.
 #[test]
-fn more_choices_mean_fewer_placements() {
-    let grammar = preset("kenwood-leafy").unwrap().lsystem().unwrap();
+fn trees_are_few_large_instances_and_varied() {
+    for (name, generations) in [("kenwood-leafy", 5), ("goe-random", 5), ("abop-honda", 7)] {
+        let grammar = preset(name).unwrap().lsystem().unwrap();
+        let options = HeroOptions::default()
+            .with_budget(16 << 20)
+            .with_generations(generations);
+        let built = build_cache(&grammar, &options).unwrap();
+        let mut assembler = Assembler::new();
+        let mut compositions = HashMap::new();
+        let mut placements = 0;
+        for seed in 0..10_000 {
+            let tree = CompactTree {
+                scale: 1.0,
+                seed,
+                ..Default::default()
+            };
+            let placed = assembler
+                .expand_with(&built.cache, &tree, |_, _| {})
+                .unwrap();
+            assert!(
+                placed <= 1 + options.max_tree_exits as usize,
+                "{name}: {placed} placements"
+            );
+            placements += placed;
+            let c = assembler.composition(&built.cache, &tree).unwrap();
+            *compositions.entry(c).or_insert(0) += 1;
+        }
+        let mean = placements as f64 / 10_000.0;
+        let unique = compositions.values().filter(|&&n| n == 1).count();
+        assert!(
+            mean <= 16.0 && mean >= 2.0,
+            "{name}: {mean} placements per tree"
+        );
+        assert!(
+            unique >= 9_900,
+            "{name}: {unique} of 10,000 compositions are unique"
+        );
+    }
+}
+
+/// An instance appears once per tree while its key has at least REPEAT_PROBES complete
+/// candidates (the bound stated on [`REPEAT_PROBES`]).
+#[test]
+fn no_instance_repeats_within_a_crown() {
+    let grammar = preset("goe-random").unwrap().lsystem().unwrap();
     let built = build_cache(
         &grammar,
         &HeroOptions::default()
-            .with_budget(4 << 20)
+            .with_budget(8 << 20)
             .with_generations(5),
     )
     .unwrap();
-    let trees: Vec<CompactTree> = (0..300)
-        .map(|seed| CompactTree {
+    let cache = &built.cache;
+    let complete = |i: u32| {
+        let inst = &cache.instances[i as usize];
+        cache
+            .lookup(inst.id, inst.age)
+            .iter()
+            .filter(|&&c| cache.instances[c as usize].exits.1 == 0)
+            .count()
+    };
+    let mut assembler = Assembler::new();
+    let mut checked = 0;
+    for seed in 0..2_000 {
+        let tree = CompactTree {
             scale: 1.0,
             seed,
             ..Default::default()
-        })
-        .collect();
-    let placed = |choices: u32| {
-        let mut a = Assembler::new();
-        a.limits.choices = choices;
-        trees
-            .iter()
-            .map(|t| a.expand_with(&built.cache, t, |_, _| {}).unwrap())
-            .sum::<usize>()
-    };
-    let (one, two, eight) = (placed(1), placed(2), placed(8));
-    assert!(eight < two && two < one, "{one} {two} {eight}");
+        };
+        let mut seen = Vec::new();
+        assembler
+            .expand_with(cache, &tree, |i, _| seen.push(i))
+            .unwrap();
+        for (k, &i) in seen.iter().enumerate().skip(1) {
+            if complete(i) >= REPEAT_PROBES {
+                assert!(!seen[..k].contains(&i), "tree {seed} repeats instance {i}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(
+        checked > 1_000,
+        "only {checked} placements had enough candidates to check"
+    );
 }
