@@ -474,7 +474,7 @@ fn trees_are_few_large_instances_and_varied() {
         let mean = placements as f64 / 10_000.0;
         let unique = compositions.values().filter(|&&n| n == 1).count();
         assert!(
-            mean <= 16.0 && mean >= 2.0,
+            (2.0..=16.0).contains(&mean),
             "{name}: {mean} placements per tree"
         );
         assert!(
