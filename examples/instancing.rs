@@ -74,7 +74,8 @@ fn trees(n: usize, seed: u64) -> Vec<CompactTree> {
                 scale: 0.9 + 0.2 * ((h >> 16) & 0xffff) as f32 / 65535.0,
                 seed: (h >> 32) as u32,
                 species: 0,
-                reserved: 0,
+                crown_class: 0,
+                crown_classes: 0,
             }
         })
         .collect()

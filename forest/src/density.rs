@@ -50,6 +50,9 @@ pub struct Candidate {
     pub seedling: bool,
     /// Per-tree randomness: yaw, scale and instance choices derive from it.
     pub key: u64,
+    /// Distinguishes the candidates of one patch: 0 for the canopy tree, 1 + k for the k-th
+    /// seedling. Trees of one patch with different slots never share a crown.
+    pub slot: u32,
 }
 
 /// Decides where trees may stand. Implementations must make the candidates of a region a pure

@@ -120,8 +120,9 @@ pub struct ForestStats {
 pub struct Forest {
     /// The species used.
     pub species: Vec<Species>,
-    /// Caches, one per species and maturity; `CompactTree::species` indexes this.
-    pub variants: Vec<Variant>,
+    /// Caches, one per species and maturity, shared with the builder; `CompactTree::species`
+    /// indexes this.
+    pub variants: Arc<[Variant]>,
     /// The trees.
     pub trees: Vec<CompactTree>,
     /// Canopy sizes per species.
@@ -130,13 +131,36 @@ pub struct Forest {
     pub stats: ForestStats,
 }
 
+/// Most seedling slots told apart by crown class: 9 cells x 28 slots fit a `u8`.
+const MAX_SEEDLING_SLOTS: u32 = 28;
+
+/// A candidate's crown class and the number of classes of its kind. The plane is cut into
+/// cells of side `cell` (at least two canopy radii), coloured 3 x 3 so that a cell and its
+/// eight neighbours have nine colours. Canopy trees (one per cell when the density patch is
+/// the cell) take their cell's colour, of 9 classes; seedlings take colour and slot, of
+/// 9 x `slots` classes. So two trees of one variant closer than two canopy radii always have
+/// different classes, and so different crowns.
+fn crown_class(candidate: &Candidate, cell: f32, slots: u32) -> (u8, u8) {
+    if !(cell.is_finite() && cell > 0.0) {
+        return (0, 0);
+    }
+    let colour = |v: f32| ((v / cell).floor() as i64).rem_euclid(3) as u32;
+    let colour = colour(candidate.position.x) + 3 * colour(candidate.position.y);
+    if candidate.seedling && slots > 0 {
+        let slot = candidate.slot.saturating_sub(1) % slots;
+        ((colour + 9 * slot) as u8, (9 * slots) as u8)
+    } else {
+        (colour as u8, 9)
+    }
+}
+
 /// Builds the caches once; then generates the trees of any region.
 #[derive(Debug, Clone)]
 pub struct ForestBuilder {
     config: ForestConfig,
     density: PatchDensity,
     canopies: Vec<Canopy>,
-    variants: Vec<Variant>,
+    variants: Arc<[Variant]>,
     stats: ForestStats,
 }
 
@@ -217,9 +241,29 @@ impl ForestBuilder {
             config,
             density,
             canopies,
-            variants,
+            variants: variants.into(),
             stats,
         })
+    }
+
+    /// The caches, one per species and maturity; [`CompactTree::species`] indexes this.
+    pub fn variants(&self) -> &[Variant] {
+        &self.variants
+    }
+
+    /// The configuration the caches were built from.
+    pub fn config(&self) -> &ForestConfig {
+        &self.config
+    }
+
+    /// The measured canopy of each species.
+    pub fn canopies(&self) -> &[Canopy] {
+        &self.canopies
+    }
+
+    /// What building the caches cost.
+    pub fn stats(&self) -> ForestStats {
+        self.stats
     }
 
     /// The density model in use (patch side, radii, weights).
@@ -250,6 +294,16 @@ impl ForestBuilder {
         let mut candidates = Vec::new();
         density.candidates(region, self.config.seed, &mut candidates);
         let c = &self.config.constraints;
+        // Crown classes: trees closer than two canopy radii lie in the same or neighbouring
+        // cells of this grid, whose classes differ (see `crown_class`).
+        let widest = self
+            .density
+            .species
+            .iter()
+            .map(|s| s.canopy_radius)
+            .fold(0.0f32, f32::max);
+        let cell = (2.0 * widest).max(self.density.patch);
+        let slots = self.config.seedlings_per_patch.min(MAX_SEEDLING_SLOTS);
         let min_up = c.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
         candidates
             .iter()
@@ -272,13 +326,15 @@ impl ForestBuilder {
                     .iter()
                     .position(|v| v.species == cand.species && v.seedling == cand.seedling)?;
                 let h = mix(cand.key);
+                let (crown_class, crown_classes) = crown_class(cand, cell, slots);
                 Some(CompactTree {
                     position: [x, height, z],
                     yaw: unit(h) * std::f32::consts::TAU,
                     scale: 1.0 + self.config.scale_variation * (2.0 * unit(mix(h)) - 1.0),
                     seed: (h >> 32) as u32,
                     species: variant as u16,
-                    reserved: 0,
+                    crown_class,
+                    crown_classes,
                 })
             })
             .collect()
@@ -292,7 +348,7 @@ impl ForestBuilder {
         stats.placement_time = start.elapsed();
         Forest {
             species: self.config.species.clone(),
-            variants: self.variants.clone(),
+            variants: Arc::clone(&self.variants),
             trees,
             canopies: self.canopies.clone(),
             stats,

@@ -34,12 +34,14 @@ mod forest;
 mod gltf;
 mod patch;
 mod species;
+mod stream;
 
 pub use density::{Candidate, DensityModel, Rect};
 pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
-pub use gltf::{GlbStats, GltfOptions, write_glb};
+pub use gltf::{CHUNK_BYTES, GlbStats, GltfOptions, write_glb};
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
+pub use stream::{BLOCK_PATCHES, Placement, PlacementBlock, PlacementSink, StreamStats};

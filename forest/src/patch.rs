@@ -249,6 +249,7 @@ impl PatchDensity {
                         species: c.species,
                         seedling: false,
                         key: hash(seed, i, j, 100),
+                        slot: 0,
                     });
                 }
                 for k in 0..u64::from(self.seedlings_per_patch) {
@@ -280,6 +281,7 @@ impl PatchDensity {
                             species,
                             seedling: true,
                             key: hash(seed, i, j, 4000 + k),
+                            slot: 1 + k as u32,
                         });
                     }
                 }

@@ -5,7 +5,7 @@ use std::path::Path;
 use proptest::prelude::*;
 use sylva_forest::{
     Candidate, DensityModel, ForestBuilder, ForestConfig, ForestError, GltfOptions, PatchDensity,
-    PatchSpecies, Rect, Species, write_glb,
+    PatchSpecies, PlacementBlock, Rect, Species, write_glb,
 };
 use sylva_terrain::glam::Vec2;
 use sylva_terrain::{DiamondSquare, FlatPlane, HeightField};
@@ -230,9 +230,14 @@ fn a_terrain_without_room_gives_an_empty_forest() {
     );
 }
 
-#[test]
-fn exported_glb_is_well_formed_and_counts_match() {
-    let b = builder(7);
+/// A file path in a fresh temporary directory of this test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("sylva-forest-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join("forest.glb")
+}
+
+fn export_case() -> (ForestBuilder, sylva_terrain::Heightmap, Rect) {
     let map = DiamondSquare::new(65)
         .with_spacing(3.0)
         .with_seed(1)
@@ -240,17 +245,23 @@ fn exported_glb_is_well_formed_and_counts_match() {
         .generate()
         .unwrap();
     let (lo, hi) = map.bounds();
-    let forest = b.build(&map, Rect::new(lo, hi));
-    let placed = forest.placements().unwrap();
-    let mut bytes = Vec::new();
+    (builder(7), map, Rect::new(lo, hi))
+}
+
+#[test]
+fn exported_glb_is_well_formed_and_counts_match() {
+    let (b, map, region) = export_case();
+    let path = scratch("well-formed");
     let stats = write_glb(
-        &forest,
-        &placed,
+        &b,
+        &map,
+        region,
         Some(&map.mesh(1).unwrap()),
         &GltfOptions::default(),
-        &mut bytes,
+        &path,
     )
     .unwrap();
+    let bytes = std::fs::read(&path).unwrap();
     assert_eq!(stats.bytes, bytes.len());
     assert_eq!(&bytes[0..4], b"glTF");
     let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
@@ -269,12 +280,15 @@ fn exported_glb_is_well_formed_and_counts_match() {
             placements += count("TRANSLATION");
         }
     }
-    let drawable: usize = placed
+    // The in-memory forest of the same region places the same instances.
+    let forest = b.build(&map, region);
+    let drawable: usize = forest
+        .placements()
+        .unwrap()
         .iter()
-        .map(|variant_placements| {
-            let cache = &forest.variants[variant_placements.variant].cache;
-            variant_placements
-                .placements
+        .map(|v| {
+            let cache = &forest.variants[v.variant].cache;
+            v.placements
                 .groups
                 .iter()
                 .zip(&cache.instances)
@@ -285,7 +299,148 @@ fn exported_glb_is_well_formed_and_counts_match() {
         .sum();
     assert_eq!(placements as usize, drawable);
     assert_eq!(stats.placements, drawable);
+    assert_eq!(stats.trees, forest.trees.len());
     assert!(drawable >= forest.trees.len() / 2);
+}
+
+/// Chunked writing gathers a few instances per pass; the file is the same as in one pass,
+/// and the same with one thread as with several.
+#[test]
+fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
+    let (b, map, region) = export_case();
+    let write = |name: &str, threads: usize, chunk_bytes: usize| {
+        let path = scratch(name);
+        let mut options = GltfOptions::default();
+        options.chunk_bytes = chunk_bytes;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let stats = pool
+            .install(|| write_glb(&b, &map, region, None, &options, &path))
+            .unwrap();
+        (stats.passes, std::fs::read(&path).unwrap())
+    };
+    let (one_pass, reference) = write("one", 1, usize::MAX);
+    assert_eq!(one_pass, 2);
+    let (passes, chunked) = write("chunked", 1, 4096);
+    assert!(passes > 10, "{passes} passes");
+    assert!(chunked == reference, "chunked writing changed the file");
+    for threads in [2, 3, 8] {
+        let (_, parallel) = write(&format!("threads-{threads}"), threads, 64 << 10);
+        assert!(parallel == reference, "{threads} threads changed the file");
+    }
+}
+
+/// A bad destination is an error, and nothing is left behind: no file, no temporary file.
+#[test]
+fn a_failed_write_leaves_nothing_behind() {
+    let (b, map, region) = export_case();
+    let missing = std::env::temp_dir().join("sylva-no-such-dir-for-tests/forest.glb");
+    assert!(write_glb(&b, &map, region, None, &GltfOptions::default(), &missing).is_err());
+    assert!(!missing.exists());
+    // The destination is a directory: everything is written, then the rename fails.
+    let path = scratch("onto-a-directory");
+    std::fs::create_dir_all(&path).unwrap();
+    std::fs::write(path.join("keep"), b"x").unwrap();
+    let err = write_glb(&b, &map, region, None, &GltfOptions::default(), &path);
+    assert!(matches!(err, Err(ForestError::Io { .. })), "{err:?}");
+    let left: Vec<_> = std::fs::read_dir(path.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(
+        left,
+        vec!["forest.glb".to_string()],
+        "only the directory itself remains"
+    );
+}
+
+/// A streamed forest is the in-memory forest cut into blocks: the same trees and the same
+/// placements, in block order.
+#[test]
+fn streamed_blocks_hold_the_whole_forest() {
+    let (b, map, region) = export_case();
+    let forest = b.build(&map, region);
+    let mut trees = Vec::new();
+    let mut placements = 0;
+    let stats = b
+        .stream(&map, region, &mut |block: &PlacementBlock| {
+            trees.extend_from_slice(&block.trees);
+            placements += block.placements.len();
+            Ok(())
+        })
+        .unwrap();
+    let key = |t: &sylva_instancing::CompactTree| (t.position.map(f32::to_bits), t.seed, t.species);
+    let mut a: Vec<_> = trees.iter().map(key).collect();
+    let mut whole: Vec<_> = forest.trees.iter().map(key).collect();
+    a.sort_unstable();
+    whole.sort_unstable();
+    assert_eq!(a, whole);
+    let expanded: usize = forest
+        .placements()
+        .unwrap()
+        .iter()
+        .map(|v| v.placements.count)
+        .sum();
+    assert_eq!(placements, expanded);
+    assert_eq!(stats.placements, expanded);
+    assert!(stats.blocks >= 1 && stats.trees == forest.trees.len());
+}
+
+/// No copy beside its copy (Kenwood 7.1): no tree stands within two canopy radii of a tree
+/// of the same variant with the same composition.
+#[test]
+fn no_tree_stands_beside_its_copy() {
+    // A cache with at least as many crowns per variant as crown classes (9 for canopy trees,
+    // 27 for seedlings): below that the classes cannot all have crowns of their own.
+    let mut config = ForestConfig::new(small_species());
+    config.budget = 16 << 20;
+    config.seed = 3;
+    let b = ForestBuilder::new(config).unwrap();
+    for v in b.variants().iter() {
+        let crowns = v
+            .cache
+            .lookup(0, 0)
+            .iter()
+            .filter(|&&i| v.cache.instances[i as usize].exits.1 > 0)
+            .count();
+        assert!(crowns >= 27, "{crowns} crowns");
+    }
+    let region = Rect::new(Vec2::splat(-200.0), Vec2::splat(200.0));
+    let forest = b.build(&plane(200.0), region);
+    let mut assembler = sylva_instancing::Assembler::new();
+    let compositions: Vec<u64> = forest
+        .trees
+        .iter()
+        .map(|t| {
+            assembler
+                .composition(&forest.variants[t.species as usize].cache, t)
+                .unwrap()
+        })
+        .collect();
+    let radius = forest
+        .canopies
+        .iter()
+        .map(|c| c.radius())
+        .fold(0.0f32, f32::max);
+    let mut near = 0;
+    for (i, a) in forest.trees.iter().enumerate() {
+        for (j, c) in forest.trees.iter().enumerate().skip(i + 1) {
+            let d =
+                Vec2::new(a.position[0] - c.position[0], a.position[2] - c.position[2]).length();
+            if d < 2.0 * radius && a.species == c.species {
+                near += 1;
+                assert_ne!(
+                    compositions[i],
+                    compositions[j],
+                    "trees {i} and {j} are copies {d} m apart: {a:?} {c:?}, crowns {}",
+                    forest.variants[a.species as usize].cache.lookup(0, 0).len()
+                );
+            }
+        }
+    }
+    assert!(near > 1_000, "only {near} close pairs checked");
 }
 
 #[test]
@@ -378,33 +533,6 @@ fn large_regions_in_blocks_equal_small_tiles() {
     b.sort_unstable();
     assert!(a.len() > 50_000);
     assert_eq!(a, b);
-}
-
-/// Found in review: placed of one forest handed to the writer with another forest indexed
-/// past the other forest's instances.
-#[test]
-fn placements_of_another_forest_are_refused_not_a_panic() {
-    let small = builder(1).build(
-        &plane(40.0),
-        Rect::new(Vec2::splat(-40.0), Vec2::splat(40.0)),
-    );
-    let mut other_config = ForestConfig::new(small_species());
-    other_config.budget = 8 << 20;
-    let other = ForestBuilder::new(other_config).unwrap().build(
-        &plane(40.0),
-        Rect::new(Vec2::splat(-40.0), Vec2::splat(40.0)),
-    );
-    let foreign = other.placements().unwrap();
-    assert_ne!(
-        foreign[0].placements.groups.len(),
-        small.variants[0].cache.instances.len(),
-        "the two forests' caches must differ for this test to mean anything"
-    );
-    let err = write_glb(&small, &foreign, None, &GltfOptions::default(), Vec::new()).unwrap_err();
-    assert!(
-        matches!(err, ForestError::InvalidExport(ref m) if m.contains("another forest")),
-        "{err}"
-    );
 }
 
 /// More species than the density model was told of, or a model edited to fewer species, must

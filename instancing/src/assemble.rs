@@ -25,8 +25,12 @@ pub struct CompactTree {
     pub seed: u32,
     /// Index of the species' cache.
     pub species: u16,
-    /// Reserved, zero.
-    pub reserved: u16,
+    /// Its crown class, below `crown_classes`: trees of different classes with the same
+    /// `crown_classes` never draw the same crown, so a placement that gives neighbours
+    /// different classes never puts a tree beside its copy.
+    pub crown_class: u8,
+    /// Number of crown classes, 0 for none (any crown).
+    pub crown_classes: u8,
 }
 
 impl CompactTree {
@@ -43,7 +47,8 @@ impl CompactTree {
 /// Bounds and choices of one tree's assembly.
 ///
 /// The root instance is drawn uniformly among the whole-tree candidates that have exits (all
-/// of them when none has). Each exit is filled
+/// of them when none has), and among those only from the tree's crown class
+/// ([`CompactTree::crown_class`]) when there are at least as many crowns as classes. Each exit is filled
 /// with a complete candidate of its key (a whole branch subtree, no exits of its own) when
 /// the key has any, drawn uniformly and never one the tree already uses while up to
 /// [`REPEAT_PROBES`] draws find an unused one; a key without complete candidates takes the
@@ -167,7 +172,15 @@ impl Assembler {
                 } else {
                     candidates
                 };
-                let k = pick(tree.seed, counter, crowns.len());
+                let classes = usize::from(tree.crown_classes);
+                let k = if classes > 0 && crowns.len() >= classes {
+                    // Only the crowns of this tree's class: indices c, c + K, c + 2K, ...
+                    let c = usize::from(tree.crown_class) % classes;
+                    let count = (crowns.len() - c).div_ceil(classes);
+                    c + pick(tree.seed, counter, count) * classes
+                } else {
+                    pick(tree.seed, counter, crowns.len())
+                };
                 counter = counter.wrapping_add(1);
                 crowns[k]
             } else if complete > 0 {

@@ -1,0 +1,190 @@
+//! A streamed forest: the region cut into blocks, each block's trees placed and expanded on
+//! all cores, and the blocks handed to a consumer in order, so that memory holds the caches
+//! and a few blocks whatever the number of trees.
+
+use rayon::prelude::*;
+use sylva_instancing::{Assembler, CompactTree, Similarity};
+use sylva_terrain::HeightField;
+use sylva_terrain::glam::Vec2;
+
+use crate::density::Rect;
+use crate::error::ForestError;
+use crate::forest::ForestBuilder;
+
+/// Side of a block, in density patches. Every density decision looks at most three patches
+/// away, so a block computes (64 + 6)^2 patches for 64^2 of its own.
+pub const BLOCK_PATCHES: f32 = 64.0;
+
+/// One instance of one tree, placed: draw instance `instance` of variant `variant`'s cache at
+/// `transform`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// Index into the forest's variants.
+    pub variant: u32,
+    /// Index into that variant's cache instances.
+    pub instance: u32,
+    /// Where it goes: T = D * M^-1.
+    pub transform: Similarity,
+}
+
+/// The trees of one block and their placements, in tree order.
+#[derive(Debug, Clone, Default)]
+pub struct PlacementBlock {
+    /// Position of the block in the stream (row-major over the region's blocks).
+    pub index: usize,
+    /// The part of the region it covers.
+    pub region: Option<Rect>,
+    /// Its trees.
+    pub trees: Vec<CompactTree>,
+    /// Their placements.
+    pub placements: Vec<Placement>,
+}
+
+/// Takes a streamed forest block by block, in order. The exporter, the viewer and a user's
+/// engine implement it; returning an error stops the stream.
+pub trait PlacementSink {
+    /// Receives the next block.
+    fn block(&mut self, block: &PlacementBlock) -> Result<(), ForestError>;
+}
+
+impl<F: FnMut(&PlacementBlock) -> Result<(), ForestError>> PlacementSink for F {
+    fn block(&mut self, block: &PlacementBlock) -> Result<(), ForestError> {
+        self(block)
+    }
+}
+
+/// What a stream produced.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct StreamStats {
+    /// Blocks handed on.
+    pub blocks: usize,
+    /// Trees.
+    pub trees: usize,
+    /// Trees of the seedling variants.
+    pub seedlings: usize,
+    /// Placements.
+    pub placements: usize,
+}
+
+impl ForestBuilder {
+    /// The blocks `region` is cut into, row-major; their union is the region, and each point
+    /// belongs to exactly one.
+    pub fn blocks(&self, region: Rect) -> Vec<Rect> {
+        if region.is_empty() {
+            return Vec::new();
+        }
+        let side = (self.density().patch * BLOCK_PATCHES).max(1.0);
+        let size = region.max - region.min;
+        let (nx, nz) = (
+            (size.x / side).ceil() as usize,
+            (size.y / side).ceil() as usize,
+        );
+        let mut out = Vec::with_capacity(nx.saturating_mul(nz).min(1 << 20));
+        for j in 0..nz {
+            for i in 0..nx {
+                let min = region.min + Vec2::new(i as f32, j as f32) * side;
+                let max = (min + Vec2::splat(side)).min(region.max);
+                // The last row and column end exactly at the region's edge.
+                let max = Vec2::new(
+                    if i + 1 == nx { region.max.x } else { max.x },
+                    if j + 1 == nz { region.max.y } else { max.y },
+                );
+                out.push(Rect::new(min, max));
+            }
+        }
+        out
+    }
+
+    /// One block: its trees and their placements.
+    pub fn block(
+        &self,
+        terrain: &dyn HeightField,
+        index: usize,
+        region: Rect,
+        assembler: &mut Assembler,
+    ) -> Result<PlacementBlock, ForestError> {
+        let trees = self.trees(terrain, region);
+        let mut placements = Vec::with_capacity(trees.len() * 8);
+        let variants = self.variants();
+        for tree in &trees {
+            let variant = tree.species as u32;
+            let cache = &variants
+                .get(tree.species as usize)
+                .ok_or_else(|| {
+                    ForestError::BadParameter(format!("tree of unknown variant {variant}"))
+                })?
+                .cache;
+            assembler.expand_with(cache, tree, |instance, transform| {
+                placements.push(Placement {
+                    variant,
+                    instance,
+                    transform,
+                });
+            })?;
+        }
+        Ok(PlacementBlock {
+            index,
+            region: Some(region),
+            trees,
+            placements,
+        })
+    }
+
+    /// Streams the forest of `region` on `terrain` to `sink`, block by block in row-major
+    /// order. Blocks are placed and expanded in parallel (rayon), a few per thread at a
+    /// time; what the sink receives is the same, byte for byte, at any thread count.
+    ///
+    /// ```
+    /// use sylva_forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
+    /// use sylva_terrain::{FlatPlane, glam::Vec2};
+    ///
+    /// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
+    /// leafy.turtle.step = 0.5;
+    /// let mut config = ForestConfig::new(vec![leafy]);
+    /// config.budget = 4 << 20;
+    /// let builder = ForestBuilder::new(config)?;
+    /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(500.0) };
+    /// let mut trees = 0;
+    /// let stats = builder.stream(&ground, Rect::new(Vec2::ZERO, Vec2::splat(500.0)), &mut |b: &PlacementBlock| {
+    ///     trees += b.trees.len();
+    ///     Ok(())
+    /// })?;
+    /// assert_eq!(stats.trees, trees);
+    /// assert!(stats.placements >= trees);
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn stream(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        region: Rect,
+        sink: &mut dyn PlacementSink,
+    ) -> Result<StreamStats, ForestError> {
+        let blocks = self.blocks(region);
+        let wave = rayon::current_num_threads().max(1) * 2;
+        let mut stats = StreamStats::default();
+        for (w, rects) in blocks.chunks(wave).enumerate() {
+            let done: Vec<Result<PlacementBlock, ForestError>> = rects
+                .par_iter()
+                .enumerate()
+                .map_init(Assembler::new, |assembler, (k, &rect)| {
+                    self.block(terrain, w * wave + k, rect, assembler)
+                })
+                .collect();
+            for block in done {
+                let block = block?;
+                stats.blocks += 1;
+                stats.trees += block.trees.len();
+                let variants = self.variants();
+                stats.seedlings += block
+                    .trees
+                    .iter()
+                    .filter(|t| variants.get(t.species as usize).is_some_and(|v| v.seedling))
+                    .count();
+                stats.placements += block.placements.len();
+                sink.block(&block)?;
+            }
+        }
+        Ok(stats)
+    }
+}
