@@ -3,12 +3,10 @@
 
 use std::hint::black_box;
 
-use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
-use sylva::instancing::{
-    Assembler, CompactTree, HeroOptions, NaiveBuilder, TreeBuilder, build_cache,
-};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use sylva::instancing::{Assembler, CompactTree, HeroOptions, Placements, build_cache};
 use sylva::lsys::preset;
-use sylva::turtle::TurtleOptions;
+use sylva::turtle::{MeshBuilder, TurtleOptions, interpret};
 
 fn trees(n: u32) -> Vec<CompactTree> {
     (0..n)
@@ -76,17 +74,28 @@ fn instancing(c: &mut Criterion) {
         group.throughput(Throughput::Elements(10_000));
         group.bench_function("instanced_expanded", |b| {
             b.iter(|| {
-                let mut builder = sylva::instancing::InstancedBuilder::new(&built.cache);
-                builder.build(&forest).expect("complete")
+                let mut placements = Placements::for_cache(&built.cache);
+                assembler
+                    .expand(&built.cache, &forest, &mut placements)
+                    .expect("complete")
             })
         });
         group.throughput(Throughput::Elements(4));
+        // The baseline: derive and mesh every tree from scratch.
         group.bench_function("naive", |b| {
-            b.iter_batched(
-                || NaiveBuilder::new(grammar.clone(), generations, turtle.clone()),
-                |mut naive| naive.build(&forest[..4]).expect("builds"),
-                BatchSize::LargeInput,
-            )
+            b.iter(|| {
+                forest[..4]
+                    .iter()
+                    .map(|tree| {
+                        let word = grammar
+                            .derive(generations, u64::from(tree.seed))
+                            .expect("derives");
+                        let mut mesh = MeshBuilder::new(&turtle);
+                        interpret(&word, &turtle, &mut mesh).expect("meshes");
+                        mesh.mesh.vertices.len()
+                    })
+                    .sum::<usize>()
+            })
         });
         group.finish();
     }

@@ -286,9 +286,9 @@ fn measure(
             if sampled == 10_000 {
                 break;
             }
-            let cache = &builder.variants()[tree.species as usize].cache;
+            let cache = &builder.variants()[tree.variant as usize].cache;
             let c = assembler.composition(cache, tree)?;
-            *compositions.entry((tree.species, c)).or_insert(0) += 1;
+            *compositions.entry((tree.variant, c)).or_insert(0) += 1;
             sampled += 1;
         }
         Ok(())

@@ -13,11 +13,9 @@ mod common;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use sylva::instancing::{
-    Assembler, CompactTree, HeroOptions, NaiveBuilder, TreeBuilder, build_cache,
-};
+use sylva::instancing::{Assembler, CompactTree, HeroOptions, build_cache};
 use sylva::lsys::preset;
-use sylva::turtle::TurtleOptions;
+use sylva::turtle::{MeshBuilder, TurtleOptions, interpret};
 
 struct Args {
     preset: String,
@@ -73,7 +71,7 @@ fn trees(n: usize, seed: u64) -> Vec<CompactTree> {
                 yaw: (h >> 40) as f32 / (1u64 << 24) as f32 * std::f32::consts::TAU,
                 scale: 0.9 + 0.2 * ((h >> 16) & 0xffff) as f32 / 65535.0,
                 seed: (h >> 32) as u32,
-                species: 0,
+                variant: 0,
                 crown_class: 0,
                 crown_classes: 0,
             }
@@ -136,10 +134,16 @@ fn run() -> Result<(), String> {
 
     let mut naive_rate = None;
     if args.naive > 0 {
-        let mut naive = NaiveBuilder::new(grammar.clone(), generations, turtle);
+        // The baseline: derive and mesh every tree from scratch.
         let sample = &forest[..args.naive.min(forest.len())];
         let t = Instant::now();
-        naive.build(sample).map_err(|e| e.to_string())?;
+        for tree in sample {
+            let word = grammar
+                .derive(generations, u64::from(tree.seed))
+                .map_err(|e| e.to_string())?;
+            let mut mesh = MeshBuilder::new(&turtle);
+            interpret(&word, &turtle, &mut mesh).map_err(|e| e.to_string())?;
+        }
         naive_rate = Some(sample.len() as f64 / t.elapsed().as_secs_f64());
     }
     let instanced_rate = args.trees as f64 / ((hero_ms + placement_ms) / 1e3 + expand_s);

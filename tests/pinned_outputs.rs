@@ -129,7 +129,7 @@ fn forest_of_seed_1_trees_and_placements() {
         trees
             .f32s(&t.position)
             .f32s(&[t.yaw, t.scale])
-            .u32s(&[t.seed, u32::from(t.species)]);
+            .u32s(&[t.seed, u32::from(t.variant)]);
     }
     let mut placements = Fnv::new();
     for variant_placements in forest.placements().unwrap() {

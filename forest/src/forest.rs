@@ -120,7 +120,7 @@ pub struct ForestStats {
 pub struct Forest {
     /// The species used.
     pub species: Vec<Species>,
-    /// Caches, one per species and maturity, shared with the builder; `CompactTree::species`
+    /// Caches, one per species and maturity, shared with the builder; `CompactTree::variant`
     /// indexes this.
     pub variants: Arc<[Variant]>,
     /// The trees.
@@ -246,7 +246,7 @@ impl ForestBuilder {
         })
     }
 
-    /// The caches, one per species and maturity; [`CompactTree::species`] indexes this.
+    /// The caches, one per species and maturity; [`CompactTree::variant`] indexes this.
     pub fn variants(&self) -> &[Variant] {
         &self.variants
     }
@@ -332,7 +332,7 @@ impl ForestBuilder {
                     yaw: unit(h) * std::f32::consts::TAU,
                     scale: 1.0 + self.config.scale_variation * (2.0 * unit(mix(h)) - 1.0),
                     seed: (h >> 32) as u32,
-                    species: variant as u16,
+                    variant: variant as u16,
                     crown_class,
                     crown_classes,
                 })
@@ -379,10 +379,10 @@ impl Forest {
             .collect();
         let mut assembler = Assembler::new();
         for tree in &self.trees {
-            let b = out.get_mut(tree.species as usize).ok_or_else(|| {
-                ForestError::BadParameter(format!("tree of unknown variant {}", tree.species))
+            let b = out.get_mut(tree.variant as usize).ok_or_else(|| {
+                ForestError::BadParameter(format!("tree of unknown variant {}", tree.variant))
             })?;
-            let cache = &self.variants[tree.species as usize].cache;
+            let cache = &self.variants[tree.variant as usize].cache;
             let groups = &mut b.placements.groups;
             b.placements.count +=
                 assembler.expand_with(cache, tree, |i, t| groups[i as usize].push(t))?;

@@ -108,9 +108,9 @@ impl ForestBuilder {
         let mut placements = Vec::with_capacity(trees.len() * 8);
         let variants = self.variants();
         for tree in &trees {
-            let variant = tree.species as u32;
+            let variant = u32::from(tree.variant);
             let cache = &variants
-                .get(tree.species as usize)
+                .get(usize::from(tree.variant))
                 .ok_or_else(|| {
                     ForestError::BadParameter(format!("tree of unknown variant {variant}"))
                 })?
@@ -179,7 +179,11 @@ impl ForestBuilder {
                 stats.seedlings += block
                     .trees
                     .iter()
-                    .filter(|t| variants.get(t.species as usize).is_some_and(|v| v.seedling))
+                    .filter(|t| {
+                        variants
+                            .get(usize::from(t.variant))
+                            .is_some_and(|v| v.seedling)
+                    })
                     .count();
                 stats.placements += block.placements.len();
                 sink.block(&block)?;

@@ -371,7 +371,7 @@ fn streamed_blocks_hold_the_whole_forest() {
             Ok(())
         })
         .unwrap();
-    let key = |t: &sylva_instancing::CompactTree| (t.position.map(f32::to_bits), t.seed, t.species);
+    let key = |t: &sylva_instancing::CompactTree| (t.position.map(f32::to_bits), t.seed, t.variant);
     let mut a: Vec<_> = trees.iter().map(key).collect();
     let mut whole: Vec<_> = forest.trees.iter().map(key).collect();
     a.sort_unstable();
@@ -415,7 +415,7 @@ fn no_tree_stands_beside_its_copy() {
         .iter()
         .map(|t| {
             assembler
-                .composition(&forest.variants[t.species as usize].cache, t)
+                .composition(&forest.variants[t.variant as usize].cache, t)
                 .unwrap()
         })
         .collect();
@@ -429,13 +429,13 @@ fn no_tree_stands_beside_its_copy() {
         for (j, c) in forest.trees.iter().enumerate().skip(i + 1) {
             let d =
                 Vec2::new(a.position[0] - c.position[0], a.position[2] - c.position[2]).length();
-            if d < 2.0 * radius && a.species == c.species {
+            if d < 2.0 * radius && a.variant == c.variant {
                 near += 1;
                 assert_ne!(
                     compositions[i],
                     compositions[j],
                     "trees {i} and {j} are copies {d} m apart: {a:?} {c:?}, crowns {}",
-                    forest.variants[a.species as usize].cache.lookup(0, 0).len()
+                    forest.variants[a.variant as usize].cache.lookup(0, 0).len()
                 );
             }
         }

@@ -23,8 +23,9 @@ pub struct CompactTree {
     pub scale: f32,
     /// Seed of the instance choices.
     pub seed: u32,
-    /// Index of the species' cache.
-    pub species: u16,
+    /// Index of the cache it is assembled from: in a forest, its variant (a species at one
+    /// maturity).
+    pub variant: u16,
     /// Its crown class, below `crown_classes`: trees of different classes with the same
     /// `crown_classes` never draw the same crown, so a placement that gives neighbours
     /// different classes never puts a tree beside its copy.

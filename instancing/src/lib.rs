@@ -18,14 +18,14 @@
 //!
 //! # How it works
 //!
-//! 1. **Rewriting** ([`InstancingGrammar`]): every top-level `[...]` of a successor that holds
+//! 1. **Rewriting** ([`internal::InstancingGrammar`]): every top-level `[...]` of a successor that holds
 //!    a non-terminal is a branch; identical branches share an id; id 0 is the whole tree. Each
 //!    branch becomes an independent stochastic choice: with probability P a get-instance exit
 //!    `◆(id, #)`, else the branch itself between `⟦(id, #)` and `⟧(id, #)`. This reaches the
-//!    distribution of the paper's 2^B right-hand sides ([`InstancingGrammar::explicit`]) with
+//!    distribution of the paper's 2^B right-hand sides ([`internal::InstancingGrammar::explicit`]) with
 //!    one right-hand side per production.
 //! 2. **Heroes** ([`build_cache`]): hero trees are derived and meshed through the turtle's
-//!    marker symbols ([`HeroRecorder`]); each recorded range becomes an [`Instance`] with its
+//!    marker symbols (a `GeometrySink` that records them); each recorded range becomes an [`Instance`] with its
 //!    frame M and exit points, until the byte budget is used. P rises as the cache fills.
 //! 3. **Assembly** ([`Assembler`]): a [`CompactTree`] (28 bytes) is expanded from its seed:
 //!    start from a whole-tree instance at the root frame D, place each instance at
@@ -49,7 +49,6 @@
 //! branch inline at assembly time, this crate makes the case impossible.
 
 mod assemble;
-mod builder;
 mod cache;
 mod error;
 mod hero;
@@ -58,10 +57,16 @@ mod rewrite;
 mod similarity;
 
 pub use assemble::{Assembler, AssemblyLimits, CompactTree, Placements, REPEAT_PROBES};
-pub use builder::{BuildReport, InstancedBuilder, NaiveBuilder, TreeBuilder};
 pub use cache::{CANDIDATE_BYTES, EXIT_BYTES, Exit, INSTANCE_BYTES, Instance, InstanceCache};
 pub use error::InstancingError;
 pub use hero::{HeroCache, HeroOptions, HeroStats, build_cache};
-pub use recorder::{HeroRecorder, RecordedInstance};
-pub use rewrite::{Branch, InstancingGrammar, Markers, probability_at_ages};
+pub use rewrite::Markers;
 pub use similarity::Similarity;
+
+/// The grammar rewriting behind hero creation, exposed for tests and research: branch
+/// detection, the compact instancing form the heroes are derived from, and the paper's
+/// explicit form with 2^B right-hand sides per production, against which the compact form's
+/// distribution is checked. Not needed to build or assemble trees.
+pub mod internal {
+    pub use crate::rewrite::{Branch, InstancingGrammar, probability_at_ages};
+}

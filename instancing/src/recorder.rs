@@ -9,21 +9,21 @@ use crate::similarity::Similarity;
 
 /// An instance found in a hero, with ranges into the hero's own mesh.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RecordedInstance {
+pub(crate) struct RecordedInstance {
     /// Branch id.
-    pub id: u32,
+    pub(crate) id: u32,
     /// Age.
-    pub age: u32,
+    pub(crate) age: u32,
     /// Frame M in the hero.
-    pub frame: Similarity,
+    pub(crate) frame: Similarity,
     /// Bark index range (start, end) in the hero mesh.
-    pub bark: (u32, u32),
+    pub(crate) bark: (u32, u32),
     /// Leaf index range (start, end).
-    pub leaves: (u32, u32),
+    pub(crate) leaves: (u32, u32),
     /// Exit range (start, end) into [`HeroRecorder::exits`].
-    pub exits: (u32, u32),
+    pub(crate) exits: (u32, u32),
     /// Order in which its start marker appeared.
-    pub start_order: u32,
+    pub(crate) start_order: u32,
 }
 
 #[derive(Debug, Clone)]
@@ -39,13 +39,13 @@ struct Open {
 
 /// Meshes a hero tree and records its instances and exit points.
 #[derive(Debug, Clone)]
-pub struct HeroRecorder {
+pub(crate) struct HeroRecorder {
     /// The hero's geometry.
-    pub builder: MeshBuilder,
+    pub(crate) builder: MeshBuilder,
     /// Instances in the order they closed.
-    pub instances: Vec<RecordedInstance>,
+    pub(crate) instances: Vec<RecordedInstance>,
     /// Exit points (id, age, world frame) in the order they appeared.
-    pub exits: Vec<(u32, u32, Similarity)>,
+    pub(crate) exits: Vec<(u32, u32, Similarity)>,
     markers: Markers,
     open: Vec<Open>,
     started: u32,
@@ -62,7 +62,7 @@ fn key(params: &[f64]) -> Option<(u32, u32)> {
 
 impl HeroRecorder {
     /// A recorder meshing with `options` and reading `markers`.
-    pub fn new(options: &TurtleOptions, markers: Markers) -> Self {
+    pub(crate) fn new(options: &TurtleOptions, markers: Markers) -> Self {
         HeroRecorder {
             builder: MeshBuilder::new(options),
             instances: Vec::new(),

@@ -112,7 +112,7 @@ impl InstancingGrammar {
     ///
     /// ```
     /// let g = sylva_lsys::preset("kenwood-leafy").unwrap().lsystem().unwrap();
-    /// let ig = sylva_instancing::InstancingGrammar::new(&g, Default::default()).unwrap();
+    /// let ig = sylva_instancing::internal::InstancingGrammar::new(&g, Default::default()).unwrap();
     /// // [&FL!A] appears twice and [^FL!A] once; the leaf's brackets hold no non-terminal.
     /// assert_eq!(ig.branch_count(), 2);
     /// assert_eq!(ig.branches().len(), 3);

@@ -5,9 +5,10 @@
 use std::collections::HashMap;
 
 use proptest::prelude::*;
+use sylva_instancing::internal::InstancingGrammar;
 use sylva_instancing::{
-    Assembler, CompactTree, HeroOptions, InstanceCache, InstancingError, InstancingGrammar,
-    Markers, REPEAT_PROBES, Similarity, build_cache,
+    Assembler, CompactTree, HeroOptions, InstanceCache, InstancingError, Markers, REPEAT_PROBES,
+    Similarity, build_cache,
 };
 use sylva_lsys::{LSystem, Word, preset};
 use sylva_turtle::glam::Vec3;
