@@ -94,7 +94,14 @@ fn hero_cache_of_a_fixed_grammar_seed_and_budget() {
         h.u32s(&cache.bark).u32s(&cache.leaves);
         for i in &cache.instances {
             h.u32s(&[
-                i.id, i.age, i.bark.0, i.bark.1, i.leaves.0, i.leaves.1, i.exits.0, i.exits.1,
+                i.id,
+                i.age,
+                i.bark.start,
+                i.bark.count,
+                i.leaves.start,
+                i.leaves.count,
+                i.exits.start,
+                i.exits.count,
             ])
             .similarity(&i.frame_inverse);
         }

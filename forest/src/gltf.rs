@@ -135,10 +135,11 @@ pub fn write_glb(
             v.cache.bark.iter().chain(&v.cache.leaves),
         )?;
         let (bark, leaves) = (v.cache.bark.len(), v.cache.leaves.len());
-        if v.cache.instances.iter().any(|i| {
-            i.bark.0 as usize + i.bark.1 as usize > bark
-                || i.leaves.0 as usize + i.leaves.1 as usize > leaves
-        }) {
+        if v.cache
+            .instances
+            .iter()
+            .any(|i| i.bark.end() as usize > bark || i.leaves.end() as usize > leaves)
+        {
             return Err(ForestError::InvalidExport(
                 "an instance spans past its cache's indices".into(),
             ));
@@ -181,7 +182,7 @@ pub fn write_glb(
             if count == 0 {
                 continue;
             }
-            if inst.bark.1 + inst.leaves.1 == 0 {
+            if inst.bark.is_empty() && inst.leaves.is_empty() {
                 empty_placements += count;
                 continue;
             }
@@ -623,16 +624,16 @@ impl Document {
                 continue;
             };
             let mut primitives = Vec::new();
-            for (view, (start, count), material) in [
+            for (view, span, material) in [
                 (bark, inst.bark, bark_material),
                 (leaves, inst.leaves, leaf_material),
             ] {
-                if let (Some(view), true) = (view, count > 0) {
+                if let (Some(view), false) = (view, span.is_empty()) {
                     let acc = a.accessor(
                         *view,
-                        start as usize * 4,
+                        span.start as usize * 4,
                         UNSIGNED_INT,
-                        count as usize,
+                        span.count as usize,
                         "SCALAR",
                         None,
                     );

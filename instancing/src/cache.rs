@@ -4,6 +4,7 @@
 use sylva_turtle::Vertex;
 
 use crate::similarity::Similarity;
+use crate::span::Span;
 
 /// A cached branch instance.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -12,15 +13,15 @@ pub struct Instance {
     pub id: u32,
     /// Generation at which the branch was introduced.
     pub age: u32,
-    /// Bark triangles: `bark[start..start + count]` of the cache's index buffer.
-    pub bark: (u32, u32),
-    /// Leaf triangles: a range of the cache's leaf index buffer.
-    pub leaves: (u32, u32),
+    /// Bark triangles: a span of the cache's bark index buffer.
+    pub bark: Span,
+    /// Leaf triangles: a span of the cache's leaf index buffer.
+    pub leaves: Span,
     /// The inverse of the instance's frame M in its hero tree: placing it at a desired frame D
     /// uses T = D * M^-1.
     pub frame_inverse: Similarity,
-    /// Its exit points: `exits[start..start + count]` of the cache.
-    pub exits: (u32, u32),
+    /// Its exit points: a span of the cache's exits.
+    pub exits: Span,
 }
 
 /// An exit point of an instance: where a sub-branch of (id, age) must be attached, as a frame
@@ -56,7 +57,7 @@ pub struct InstanceCache {
     /// All exit points.
     pub exits: Vec<Exit>,
     /// Per (id, age): range into `candidates`; dense, `table[id * ages + age]`.
-    table: Vec<(u32, u32)>,
+    table: Vec<Span>,
     candidates: Vec<u32>,
     /// Exit counts of `candidates`, side by side so assembly compares them without touching
     /// the instances.
@@ -105,10 +106,10 @@ impl InstanceCache {
             .table
             .get((id as usize) * self.ages as usize + age as usize)
         {
-            Some(&(start, count)) => {
-                let r = start as usize..(start + count) as usize;
-                (&self.candidates[r.clone()], &self.candidate_exits[r])
-            }
+            Some(span) => (
+                &self.candidates[span.range()],
+                &self.candidate_exits[span.range()],
+            ),
             None => (&[], &[]),
         }
     }
@@ -116,7 +117,7 @@ impl InstanceCache {
     /// The exit points of instance `i`.
     #[inline]
     pub fn exits_of(&self, instance: &Instance) -> &[Exit] {
-        &self.exits[instance.exits.0 as usize..(instance.exits.0 + instance.exits.1) as usize]
+        &self.exits[instance.exits.range()]
     }
 
     /// Rebuilds the dense lookup table over `ids` ids and `ages` ages (bytes counted).
@@ -132,12 +133,12 @@ impl InstanceCache {
         self.table.clear();
         for mut l in lists {
             // Complete candidates (no exits) first, so assembly finds them as a prefix.
-            l.sort_by_key(|&i| self.instances[i as usize].exits.1);
+            l.sort_by_key(|&i| self.instances[i as usize].exits.count);
             self.table
-                .push((self.candidates.len() as u32, l.len() as u32));
+                .push(Span::new(self.candidates.len() as u32, l.len() as u32));
             let instances = &self.instances;
             self.candidate_exits
-                .extend(l.iter().map(|&i| instances[i as usize].exits.1));
+                .extend(l.iter().map(|&i| instances[i as usize].exits.count));
             self.candidates.extend(l);
         }
         self.ages = ages;

@@ -9,6 +9,7 @@ use crate::cache::{CANDIDATE_BYTES, EXIT_BYTES, INSTANCE_BYTES, Instance, Instan
 use crate::error::InstancingError;
 use crate::recorder::HeroRecorder;
 use crate::rewrite::{InstancingGrammar, Markers, probability_at_ages};
+use crate::span::Span;
 use sylva_base::hash::mix;
 
 /// Settings for [`build_cache`].
@@ -291,7 +292,7 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
                     }
                     // A crown with more exits than a tree may have placements is not kept
                     // as a root; its branches still are.
-                    if (r.id, r.age) == ROOT && r.exits.1 - r.exits.0 > options.max_tree_exits {
+                    if (r.id, r.age) == ROOT && r.exits.count > options.max_tree_exits {
                         return false;
                     }
                     let slot = (r.id * ages + r.age) as usize;
@@ -303,7 +304,7 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
         };
         let exit_count: usize = accepted
             .iter()
-            .map(|&i| (rec.instances[i].exits.1 - rec.instances[i].exits.0) as usize)
+            .map(|&i| rec.instances[i].exits.count as usize)
             .sum();
         let hero_words: Vec<Word> = if options.keep_words {
             instance_words(&word, &options.markers)
@@ -344,7 +345,7 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
             let r = &rec.instances[i];
             let inverse = r.frame.inverse();
             let e0 = cache.exits.len() as u32;
-            for &(id, age, world) in &rec.exits[r.exits.0 as usize..r.exits.1 as usize] {
+            for &(id, age, world) in &rec.exits[r.exits.range()] {
                 cache.exits.push(crate::cache::Exit {
                     id,
                     age,
@@ -355,10 +356,10 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
             cache.instances.push(Instance {
                 id: r.id,
                 age: r.age,
-                bark: (b0 + r.bark.0, r.bark.1 - r.bark.0),
-                leaves: (f0 + r.leaves.0, r.leaves.1 - r.leaves.0),
+                bark: r.bark.offset(b0),
+                leaves: r.leaves.offset(f0),
                 frame_inverse: inverse,
-                exits: (e0, cache.exits.len() as u32 - e0),
+                exits: Span::between(e0, cache.exits.len() as u32),
             });
             if let Some(w) = hero_words.get(r.start_order as usize) {
                 word_bytes += w.heap_bytes();

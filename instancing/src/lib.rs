@@ -55,6 +55,7 @@ mod hero;
 mod recorder;
 mod rewrite;
 mod similarity;
+mod span;
 
 pub use assemble::{Assembler, AssemblyLimits, CompactTree, Placements, REPEAT_PROBES};
 pub use cache::{CANDIDATE_BYTES, EXIT_BYTES, Exit, INSTANCE_BYTES, Instance, InstanceCache};
@@ -62,6 +63,7 @@ pub use error::InstancingError;
 pub use hero::{HeroCache, HeroOptions, HeroStats, build_cache};
 pub use rewrite::Markers;
 pub use similarity::Similarity;
+pub use span::Span;
 
 /// The grammar rewriting behind hero creation, exposed for tests and research: branch
 /// detection, the compact instancing form the heroes are derived from, and the paper's

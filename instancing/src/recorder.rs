@@ -6,6 +6,7 @@ use sylva_turtle::{Frame, GeometrySink, MeshBuilder, Segment, TurtleOptions};
 
 use crate::rewrite::Markers;
 use crate::similarity::Similarity;
+use crate::span::Span;
 
 /// An instance found in a hero, with ranges into the hero's own mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -17,11 +18,11 @@ pub(crate) struct RecordedInstance {
     /// Frame M in the hero.
     pub(crate) frame: Similarity,
     /// Bark index range (start, end) in the hero mesh.
-    pub(crate) bark: (u32, u32),
+    pub(crate) bark: Span,
     /// Leaf index range (start, end).
-    pub(crate) leaves: (u32, u32),
+    pub(crate) leaves: Span,
     /// Exit range (start, end) into [`HeroRecorder::exits`].
-    pub(crate) exits: (u32, u32),
+    pub(crate) exits: Span,
     /// Order in which its start marker appeared.
     pub(crate) start_order: u32,
 }
@@ -117,9 +118,9 @@ impl GeometrySink for HeroRecorder {
                     id,
                     age,
                     frame: o.frame,
-                    bark: (o.bark, mesh.bark.len() as u32),
-                    leaves: (o.leaves, mesh.leaves.len() as u32),
-                    exits: (o.exits, self.exits.len() as u32),
+                    bark: Span::between(o.bark, mesh.bark.len() as u32),
+                    leaves: Span::between(o.leaves, mesh.leaves.len() as u32),
+                    exits: Span::between(o.exits, self.exits.len() as u32),
                     start_order: o.order,
                 });
             }

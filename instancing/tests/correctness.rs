@@ -34,8 +34,8 @@ fn assembled_triangles(cache: &InstanceCache, tree: &CompactTree) -> Vec<Tri> {
         .expand_with(cache, tree, |i, t| {
             let inst = &cache.instances[i as usize];
             let ranges = [(&cache.bark, inst.bark), (&cache.leaves, inst.leaves)];
-            for (indices, (start, count)) in ranges {
-                for tri in indices[start as usize..(start + count) as usize].chunks_exact(3) {
+            for (indices, span) in ranges {
+                for tri in indices[span.range()].chunks_exact(3) {
                     out.push([0, 1, 2].map(|k| {
                         t.transform_point(Vec3::from(cache.vertices[tri[k] as usize].position))
                     }));
@@ -503,7 +503,7 @@ fn no_instance_repeats_within_a_crown() {
         cache
             .lookup(inst.id, inst.age)
             .iter()
-            .filter(|&&c| cache.instances[c as usize].exits.1 == 0)
+            .filter(|&&c| cache.instances[c as usize].exits.is_empty())
             .count()
     };
     let mut assembler = Assembler::new();

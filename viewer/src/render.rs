@@ -248,12 +248,12 @@ impl Renderer {
         for g in &scene.groups {
             let first = all.len() as u64;
             all.extend_from_slice(&g.instances);
-            for (bark, range) in [(true, g.bark), (false, g.leaves)] {
-                if range.1 > 0 {
+            for (bark, span) in [(true, g.bark), (false, g.leaves)] {
+                if !span.is_empty() {
                     draws.push(Draw {
                         variant: g.variant,
                         material: 1 + 2 * g.variant as u32 + u32::from(!bark),
-                        indices: (range.0, range.0 + range.1),
+                        indices: (span.start, span.end()),
                         bark,
                         first_instance: first,
                         instances: g.instances.len() as u32,

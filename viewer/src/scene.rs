@@ -1,7 +1,8 @@
 //! The CPU side of the viewer: the forest and terrain as flat buffers, and the camera.
 
 use bytemuck::{Pod, Zeroable};
-use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
+use sylva::instancing::Span;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3};
 use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
 use sylva::turtle::Vertex;
@@ -26,8 +27,8 @@ pub(crate) struct VariantGeometry {
 /// One cached instance with its placements: one instanced draw per non-empty index range.
 pub(crate) struct Group {
     pub(crate) variant: usize,
-    pub(crate) bark: (u32, u32),
-    pub(crate) leaves: (u32, u32),
+    pub(crate) bark: Span,
+    pub(crate) leaves: Span,
     pub(crate) instances: Vec<InstanceRaw>,
 }
 
@@ -89,13 +90,50 @@ impl Scene {
         map.smooth(2.0, EdgeMode::Mirror)
             .map_err(|e| e.to_string())?;
         let terrain = map.mesh(1).map_err(|e| e.to_string())?;
-        let forest = builder.build(&map, Rect::new(Vec2::ZERO, Vec2::splat(side)));
-        let placed = forest.placements().map_err(|e| e.to_string())?;
-        let variants = forest
-            .variants
+        // The forest streamed block by block, as the exporter reads it; placements are
+        // gathered per (variant, instance) for one instanced draw each.
+        let variants = builder.variants();
+        let mut placed: Vec<Vec<Vec<InstanceRaw>>> = variants
+            .iter()
+            .map(|v| vec![Vec::new(); v.cache.instances.len()])
+            .collect();
+        let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+        let streamed = builder
+            .stream(&map, region, &mut |block: &PlacementBlock| {
+                for p in &block.placements {
+                    let t = &p.transform;
+                    placed[p.variant as usize][p.instance as usize].push(InstanceRaw {
+                        rotation: t.rotation.to_array(),
+                        translation_scale: [
+                            t.translation.x,
+                            t.translation.y,
+                            t.translation.z,
+                            t.scale,
+                        ],
+                    });
+                }
+                Ok(())
+            })
+            .map_err(|e| e.to_string())?;
+        let species = &builder.config().species;
+        let mut groups = Vec::new();
+        for (variant, (v, per_instance)) in variants.iter().zip(placed).enumerate() {
+            for (inst, instances) in v.cache.instances.iter().zip(per_instance) {
+                if instances.is_empty() || (inst.bark.is_empty() && inst.leaves.is_empty()) {
+                    continue;
+                }
+                groups.push(Group {
+                    variant,
+                    bark: inst.bark,
+                    leaves: inst.leaves,
+                    instances,
+                });
+            }
+        }
+        let variants = variants
             .iter()
             .map(|v| {
-                let s = &forest.species[v.species];
+                let s = &species[v.species];
                 VariantGeometry {
                     vertices: v.cache.vertices.clone(),
                     bark: v.cache.bark.clone(),
@@ -105,32 +143,6 @@ impl Scene {
                 }
             })
             .collect();
-        let mut groups = Vec::new();
-        for b in &placed {
-            let cache = &forest.variants[b.variant].cache;
-            for (inst, placements) in cache.instances.iter().zip(&b.placements.groups) {
-                if placements.is_empty() || inst.bark.1 + inst.leaves.1 == 0 {
-                    continue;
-                }
-                groups.push(Group {
-                    variant: b.variant,
-                    bark: inst.bark,
-                    leaves: inst.leaves,
-                    instances: placements
-                        .iter()
-                        .map(|t| InstanceRaw {
-                            rotation: t.rotation.to_array(),
-                            translation_scale: [
-                                t.translation.x,
-                                t.translation.y,
-                                t.translation.z,
-                                t.scale,
-                            ],
-                        })
-                        .collect(),
-                });
-            }
-        }
         Ok(Scene {
             heightmap: map,
             terrain_vertices: terrain.vertices,
@@ -138,7 +150,7 @@ impl Scene {
             variants,
             groups,
             side,
-            trees: forest.trees.len(),
+            trees: streamed.trees,
         })
     }
 
