@@ -188,6 +188,17 @@ impl ForestBuilder {
             .iter()
             .map(Species::canopy)
             .collect::<Result<Vec<_>, _>>()?;
+        if let Some((s, _)) = config
+            .species
+            .iter()
+            .zip(&canopies)
+            .find(|(s, c)| s.weight > 0.0 && !(c.radius() > 0.0 && c.radius().is_finite()))
+        {
+            return Err(ForestError::BadParameter(format!(
+                "species '{}' draws nothing: its trees have no extent (does its grammar move the turtle?)",
+                s.name
+            )));
+        }
         let total_weight: f32 = config.species.iter().map(|s| s.weight.max(0.0)).sum();
         let start = Instant::now();
         let mut variants = Vec::new();

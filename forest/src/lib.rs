@@ -44,4 +44,6 @@ pub use forest::{
 pub use gltf::{CHUNK_BYTES, GlbStats, GltfOptions, write_glb};
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
-pub use stream::{BLOCK_PATCHES, Placement, PlacementBlock, PlacementSink, StreamStats};
+pub use stream::{
+    BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
+};

@@ -11,6 +11,10 @@ use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
 
+/// Most blocks one stream may have: 16 million blocks of 64 x 64 patches is a region far
+/// beyond any forest a machine can write; more means a patch size or region that is wrong.
+pub const MAX_BLOCKS: usize = 1 << 24;
+
 /// Side of a block, in density patches. Every density decision looks at most three patches
 /// away, so a block computes (64 + 6)^2 patches for 64^2 of its own.
 pub const BLOCK_PATCHES: f32 = 64.0;
@@ -69,18 +73,25 @@ pub struct StreamStats {
 
 impl ForestBuilder {
     /// The blocks `region` is cut into, row-major; their union is the region, and each point
-    /// belongs to exactly one.
-    pub fn blocks(&self, region: Rect) -> Vec<Rect> {
+    /// belongs to exactly one. An error when there would be more than [`MAX_BLOCKS`] (a
+    /// patch far too small for the region), checked before anything is allocated.
+    pub fn blocks(&self, region: Rect) -> Result<Vec<Rect>, ForestError> {
         if region.is_empty() {
-            return Vec::new();
+            return Ok(Vec::new());
         }
-        let side = (self.density().patch * BLOCK_PATCHES).max(1.0);
+        let side = self.density().patch * BLOCK_PATCHES;
         let size = region.max - region.min;
-        let (nx, nz) = (
-            (size.x / side).ceil() as usize,
-            (size.y / side).ceil() as usize,
-        );
-        let mut out = Vec::with_capacity(nx.saturating_mul(nz).min(1 << 20));
+        let (fx, fz) = ((size.x / side).ceil(), (size.y / side).ceil());
+        if !(side.is_finite() && side > 0.0 && f64::from(fx) * f64::from(fz) <= MAX_BLOCKS as f64) {
+            return Err(ForestError::BadParameter(format!(
+                "a region of {} x {} m in patches of {} m makes more than {MAX_BLOCKS} blocks",
+                size.x,
+                size.y,
+                self.density().patch
+            )));
+        }
+        let (nx, nz) = (fx as usize, fz as usize);
+        let mut out = Vec::with_capacity(nx * nz);
         for j in 0..nz {
             for i in 0..nx {
                 let min = region.min + Vec2::new(i as f32, j as f32) * side;
@@ -93,7 +104,7 @@ impl ForestBuilder {
                 out.push(Rect::new(min, max));
             }
         }
-        out
+        Ok(out)
     }
 
     /// One block: its trees and their placements.
@@ -160,7 +171,7 @@ impl ForestBuilder {
         region: Rect,
         sink: &mut dyn PlacementSink,
     ) -> Result<StreamStats, ForestError> {
-        let blocks = self.blocks(region);
+        let blocks = self.blocks(region)?;
         let wave = rayon::current_num_threads().max(1) * 2;
         let mut stats = StreamStats::default();
         for (w, rects) in blocks.chunks(wave).enumerate() {

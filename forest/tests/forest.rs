@@ -595,3 +595,46 @@ fn hostile_species_files() {
         }
     }
 }
+
+/// Regions of no area stream nothing; a patch far too small for the region is refused before
+/// anything is allocated; a species whose trees have no geometry is refused.
+#[test]
+fn degenerate_streams_are_empty_or_errors() {
+    let mut b = builder(5);
+    let mut blocks = 0;
+    let empty = Rect::new(Vec2::splat(10.0), Vec2::splat(10.0));
+    let stats = b
+        .stream(&plane(100.0), empty, &mut |_: &PlacementBlock| {
+            blocks += 1;
+            Ok(())
+        })
+        .unwrap();
+    assert_eq!((stats.blocks, stats.trees, blocks), (0, 0, 0));
+    let nan = Rect::new(Vec2::splat(f32::NAN), Vec2::splat(10.0));
+    assert_eq!(b.blocks(nan).unwrap().len(), 0);
+    b.density_mut().patch = 1e-6;
+    let huge = Rect::new(Vec2::ZERO, Vec2::splat(20_000.0));
+    assert!(matches!(b.blocks(huge), Err(ForestError::BadParameter(_))));
+    assert!(
+        b.stream(&plane(20_000.0), huge, &mut |_: &PlacementBlock| Ok(()))
+            .is_err()
+    );
+    // A species whose trees draw nothing is refused by name.
+    let mut config = ForestConfig::new(vec![LSystemSpecies::bare()]);
+    config.budget = 1 << 20;
+    let err = ForestBuilder::new(config).unwrap_err();
+    assert!(err.to_string().contains("'bare' draws nothing"), "{err}");
+}
+
+/// A species whose grammar draws nothing.
+struct LSystemSpecies;
+
+impl LSystemSpecies {
+    fn bare() -> Species {
+        let text = "name: bare\ngrammar: bare.lsys\ngenerations: 3\n";
+        let dir = std::env::temp_dir().join(format!("sylva-bare-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("bare.lsys"), "axiom: A\nA -> [+A][-A]A").unwrap();
+        Species::parse_file(text, &dir.join("bare.species")).unwrap()
+    }
+}
