@@ -3,14 +3,12 @@
 use std::time::{Duration, Instant};
 
 use sylva_lsys::{LSystem, Limits, Word};
-use sylva_turtle::{Command, TurtleOptions, interpret};
+use sylva_turtle::TurtleOptions;
 
-use crate::cache::{CANDIDATE_BYTES, EXIT_BYTES, INSTANCE_BYTES, Instance, InstanceCache};
+use crate::cache::InstanceCache;
 use crate::error::InstancingError;
-use crate::recorder::HeroRecorder;
-use crate::rewrite::{InstancingGrammar, Markers, probability_at_ages};
-use crate::span::Span;
-use sylva_base::hash::mix;
+use crate::filling::{Filling, HeroGrammar, Schedule};
+use crate::rewrite::Markers;
 
 /// Settings for [`build_cache`].
 ///
@@ -212,173 +210,43 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
             options.complete_share, options.max_tree_exits
         )));
     }
-    let ig = InstancingGrammar::new(grammar, options.markers)?;
-    let mut turtle = options.turtle.clone();
-    for c in [
-        options.markers.start,
-        options.markers.stop,
-        options.markers.get,
-    ] {
-        turtle.symbols.set(c, Command::Marker);
-    }
-    let ids = ig.branch_count() + 1;
-    let ages = options.generations + 1;
-    let mut cache = InstanceCache::new(options.budget);
-    let table_bytes = (ids * ages) as usize * 8;
-    let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (ids * ages) as usize];
-    let mut words = Vec::new();
-    let mut word_bytes = 0usize;
-    let mut used = table_bytes;
+    let mut grammar = HeroGrammar::new(grammar, options)?;
+    let mut filling = Filling::new(options.budget, grammar.ids(), options.generations + 1);
+    let mut schedule = Schedule::new(options);
     let mut stats = HeroStats::default();
     let mut rejections = 0;
     let mut smallest_rejected = usize::MAX;
-    let mut grammar_cache: Option<(u64, Vec<Vec<u32>>, LSystem)> = None;
-    // Known after the first (whole) hero: the branches introduced up to this age are eligible.
-    let mut instanced_ages: Option<u32> = None;
-    let whole_budget = options.budget as f64 * options.complete_share;
     for k in 0..options.max_heroes {
-        let fill = used as f64 / options.budget.max(1) as f64;
-        if fill >= 0.999 {
+        if filling.used as f64 >= 0.999 * options.budget as f64 {
             break;
         }
-        let p = match instanced_ages {
-            Some(_) if (used as f64) >= whole_budget => {
-                let crowns = ((used as f64 - whole_budget)
-                    / (options.budget as f64 - whole_budget).max(1.0))
-                .clamp(0.0, 1.0);
-                if rejections > 0 {
-                    options.p_max
-                } else {
-                    options.p_min + (options.p_max - options.p_min) * crowns
-                }
-            }
-            _ => 0.0,
-        };
-        let eligible = instanced_ages.unwrap_or(0);
-        // Rebuild the rewritten grammar only when the probability (in steps of 1/64) or the
-        // set of known (id, age) keys changed.
-        let p_step = (p * 64.0).round() as u64;
-        let known: Vec<Vec<u32>> = (0..ids)
-            .map(|id| {
-                (1..ages.min(eligible + 1))
-                    .filter(|&a| !lists[(id * ages + a) as usize].is_empty())
-                    .collect()
-            })
-            .collect();
-        let reuse = matches!(&grammar_cache, Some((s, kn, _)) if *s == p_step && *kn == known);
-        if !reuse {
-            let q = p_step as f64 / 64.0;
-            let g = ig.compact(|id| probability_at_ages(q, &known[id as usize]))?;
-            grammar_cache = Some((p_step, known, g));
-        }
-        let Some((_, _, g)) = &grammar_cache else {
-            unreachable!("just set")
-        };
-        let word = g.derive_with(
-            options.generations,
-            mix(options.seed ^ mix(u64::from(k))),
-            &options.limits,
-        )?;
-        let mut rec = HeroRecorder::new(&turtle, options.markers);
-        interpret(&word, &turtle, &mut rec)?;
-        let mesh = &rec.builder.mesh;
-        let accepted: Vec<usize> = {
-            let mut extra = vec![0usize; lists.len()];
-            (0..rec.instances.len())
-                .filter(|&i| {
-                    let r = &rec.instances[i];
-                    if r.id >= ids || r.age >= ages {
-                        return false;
-                    }
-                    // A crown with more exits than a tree may have placements is not kept
-                    // as a root; its branches still are.
-                    if (r.id, r.age) == ROOT && r.exits.count > options.max_tree_exits {
-                        return false;
-                    }
-                    let slot = (r.id * ages + r.age) as usize;
-                    let ok = lists[slot].len() + extra[slot] < options.cap_per_key;
-                    extra[slot] += usize::from(ok);
-                    ok
-                })
-                .collect()
-        };
-        let exit_count: usize = accepted
-            .iter()
-            .map(|&i| rec.instances[i].exits.count as usize)
-            .sum();
-        let hero_words: Vec<Word> = if options.keep_words {
-            instance_words(&word, &options.markers)
-        } else {
-            Vec::new()
-        };
-        let new_word_bytes: usize = accepted
-            .iter()
-            .filter_map(|&i| hero_words.get(rec.instances[i].start_order as usize))
-            .map(Word::heap_bytes)
-            .sum();
-        let needed = mesh.byte_size()
-            + accepted.len() * (INSTANCE_BYTES + CANDIDATE_BYTES)
-            + exit_count * EXIT_BYTES
-            + new_word_bytes;
-        if used + needed > options.budget || accepted.is_empty() {
+        let p = schedule.probability(filling.used, rejections);
+        let eligible = schedule.instanced_ages.unwrap_or(0);
+        let hero = grammar.hero(k, p, eligible, &filling, options)?;
+        let offer = filling.offer(&hero, options);
+        if filling.used + offer.bytes > options.budget || offer.is_empty() {
             stats.rejected += 1;
             rejections += 1;
-            smallest_rejected = smallest_rejected.min(needed);
+            smallest_rejected = smallest_rejected.min(offer.bytes);
             if rejections >= options.max_rejections {
                 break;
             }
             continue;
         }
         rejections = 0;
-        if instanced_ages.is_none() {
-            instanced_ages = Some(eligible_ages(&rec, options.max_tree_exits));
-        }
-        let (v0, b0, f0) = (
-            cache.vertices.len() as u32,
-            cache.bark.len() as u32,
-            cache.leaves.len() as u32,
-        );
-        cache.vertices.extend_from_slice(&mesh.vertices);
-        cache.bark.extend(mesh.bark.iter().map(|&i| i + v0));
-        cache.leaves.extend(mesh.leaves.iter().map(|&i| i + v0));
-        for &i in &accepted {
-            let r = &rec.instances[i];
-            let inverse = r.frame.inverse();
-            let e0 = cache.exits.len() as u32;
-            for &(id, age, world) in &rec.exits[r.exits.range()] {
-                cache.exits.push(crate::cache::Exit {
-                    id,
-                    age,
-                    frame: inverse.mul(&world),
-                });
-            }
-            lists[(r.id * ages + r.age) as usize].push(cache.instances.len() as u32);
-            cache.instances.push(Instance {
-                id: r.id,
-                age: r.age,
-                bark: r.bark.offset(b0),
-                leaves: r.leaves.offset(f0),
-                frame_inverse: inverse,
-                exits: Span::between(e0, cache.exits.len() as u32),
-            });
-            if let Some(w) = hero_words.get(r.start_order as usize) {
-                word_bytes += w.heap_bytes();
-                words.push(w.clone());
-            }
-        }
-        used += needed;
+        schedule.learn(&hero);
+        filling.append(&hero, &offer);
         stats.heroes += 1;
         stats.final_probability = p;
     }
     if stats.heroes == 0 {
         return Err(InstancingError::BudgetTooSmall {
             budget: options.budget,
-            needed: smallest_rejected.saturating_add(table_bytes),
+            needed: smallest_rejected.saturating_add(filling.table_bytes()),
         });
     }
-    cache.index(ids, ages);
-    debug_assert_eq!(cache.bytes() + word_bytes, used);
-    stats.instanced_ages = instanced_ages.unwrap_or(0);
+    let (cache, words, word_bytes) = filling.finish();
+    stats.instanced_ages = schedule.instanced_ages.unwrap_or(0);
     stats.time = start.elapsed();
     stats.bytes = cache.bytes() + word_bytes;
     stats.instances = cache.instances.len();
@@ -388,54 +256,6 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
         words,
         stats,
     })
-}
-
-/// The deepest age A such that the hero (whole, as the first one is) has at most twice
-/// `max_exits` branches introduced at generations 1 to A; at least 1.
-fn eligible_ages(hero: &HeroRecorder, max_exits: u32) -> u32 {
-    let mut per_age: Vec<u32> = Vec::new();
-    for r in hero.instances.iter().filter(|r| (r.id, r.age) != ROOT) {
-        let a = r.age as usize;
-        if per_age.len() <= a {
-            per_age.resize(a + 1, 0);
-        }
-        per_age[a] += 1;
-    }
-    // Twice the bound: not every eligible branch is instanced, and crowns over the bound are
-    // not kept as roots.
-    let mut total = 0u32;
-    let mut deepest = 1;
-    for (age, &n) in per_age.iter().enumerate().skip(1) {
-        total = total.saturating_add(n);
-        if total > max_exits.saturating_mul(2) {
-            break;
-        }
-        deepest = age as u32;
-    }
-    deepest
-}
-
-/// The sub-word of every start..stop marker pair, in order of the start markers.
-fn instance_words(word: &Word, markers: &Markers) -> Vec<Word> {
-    let mut out: Vec<Option<Word>> = Vec::new();
-    let mut open: Vec<(usize, usize)> = Vec::new();
-    for (i, m) in word.iter().enumerate() {
-        if m.symbol == markers.start {
-            open.push((i, out.len()));
-            out.push(None);
-        } else if m.symbol == markers.stop
-            && let Some((s, slot)) = open.pop()
-        {
-            let mut w = Word::empty(word.alphabet().clone());
-            for j in s..=i {
-                w.push(word.symbols()[j], word.params(j));
-            }
-            out[slot] = Some(w);
-        }
-    }
-    out.into_iter()
-        .map(|w| w.unwrap_or_else(|| Word::empty(word.alphabet().clone())))
-        .collect()
 }
 
 /// The key of a whole tree: branch id 0, introduced at generation 0.

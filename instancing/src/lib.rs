@@ -51,6 +51,7 @@
 mod assemble;
 mod cache;
 mod error;
+mod filling;
 mod hero;
 mod recorder;
 mod rewrite;
