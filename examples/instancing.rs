@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example instancing -- [--preset kenwood-leafy] [--generations 6]
-//!     [--trees 1000000] [--budget-mb 128] [--seed S] [--naive N] [--choices K] [--stats]
+//!     [--trees 1000000] [--budget-mb 128] [--seed S] [--naive N] [--choices K] [--max-exits E] [--stats]
 //! ```
 //!
 //! `--stats` prints one JSON line of figures. `--naive N` also builds N trees the naive way
@@ -25,10 +25,11 @@ struct Args {
     seed: u64,
     naive: usize,
     choices: u32,
+    max_exits: u32,
     stats: bool,
 }
 
-const USAGE: &str = "usage: instancing [--preset NAME] [--generations N] [--trees N] [--budget-mb MB] [--seed S] [--naive N] [--choices K] [--stats]";
+const USAGE: &str = "usage: instancing [--preset NAME] [--generations N] [--trees N] [--budget-mb MB] [--seed S] [--naive N] [--choices K] [--max-exits E] [--stats]";
 
 fn parse() -> Result<Args, String> {
     let mut a = Args {
@@ -39,6 +40,7 @@ fn parse() -> Result<Args, String> {
         seed: 1,
         naive: 0,
         choices: 2,
+        max_exits: 12,
         stats: false,
     };
     let mut it = std::env::args().skip(1);
@@ -53,6 +55,7 @@ fn parse() -> Result<Args, String> {
             "--seed" => a.seed = common::parse_value("--seed", it.next())?,
             "--naive" => a.naive = common::parse_value("--naive", it.next())?,
             "--choices" => a.choices = common::parse_value("--choices", it.next())?,
+            "--max-exits" => a.max_exits = common::parse_value("--max-exits", it.next())?,
             "--stats" => a.stats = true,
             "--help" | "-h" => common::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
@@ -93,7 +96,8 @@ fn run() -> Result<(), String> {
         .with_budget(args.budget_mb << 20)
         .with_generations(generations)
         .with_seed(args.seed)
-        .with_turtle(turtle.clone());
+        .with_turtle(turtle.clone())
+        .with_granularity(0.5, args.max_exits);
 
     let t0 = Instant::now();
     let built = build_cache(&grammar, &options).map_err(|e| e.to_string())?;
