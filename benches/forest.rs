@@ -87,6 +87,11 @@ fn forest(c: &mut Criterion) {
     }
     let (map, region) = ground(&builder, 10_000);
     let mesh = map.mesh(1).expect("valid");
+    let exported = builder
+        .stream(&map, region, &mut |_: &PlacementBlock| Ok(()))
+        .expect("streams")
+        .trees;
+    group.throughput(Throughput::Elements(exported as u64));
     let path = std::env::temp_dir().join(format!("sylva-bench-{}.glb", std::process::id()));
     group.bench_function("export_glb_10000_trees", |b| {
         b.iter(|| {
