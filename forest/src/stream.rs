@@ -32,12 +32,12 @@ pub struct Placement {
 }
 
 /// The trees of one block and their placements, in tree order.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct PlacementBlock {
     /// Position of the block in the stream (row-major over the region's blocks).
     pub index: usize,
     /// The part of the region it covers.
-    pub region: Option<Rect>,
+    pub region: Rect,
     /// Its trees.
     pub trees: Vec<CompactTree>,
     /// Their placements.
@@ -94,12 +94,23 @@ impl ForestBuilder {
         let mut out = Vec::with_capacity(nx * nz);
         for j in 0..nz {
             for i in 0..nx {
-                let min = region.min + Vec2::new(i as f32, j as f32) * side;
-                let max = (min + Vec2::splat(side)).min(region.max);
-                // The last row and column end exactly at the region's edge.
+                // A block ends exactly where the next begins (the same expression), so no
+                // tree falls between blocks or into two; the last row and column end at the
+                // region's edge.
+                let edge = |k: usize, n: usize, lo: f32, hi: f32| {
+                    if k >= n {
+                        hi
+                    } else {
+                        (lo + k as f32 * side).min(hi)
+                    }
+                };
+                let min = Vec2::new(
+                    edge(i, nx, region.min.x, region.max.x),
+                    edge(j, nz, region.min.y, region.max.y),
+                );
                 let max = Vec2::new(
-                    if i + 1 == nx { region.max.x } else { max.x },
-                    if j + 1 == nz { region.max.y } else { max.y },
+                    edge(i + 1, nx, region.min.x, region.max.x),
+                    edge(j + 1, nz, region.min.y, region.max.y),
                 );
                 out.push(Rect::new(min, max));
             }
@@ -136,7 +147,7 @@ impl ForestBuilder {
         }
         Ok(PlacementBlock {
             index,
-            region: Some(region),
+            region,
             trees,
             placements,
         })

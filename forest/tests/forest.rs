@@ -638,3 +638,35 @@ impl LSystemSpecies {
         Species::parse_file(text, &dir.join("bare.species")).unwrap()
     }
 }
+
+/// Blocks tile a region exactly: every tree of the whole region lands in exactly one block,
+/// at odd offsets and sizes that do not divide evenly.
+#[test]
+fn blocks_tile_the_region_without_gaps_or_overlaps() {
+    let mut b = builder(11);
+    b.density_mut().patch = 3.3; // blocks of 211.2 m
+    b.density_mut().seedlings_per_patch = 0;
+    let region = Rect::new(Vec2::new(-123.4, 77.7), Vec2::new(401.9, 560.05));
+    let blocks = b.blocks(region).unwrap();
+    assert_eq!(blocks.len(), 9);
+    for pair in blocks.windows(2) {
+        if pair[0].min.y == pair[1].min.y {
+            assert_eq!(pair[0].max.x, pair[1].min.x);
+        }
+    }
+    assert_eq!(blocks[0].min, region.min);
+    assert_eq!(blocks[8].max, region.max);
+    let ground = plane(1_000.0);
+    let key = |t: &sylva_instancing::CompactTree| (t.position.map(f32::to_bits), t.seed);
+    let mut streamed = Vec::new();
+    b.stream(&ground, region, &mut |block: &PlacementBlock| {
+        streamed.extend(block.trees.iter().map(key));
+        Ok(())
+    })
+    .unwrap();
+    let mut whole: Vec<_> = b.trees(&ground, region).iter().map(key).collect();
+    streamed.sort_unstable();
+    whole.sort_unstable();
+    assert!(whole.len() > 1_000, "{} trees", whole.len());
+    assert_eq!(streamed, whole);
+}
