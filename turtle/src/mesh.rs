@@ -1,7 +1,7 @@
 //! Triangle meshes of branches, polygons and leaves, ready for GPU upload.
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Quat, Vec3};
 
 use crate::frame::Frame;
 use crate::options::{BranchShape, TurtleOptions};
@@ -79,13 +79,46 @@ impl Mesh {
     }
 }
 
+/// The last ring of an axis: where the next segment of the axis starts.
 #[derive(Debug, Clone, Copy, Default)]
 struct RingEnd {
     first_vertex: u32,
     v: f32,
     center: Vec3,
-    frame: Frame,
+    /// The ring's own frame: heading and the two vectors its circle is drawn with. Carried
+    /// along the axis by parallel transport, not taken from the turtle, so that a roll of the
+    /// turtle between segments (`/`, `\`) does not twist the tube.
+    ring: RingFrame,
     radius: f32,
+}
+
+/// The orientation of one ring of a tube.
+#[derive(Debug, Clone, Copy, Default)]
+struct RingFrame {
+    heading: Vec3,
+    left: Vec3,
+    up: Vec3,
+}
+
+impl RingFrame {
+    fn of(frame: &Frame) -> Self {
+        RingFrame {
+            heading: frame.heading(),
+            left: frame.left(),
+            up: frame.up(),
+        }
+    }
+
+    /// This frame carried to a new heading by the smallest rotation (parallel transport):
+    /// rings along a bending axis keep their seam on the same side.
+    fn transported(&self, heading: Vec3) -> Self {
+        let turn = Quat::from_rotation_arc(self.heading, heading);
+        RingFrame {
+            heading,
+            left: (turn * self.left).normalize(),
+            up: (turn * self.up).normalize(),
+        }
+    }
 }
 
 /// A [`GeometrySink`] that builds a [`Mesh`]: tubes for segments, triangulated polygons, leaf
@@ -124,9 +157,9 @@ impl MeshBuilder {
         std::mem::take(&mut self.mesh)
     }
 
-    fn ring(&mut self, center: Vec3, frame: &Frame, radius: f32, v: f32) -> u32 {
+    fn ring(&mut self, center: Vec3, frame: &RingFrame, radius: f32, v: f32) -> u32 {
         let first = self.mesh.vertices.len() as u32;
-        let (l, u) = (frame.left(), frame.up());
+        let (l, u) = (frame.left, frame.up);
         let sides = (self.circle.len() - 1) as f32;
         for (i, &(c, s)) in self.circle.iter().enumerate() {
             let d = l * c + u * s;
@@ -147,13 +180,13 @@ impl MeshBuilder {
         }
     }
 
-    fn cap(&mut self, center: Vec3, frame: &Frame, radius: f32, facing_forward: bool) {
+    fn cap(&mut self, center: Vec3, frame: &RingFrame, radius: f32, facing_forward: bool) {
         let normal = if facing_forward {
-            frame.heading()
+            frame.heading
         } else {
-            -frame.heading()
+            -frame.heading
         };
-        let (l, u) = (frame.left(), frame.up());
+        let (l, u) = (frame.left, frame.up);
         let first = self.mesh.vertices.len() as u32;
         self.mesh.vertices.push(Vertex {
             position: center.to_array(),
@@ -211,17 +244,18 @@ impl GeometrySink for MeshBuilder {
             (BranchShape::Frustum, true, Some(p)) => self.ends.get(p as usize).copied(),
             _ => None,
         };
-        let (a, v0) = match shared {
-            Some(e) => (e.first_vertex, e.v),
+        let (a, v0, ring) = match shared {
+            Some(e) => (e.first_vertex, e.v, e.ring.transported(s.frame.heading())),
             None => {
+                let ring = RingFrame::of(&s.frame);
                 if self.caps {
-                    self.cap(start, &s.frame, s.start_radius, false);
+                    self.cap(start, &ring, s.start_radius, false);
                 }
-                (self.ring(start, &s.frame, s.start_radius, 0.0), 0.0)
+                (self.ring(start, &ring, s.start_radius, 0.0), 0.0, ring)
             }
         };
         let v1 = v0 + s.length;
-        let b = self.ring(end, &s.frame, s.end_radius, v1);
+        let b = self.ring(end, &ring, s.end_radius, v1);
         self.join(a, b);
         let id = s.id as usize;
         if self.ends.len() <= id {
@@ -231,11 +265,11 @@ impl GeometrySink for MeshBuilder {
             first_vertex: b,
             v: v1,
             center: end,
-            frame: s.frame,
+            ring,
             radius: s.end_radius,
         };
         if self.caps && self.shape == BranchShape::Cylinder {
-            self.cap(end, &s.frame, s.end_radius, true);
+            self.cap(end, &ring, s.end_radius, true);
         }
     }
 
@@ -244,7 +278,7 @@ impl GeometrySink for MeshBuilder {
             && self.shape == BranchShape::Frustum
             && let Some(e) = self.ends.get(id as usize).copied()
         {
-            self.cap(e.center, &e.frame, e.radius, true);
+            self.cap(e.center, &e.ring, e.radius, true);
         }
     }
 

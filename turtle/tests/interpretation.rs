@@ -355,3 +355,43 @@ fn length_unit_scales_explicit_lengths_only() {
     assert!((s.bones[0].end.y - 2.0).abs() < 1e-6);
     assert!((s.bones[1].end.y - 5.0).abs() < 1e-6);
 }
+
+/// Found in review: the Honda trunk twisted, because each ring was drawn in the turtle's own
+/// frame, which rolls 137.5 degrees between segments, while rings are joined vertex to
+/// vertex. Rings are now carried along the axis by parallel transport: on a straight axis
+/// with rolls, vertex k of every ring lies in the same direction from the axis.
+#[test]
+fn rings_do_not_twist_when_the_turtle_rolls() {
+    let sides = 8;
+    let ring = sides + 1;
+    let o = TurtleOptions::default()
+        .with_radial_segments(sides as u32)
+        .with_shape(BranchShape::Frustum);
+    let m = mesh("F/(137.5)F/(137.5)F\\(60)F", &o);
+    assert_eq!(m.vertices.len(), 5 * ring);
+    let offset = |r: usize, k: usize| {
+        let p = Vec3::from(m.vertices[r * ring + k].position);
+        Vec3::new(p.x, 0.0, p.z).normalize()
+    };
+    for r in 1..5 {
+        for k in 0..ring {
+            assert!(
+                offset(r, k).dot(offset(0, k)) > 0.9999,
+                "ring {r} vertex {k} turned"
+            );
+        }
+    }
+    // On a bending axis the seam stays on one side: successive rings' vertex k differ by no
+    // more than the bend.
+    let m = mesh("F+(20)/(137.5)F+(20)/(137.5)F", &o);
+    for r in 1..4 {
+        for k in 0..sides {
+            let n0 = Vec3::from(m.vertices[(r - 1) * ring + k].normal);
+            let n1 = Vec3::from(m.vertices[r * ring + k].normal);
+            assert!(
+                n0.dot(n1) > (25f32).to_radians().cos(),
+                "ring {r} vertex {k}: {n0} {n1}"
+            );
+        }
+    }
+}
