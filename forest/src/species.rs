@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use sylva_lsys::{GrammarFileError, LSystem};
-use sylva_turtle::{Skeleton, TurtleOptions, interpret};
+use sylva_turtle::{Skeleton, Tropism, TurtleOptions, interpret};
 
 use crate::error::ForestError;
 
@@ -23,7 +23,7 @@ pub struct Species {
     pub generations: u32,
     /// Derivation steps of a seedling (fewer than `generations`).
     pub seedling_generations: u32,
-    /// Turtle and meshing settings (no tropism: instances are rigid).
+    /// Turtle and meshing settings, tropism included.
     pub turtle: TurtleOptions,
     /// Bark colour, linear RGB.
     pub bark: [f32; 3],
@@ -71,12 +71,15 @@ impl Species {
         }
     }
 
-    /// A species from a bundled preset (its angle; tropism dropped, instances being rigid).
+    /// A species from a bundled preset, with its published angle and tropism. Tropism bends
+    /// each hero's branches by their absolute direction; an instance reused elsewhere keeps
+    /// the bend it had in its hero, which approximates, as in the Kenwood paper.
     pub fn from_preset(name: &str, generations: u32) -> Result<Self, ForestError> {
         let p = sylva_lsys::preset(name)
             .ok_or_else(|| ForestError::BadParameter(format!("no preset called '{name}'")))?;
         let mut s = Species::new(name, p.lsystem()?, generations);
         s.turtle = s.turtle.with_angle(p.angle as f32);
+        s.turtle.tropism = TurtleOptions::for_preset(p).tropism;
         Ok(s)
     }
 
@@ -182,8 +185,12 @@ impl Species {
                 "missing 'grammar:' (a preset name or a grammar file)".into(),
             ));
         };
-        let (grammar, angle) = match sylva_lsys::preset(grammar_ref) {
-            Some(p) => (p.lsystem()?, Some(p.angle as f32)),
+        let (grammar, angle, tropism) = match sylva_lsys::preset(grammar_ref) {
+            Some(p) => (
+                p.lsystem()?,
+                Some(p.angle as f32),
+                TurtleOptions::for_preset(p).tropism,
+            ),
             None => {
                 let gpath: PathBuf = path.parent().unwrap_or(Path::new(".")).join(grammar_ref);
                 let g = LSystem::from_file(&gpath).map_err(|e| match e {
@@ -195,7 +202,7 @@ impl Species {
                     },
                     other => err(*gl, *gc, format!("grammar '{grammar_ref}': {other}")),
                 })?;
-                (g, None)
+                (g, None, None)
             }
         };
         let name = find("name").map_or_else(|| grammar_ref.clone(), |f| f.3.clone());
@@ -242,6 +249,34 @@ impl Species {
             generations as f32,
         )? as u32;
         s.turtle.angle = number("angle", angle.unwrap_or(s.turtle.angle), -360.0, 360.0)?;
+        s.turtle.tropism = tropism;
+        if let Some((l, c, _, v)) = find("tropism") {
+            let parts: Vec<f32> = v
+                .split_whitespace()
+                .filter_map(|s| s.parse().ok())
+                .collect();
+            match parts.as_slice() {
+                [x, y, z, e]
+                    if parts.iter().all(|p| p.is_finite())
+                        && (0.0..=10.0).contains(e)
+                        && Vec3::new(*x, *y, *z).length() > 1e-6 =>
+                {
+                    s.turtle.tropism = Some(Tropism {
+                        direction: Vec3::new(*x, *y, *z),
+                        susceptibility: *e,
+                    });
+                }
+                _ => {
+                    return Err(err(
+                        *l,
+                        *c,
+                        format!(
+                            "tropism must be a direction x y z (not zero) and a susceptibility from 0 to 10, not '{v}'"
+                        ),
+                    ));
+                }
+            }
+        }
         s.turtle.step = number("step", s.turtle.step, 1e-4, 1e4)?;
         s.turtle.length_unit = number("length_unit", s.turtle.length_unit, 1e-6, 1e3)?;
         s.turtle.width = number("width", s.turtle.width, 0.0, 1e3)?;
@@ -294,6 +329,7 @@ impl Species {
                 "weight",
                 "leaves",
                 "leaf_size",
+                "tropism",
             ];
             if !KNOWN.contains(&k.as_str()) {
                 return Err(err(

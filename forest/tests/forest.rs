@@ -670,3 +670,33 @@ fn blocks_tile_the_region_without_gaps_or_overlaps() {
     assert!(whole.len() > 1_000, "{} trees", whole.len());
     assert_eq!(streamed, whole);
 }
+
+/// Tropism reaches the forest: presets keep their published tropism, species files may set
+/// their own, and a bad one is an error at its place.
+#[test]
+fn tropism_is_honoured_in_species() {
+    let ternary = Species::from_preset("abop-ternary", 4).unwrap();
+    let t = ternary
+        .turtle
+        .tropism
+        .expect("ABOP 2.8a bends towards gravity");
+    assert!(t.direction.y < 0.0 && t.susceptibility > 0.0);
+    let file = Path::new("bent.species");
+    let bent = Species::parse_file("grammar: kenwood-leafy\ntropism: 0 -1 0 0.3\n", file).unwrap();
+    assert_eq!(bent.turtle.tropism.map(|t| t.susceptibility), Some(0.3));
+    for bad in [
+        "tropism: 0 0 0 0.3",
+        "tropism: 0 -1 0",
+        "tropism: 0 -1 0 99",
+    ] {
+        let text = format!("grammar: kenwood-leafy\n{bad}\n");
+        match Species::parse_file(&text, file) {
+            Err(ForestError::SpeciesFile {
+                line: 2,
+                column: 10,
+                ..
+            }) => {}
+            other => panic!("{bad}: {other:?}"),
+        }
+    }
+}
