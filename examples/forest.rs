@@ -6,8 +6,8 @@
 //!     [--heightmap forest_height.png] [--stats]
 //! ```
 //!
-//! With no arguments it builds an 800 m square of smoothed diamond-square terrain with three
-//! species (the files in `examples/species/`) and writes `forest.glb` and
+//! With no arguments it builds an 800 m square of smoothed diamond-square terrain with five
+//! species (oak, birch, spruce, pine and hazel, from `examples/species/`) and writes `forest.glb` and
 //! `forest_height.png`. `--stats` prints one JSON line of figures instead of the summary.
 
 mod common;
@@ -27,18 +27,26 @@ use sylva::terrain::{DiamondSquare, EdgeMode, Heightmap};
 const USAGE: &str = "usage: forest [--area METRES | --trees N] [--density TREES_PER_HA] [--species FILE]... \
                      [--budget-mb MB] [--seed S] [--out forest.glb] [--heightmap forest_height.png] [--stats]";
 
-const DEFAULT_SPECIES: [(&str, &str); 3] = [
+const DEFAULT_SPECIES: [(&str, &str); 5] = [
     (
-        "examples/species/leafy.species",
-        include_str!("species/leafy.species"),
+        "examples/species/oak.species",
+        include_str!("species/oak.species"),
     ),
     (
-        "examples/species/ternary.species",
-        include_str!("species/ternary.species"),
+        "examples/species/birch.species",
+        include_str!("species/birch.species"),
     ),
     (
-        "examples/species/honda.species",
-        include_str!("species/honda.species"),
+        "examples/species/spruce.species",
+        include_str!("species/spruce.species"),
+    ),
+    (
+        "examples/species/pine.species",
+        include_str!("species/pine.species"),
+    ),
+    (
+        "examples/species/hazel.species",
+        include_str!("species/hazel.species"),
     ),
 ];
 
@@ -60,7 +68,7 @@ fn parse() -> Result<Args, String> {
         trees: None,
         density: None,
         species: Vec::new(),
-        budget_mb: 16,
+        budget_mb: 32,
         seed: 1,
         out: "forest.glb".into(),
         heightmap: "forest_height.png".into(),

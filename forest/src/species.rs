@@ -240,7 +240,7 @@ impl Species {
                 }
             }
         };
-        let generations = number("generations", 5.0, 1.0, 12.0)? as u32;
+        let generations = number("generations", 5.0, 1.0, 24.0)? as u32;
         let mut s = Species::new(name, grammar, generations);
         s.seedling_generations = number(
             "seedling_generations",

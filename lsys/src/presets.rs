@@ -121,6 +121,41 @@ pub const PRESETS: &[Preset] = &[
         22.5,
         None
     ),
+    preset!(
+        "sylva-oak",
+        "A broad oak: spreading sympodial limbs, a wide rounded crown (metres)",
+        7,
+        30.0,
+        Some(([0.0, -1.0, 0.0], 0.05))
+    ),
+    preset!(
+        "sylva-birch",
+        "A silver birch: slender pale trunk, narrow crown, hanging twigs (metres)",
+        9,
+        35.0,
+        Some(([0.0, -1.0, 0.0], 0.35))
+    ),
+    preset!(
+        "sylva-spruce",
+        "A Norway spruce: whorled monopodial trunk, conical crown (metres)",
+        14,
+        40.0,
+        Some(([0.0, -1.0, 0.0], 0.12))
+    ),
+    preset!(
+        "sylva-pine",
+        "A Scots pine: tall clear trunk, rounded crown of upturned limbs (metres)",
+        13,
+        40.0,
+        Some(([0.0, -1.0, 0.0], 0.04))
+    ),
+    preset!(
+        "sylva-hazel",
+        "A hazel shrub: many arching stems from the ground (metres)",
+        6,
+        35.0,
+        Some(([0.0, -1.0, 0.0], 0.1))
+    ),
 ];
 
 /// The bundled grammar called `name`.

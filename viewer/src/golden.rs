@@ -41,7 +41,7 @@ fn default_scene_renders_terrain_and_trees() {
         seed: 1,
         side: 800.0,
         species: scene::default_species().expect("bundled species"),
-        budget: 16 << 20,
+        budget: 32 << 20,
     })
     .expect("default scene builds");
     let camera = Camera::overview(scene.side, 40.0);

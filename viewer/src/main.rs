@@ -40,7 +40,7 @@ const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
     let mut side = 800.0f32;
-    let mut budget_mb = 16usize;
+    let mut budget_mb = 32usize;
     let mut grammar: Option<String> = None;
     let mut files: Vec<String> = Vec::new();
     let mut camera = None;

@@ -49,18 +49,26 @@ pub(crate) struct SceneOptions {
     pub(crate) budget: usize,
 }
 
-pub(crate) const DEFAULT_SPECIES: [(&str, &str); 3] = [
+pub(crate) const DEFAULT_SPECIES: [(&str, &str); 5] = [
     (
-        "examples/species/leafy.species",
-        include_str!("../../examples/species/leafy.species"),
+        "examples/species/oak.species",
+        include_str!("../../examples/species/oak.species"),
     ),
     (
-        "examples/species/ternary.species",
-        include_str!("../../examples/species/ternary.species"),
+        "examples/species/birch.species",
+        include_str!("../../examples/species/birch.species"),
     ),
     (
-        "examples/species/honda.species",
-        include_str!("../../examples/species/honda.species"),
+        "examples/species/spruce.species",
+        include_str!("../../examples/species/spruce.species"),
+    ),
+    (
+        "examples/species/pine.species",
+        include_str!("../../examples/species/pine.species"),
+    ),
+    (
+        "examples/species/hazel.species",
+        include_str!("../../examples/species/hazel.species"),
     ),
 ];
 
