@@ -21,6 +21,7 @@ use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::{ForestBuilder, Variant};
 use crate::stream::{PlacementBlock, StreamStats};
+use crate::texture::{LeafShape, Texture};
 
 /// Export settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -329,7 +330,11 @@ fn write_geometry(
         put(w, bytemuck::cast_slice(&cache.bark))?;
         put(w, bytemuck::cast_slice(&cache.leaves))?;
     }
-    // Every buffer above is a whole number of 4-byte words, so no padding is needed.
+    // Every buffer above is a whole number of 4-byte words; images are padded to one.
+    for image in &document.images {
+        put(w, image)?;
+        put(w, &[0; 3][..padding(image.len())])?;
+    }
     debug_assert_eq!(written, document.placement_base);
     Ok(())
 }
@@ -433,6 +438,8 @@ struct Document {
     json: String,
     /// Variants with at least one node, in order.
     used_variants: Vec<usize>,
+    /// The leaf textures as PNG, in layout order after the cache buffers.
+    images: Vec<Vec<u8>>,
     /// Offset in the BIN chunk where the placement sections start.
     placement_base: usize,
     bin_len: usize,
@@ -493,15 +500,24 @@ impl Arrays {
         self.accessors.len() - 1
     }
 
+    /// A dielectric material; with a texture it is a leaf card: double-sided, the texture's
+    /// alpha cut at one half.
     fn material(
         &mut self,
         name: &str,
         colour: [f32; 3],
         roughness: f32,
-        double_sided: bool,
+        texture: Option<usize>,
     ) -> usize {
+        let (texture, leaf) = match texture {
+            Some(t) => (
+                format!(",\"baseColorTexture\":{{\"index\":{t}}}"),
+                ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true",
+            ),
+            None => (String::new(), ""),
+        };
         self.materials.push(format!(
-            "{{\"name\":{},\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0],\"metallicFactor\":0.0,\"roughnessFactor\":{roughness}}},\"doubleSided\":{double_sided}}}",
+            "{{\"name\":{},\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0]{texture},\"metallicFactor\":0.0,\"roughnessFactor\":{roughness}}}{leaf}}}",
             quoted(name),
             colour[0],
             colour[1],
@@ -531,6 +547,11 @@ impl Arrays {
         let uv = self.accessor(view, 24, FLOAT, count, "VEC2", None);
         format!("{{\"POSITION\":{position},\"NORMAL\":{normal},\"TEXCOORD_0\":{uv}}}")
     }
+}
+
+/// Zero bytes that bring `len` to a whole number of 4-byte words.
+fn padding(len: usize) -> usize {
+    (4 - len % 4) % 4
 }
 
 /// A JSON string literal.
@@ -569,7 +590,7 @@ impl Document {
             let ibytes = 4 * t.indices.len();
             let iview = a.view(section(ibytes).0, ibytes, None, Some(ELEMENT_ARRAY_BUFFER));
             let indices = a.accessor(iview, 0, UNSIGNED_INT, t.indices.len(), "SCALAR", None);
-            let material = a.material("terrain", options.terrain_colour, options.roughness, false);
+            let material = a.material("terrain", options.terrain_colour, options.roughness, None);
             a.meshes.push(format!(
                 "{{\"name\":\"terrain\",\"primitives\":[{{\"attributes\":{attributes},\"indices\":{indices},\"material\":{material}}}]}}"
             ));
@@ -582,6 +603,16 @@ impl Document {
         let mut used_variants: Vec<usize> = nodes.iter().map(|n| n.variant).collect();
         used_variants.dedup();
         let mut shared = vec![None; variants.len()];
+        // One texture per leaf shape in use, in order of first use; its image goes after the
+        // cache buffers.
+        let mut shapes: Vec<LeafShape> = Vec::new();
+        for &v in &used_variants {
+            let shape = species[variants[v].species].leaf_shape;
+            if !shapes.contains(&shape) {
+                shapes.push(shape);
+            }
+        }
+        let images: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
         for &v in &used_variants {
             let variant = &variants[v];
             let cache = &variant.cache;
@@ -596,19 +627,21 @@ impl Document {
             let leaves_at = section(4 * cache.leaves.len()).0;
             let leaves = index_view(&mut a, leaves_at, cache.leaves.len());
             let s = &species[variant.species];
-            let bark_material = a.material(
-                &format!("{} bark", s.name),
-                s.bark,
-                options.roughness,
-                false,
-            );
+            let bark_material =
+                a.material(&format!("{} bark", s.name), s.bark, options.roughness, None);
+            let texture = shapes.iter().position(|&shape| shape == s.leaf_shape);
             let leaf_material = a.material(
                 &format!("{} leaves", s.name),
                 s.leaf,
                 options.roughness,
-                true,
+                texture,
             );
             shared[v] = Some((attributes, bark, leaves, bark_material, leaf_material));
+        }
+        let mut image_views = Vec::new();
+        for image in &images {
+            let at = section(image.len() + padding(image.len())).0;
+            image_views.push(a.view(at, image.len(), None, None));
         }
         let placement_base = section(0).0;
         let t_view = a.view(section(12 * placements).0, 12 * placements, None, None);
@@ -687,6 +720,22 @@ impl Document {
                 let _ = write!(json, ",\"{key}\":[{}]", items.join(","));
             }
         }
+        if !image_views.is_empty() {
+            let images: Vec<String> = image_views
+                .iter()
+                .map(|v| format!("{{\"bufferView\":{v},\"mimeType\":\"image/png\"}}"))
+                .collect();
+            let textures: Vec<String> = (0..image_views.len())
+                .map(|i| format!("{{\"sampler\":0,\"source\":{i}}}"))
+                .collect();
+            // Linear filtering with mipmaps; the cards' edges are clamped, not repeated.
+            let _ = write!(
+                json,
+                ",\"images\":[{}],\"textures\":[{}],\"samplers\":[{{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}}]",
+                images.join(","),
+                textures.join(",")
+            );
+        }
         if bin_len > 0 {
             let _ = write!(json, ",\"buffers\":[{{\"byteLength\":{bin_len}}}]");
         }
@@ -702,6 +751,7 @@ impl Document {
             total: 12 + 8 + json.len() + bin_chunk,
             json,
             used_variants,
+            images,
             placement_base,
             bin_len,
         })

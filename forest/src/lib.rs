@@ -35,6 +35,7 @@ mod gltf;
 mod patch;
 mod species;
 mod stream;
+mod texture;
 
 pub use density::{Candidate, DensityModel, Rect};
 pub use error::ForestError;
@@ -47,3 +48,4 @@ pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
 pub use stream::{
     BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
 };
+pub use texture::{LEAF_TEXTURE_SIZE, LeafShape, Texture};

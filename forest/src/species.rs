@@ -7,6 +7,7 @@ use sylva_lsys::{GrammarFileError, LSystem};
 use sylva_turtle::{Skeleton, Tropism, TurtleOptions, interpret};
 
 use crate::error::ForestError;
+use crate::texture::LeafShape;
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
@@ -27,8 +28,10 @@ pub struct Species {
     pub turtle: TurtleOptions,
     /// Bark colour, linear RGB.
     pub bark: [f32; 3],
-    /// Leaf colour, linear RGB.
+    /// Leaf colour, linear RGB (multiplied with the leaf texture).
     pub leaf: [f32; 3],
+    /// What its leaf cards show.
+    pub leaf_shape: LeafShape,
     /// Relative frequency among the forest's species.
     pub weight: f32,
 }
@@ -67,6 +70,7 @@ impl Species {
             turtle: TurtleOptions::default().with_min_radius(0.005),
             bark: [0.30, 0.20, 0.12],
             leaf: [0.18, 0.42, 0.12],
+            leaf_shape: LeafShape::Broadleaf,
             weight: 1.0,
         }
     }
@@ -130,9 +134,11 @@ impl Species {
 
     /// Reads a species file: `key: value` lines, `#` comments. Keys: `name`, `grammar` (a
     /// preset name or a grammar file path relative to the species file), `generations`,
-    /// `seedling_generations`, `angle`, `step`, `length_unit`, `width`, `width_unit`, `sides`, `bark` and
-    /// `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle draws as leaf
-    /// quads, such as the apices left at the last generation) and `leaf_size` (length and width). Errors name the file, line and column;
+    /// `seedling_generations`, `angle`, `step`, `length_unit`, `width`, `width_unit`, `sides`,
+    /// `bark` and `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle
+    /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
+    /// (length and width), `leaf_shape` (`broadleaf` or `needles`: the card's texture) and
+    /// `tropism` (direction x y z and susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
     /// ```no_run
@@ -312,6 +318,15 @@ impl Species {
                 }
             }
         }
+        if let Some((l, c, _, v)) = find("leaf_shape") {
+            s.leaf_shape = LeafShape::from_name(v).ok_or_else(|| {
+                err(
+                    *l,
+                    *c,
+                    format!("leaf_shape must be 'broadleaf' or 'needles', not '{v}'"),
+                )
+            })?;
+        }
         for (l, c, k, _) in &fields {
             const KNOWN: &[&str] = &[
                 "name",
@@ -330,6 +345,7 @@ impl Species {
                 "leaves",
                 "leaf_size",
                 "tropism",
+                "leaf_shape",
             ];
             if !KNOWN.contains(&k.as_str()) {
                 return Err(err(

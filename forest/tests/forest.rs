@@ -4,8 +4,8 @@ use std::path::Path;
 
 use proptest::prelude::*;
 use sylva_forest::{
-    Candidate, DensityModel, ForestBuilder, ForestConfig, ForestError, GltfOptions, PatchDensity,
-    PatchSpecies, PlacementBlock, Rect, Species, write_glb,
+    Candidate, DensityModel, ForestBuilder, ForestConfig, ForestError, GltfOptions, LeafShape,
+    PatchDensity, PatchSpecies, PlacementBlock, Rect, Species, Texture, write_glb,
 };
 use sylva_terrain::glam::Vec2;
 use sylva_terrain::{DiamondSquare, FlatPlane, HeightField};
@@ -267,6 +267,21 @@ fn exported_glb_is_well_formed_and_counts_match() {
     let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
     assert_eq!(json["extensionsUsed"][0], "EXT_mesh_gpu_instancing");
+    // Leaf cards carry an alpha-masked, double-sided texture embedded as PNG.
+    let images = json["images"].as_array().unwrap();
+    assert!(!images.is_empty() && images.iter().all(|i| i["mimeType"] == "image/png"));
+    let leaf_materials: Vec<_> = json["materials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|m| m["name"].as_str().unwrap().ends_with("leaves"))
+        .collect();
+    assert!(!leaf_materials.is_empty());
+    for m in leaf_materials {
+        assert_eq!(m["alphaMode"], "MASK");
+        assert_eq!(m["doubleSided"], true);
+        assert!(m["pbrMetallicRoughness"]["baseColorTexture"]["index"].is_u64());
+    }
     let mut placements = 0u64;
     for node in json["nodes"].as_array().unwrap() {
         if let Some(ext) = node["extensions"].get("EXT_mesh_gpu_instancing") {
@@ -585,6 +600,7 @@ fn hostile_species_files() {
         ("grammar: kenwood-leafy\nbark: 1 2\n", 2),
         ("grammar: kenwood-leafy\ngenerations: 99999999999\n", 2),
         ("grammar: kenwood-leafy\nleaf_size: -1 -1\n", 2),
+        ("grammar: kenwood-leafy\nleaf_shape: maple\n", 2),
         ("grammar: \u{0}\n", 1),
         ("\u{feff}grammar: kenwood-leafy\nnonsense\n", 2),
         ("\u{feff}\u{feff}grammar: kenwood-leafy\n", 1),
@@ -698,5 +714,29 @@ fn tropism_is_honoured_in_species() {
             }) => {}
             other => panic!("{bad}: {other:?}"),
         }
+    }
+}
+
+/// Leaf textures are pure functions of their shape, opaque inside the leaves and clear
+/// outside, and their PNG decodes to the same pixels.
+#[test]
+fn leaf_textures_are_deterministic_alpha_masks() {
+    for shape in [LeafShape::Broadleaf, LeafShape::Needles] {
+        let t = Texture::leaf(shape);
+        assert_eq!(t, Texture::leaf(shape));
+        let alphas: Vec<u8> = t.rgba.chunks_exact(4).map(|p| p[3]).collect();
+        assert!(
+            alphas.iter().all(|&a| a == 0 || a == 255),
+            "{shape:?}: a mask"
+        );
+        let covered = alphas.iter().filter(|&&a| a == 255).count() as f32 / alphas.len() as f32;
+        assert!((0.1..0.8).contains(&covered), "{shape:?} covers {covered}");
+        let png = t.png();
+        let mut reader = png::Decoder::new(std::io::Cursor::new(png))
+            .read_info()
+            .unwrap();
+        let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+        reader.next_frame(&mut pixels).unwrap();
+        assert!(pixels == t.rgba);
     }
 }

@@ -1,0 +1,153 @@
+//! Procedural leaf textures: alpha-masked cards drawn in Rust, deterministic from their
+//! parameters, so a forest's look needs no image files.
+//!
+//! A leaf card's texture runs from the petiole at v = 0 to the tip at v = 1, across the blade
+//! in u. Colours are near white with veins and blotches darker: the species' leaf colour is
+//! multiplied in by the material, so one texture serves every species of a shape.
+
+use sylva_base::hash::{hash_cell, unit_f32};
+
+/// What a species' leaf cards show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum LeafShape {
+    /// A cluster of broad leaves: ovate blades with a pointed tip, a midrib and side veins.
+    #[default]
+    Broadleaf,
+    /// A spray of needles along a twig, for conifers.
+    Needles,
+}
+
+impl LeafShape {
+    /// The name used in species files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LeafShape::Broadleaf => "broadleaf",
+            LeafShape::Needles => "needles",
+        }
+    }
+
+    /// The shape called `name` in species files.
+    pub fn from_name(name: &str) -> Option<LeafShape> {
+        [LeafShape::Broadleaf, LeafShape::Needles]
+            .into_iter()
+            .find(|s| s.name() == name)
+    }
+}
+
+/// An RGBA8 image, rows from the top (v = 0 is the first row).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Texture {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Row-major RGBA, straight alpha.
+    pub rgba: Vec<u8>,
+}
+
+/// Side of the leaf textures, in pixels.
+pub const LEAF_TEXTURE_SIZE: u32 = 128;
+
+impl Texture {
+    /// The leaf texture of `shape`: transparent outside the leaves (alpha 0), opaque inside.
+    ///
+    /// ```
+    /// use sylva_forest::{LeafShape, Texture};
+    /// let t = Texture::leaf(LeafShape::Broadleaf);
+    /// let alpha = |x: u32, y: u32| t.rgba[((y * t.width + x) * 4 + 3) as usize];
+    /// assert_eq!(alpha(0, 0), 0); // a corner is outside the blade
+    /// assert_eq!(alpha(t.width / 2, t.height / 2), 255); // the middle is leaf
+    /// ```
+    pub fn leaf(shape: LeafShape) -> Texture {
+        let n = LEAF_TEXTURE_SIZE;
+        let mut rgba = vec![0u8; (n * n * 4) as usize];
+        for y in 0..n {
+            for x in 0..n {
+                let (u, v) = ((x as f32 + 0.5) / n as f32, (y as f32 + 0.5) / n as f32);
+                let texel = match shape {
+                    LeafShape::Broadleaf => broadleaf(u, v, x, y),
+                    LeafShape::Needles => needles(u, v, x, y),
+                };
+                if let Some(shade) = texel {
+                    let i = ((y * n + x) * 4) as usize;
+                    let s = (shade.clamp(0.0, 1.0) * 255.0).round() as u8;
+                    // A faint yellow-green cast in the veins and blotches, white elsewhere.
+                    rgba[i..i + 4].copy_from_slice(&[s, s, (f32::from(s) * 0.92) as u8, 255]);
+                }
+            }
+        }
+        Texture {
+            width: n,
+            height: n,
+            rgba,
+        }
+    }
+
+    /// The image as PNG bytes.
+    pub fn png(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut encoder = png::Encoder::new(&mut out, self.width, self.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        // Writing to a Vec cannot fail and the data has the size the header says.
+        if let Ok(mut writer) = encoder.write_header() {
+            let _ = writer.write_image_data(&self.rgba);
+        }
+        out
+    }
+}
+
+/// A little per-pixel noise, the same on every machine.
+fn grain(x: u32, y: u32) -> f32 {
+    unit_f32(hash_cell(0x1eaf, i64::from(x), i64::from(y), 0)) - 0.5
+}
+
+/// Three ovate leaves on a short twig: the middle one along the card, two angled off it.
+fn broadleaf(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    // Each leaf: base point, direction, length, half width.
+    const LEAVES: [(f32, f32, f32, f32, f32); 3] = [
+        (0.5, 0.08, 0.0, 0.9, 0.2),
+        (0.5, 0.25, -0.75, 0.55, 0.14),
+        (0.5, 0.3, 0.75, 0.5, 0.13),
+    ];
+    // The twig: a thin stroke up the middle of the lower card.
+    if (u - 0.5).abs() < 0.012 && v < 0.35 {
+        return Some(0.55);
+    }
+    for (bx, by, angle, length, half) in LEAVES {
+        let (s, c) = angle.sin_cos();
+        let (dx, dy) = (u - bx, v - by);
+        // Leaf coordinates: t along the midrib (0 base, 1 tip), w across it.
+        let t = (dx * s + dy * c) / length;
+        let w = (dx * c - dy * s) / half;
+        if !(0.0..=1.0).contains(&t) {
+            continue;
+        }
+        // An ovate outline, widest at 40 per cent, drawn to a point at the tip.
+        let profile = (t / 0.4).min(1.0).powf(0.6) * ((1.0 - t) / 0.6).min(1.0).powf(0.9);
+        if w.abs() > profile {
+            continue;
+        }
+        let midrib = (w.abs() < 0.06) as u8 as f32;
+        let vein = ((t * 9.0 - w.abs() * 2.5).fract() < 0.12) as u8 as f32;
+        let edge = (w.abs() / profile.max(1e-3)).powi(4);
+        return Some(0.92 - 0.1 * edge + 0.08 * midrib - 0.07 * vein + 0.08 * grain(x, y));
+    }
+    None
+}
+
+/// A twig with needles in two ranks, each a thin stroke angled towards the tip.
+fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    if (u - 0.5).abs() < 0.015 && v < 0.97 {
+        return Some(0.5);
+    }
+    let reach = (u - 0.5).abs();
+    if reach > 0.42 * (1.0 - 0.6 * v) + 0.05 {
+        return None;
+    }
+    // Needles leave the twig every 0.045 of its length, slanting 35 degrees forward.
+    let along = v - reach * 0.7;
+    let phase = (along / 0.045).fract();
+    (phase < 0.28 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
+}
