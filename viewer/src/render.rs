@@ -8,6 +8,7 @@ use sylva::terrain::glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 use crate::scene::{Camera, InstanceRaw, Scene};
+use sylva::forest::{LeafShape, Texture};
 
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const MATERIAL_STRIDE: u64 = 256;
@@ -68,6 +69,7 @@ struct Draw {
 }
 
 pub(crate) struct Renderer {
+    leaf_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
     ids: wgpu::RenderPipeline,
     globals: wgpu::Buffer,
@@ -115,6 +117,90 @@ fn buffer(
     })
 }
 
+/// The layer of a leaf shape's texture in the viewer's texture array.
+fn leaf_layer(shape: LeafShape) -> u32 {
+    match shape {
+        LeafShape::Needles => 1,
+        _ => 0,
+    }
+}
+
+/// The procedural leaf textures as one two-layer texture array (broadleaf, needles) with a
+/// linear sampler, and the bind group layout the shader reads them through.
+fn leaf_textures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
+    let shapes = [LeafShape::Broadleaf, LeafShape::Needles];
+    let images: Vec<Texture> = shapes.iter().map(|&s| Texture::leaf(s)).collect();
+    let data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("leaf textures"),
+            size: wgpu::Extent3d {
+                width: images[0].width,
+                height: images[0].height,
+                depth_or_array_layers: shapes.len() as u32,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &data,
+    );
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("leaf sampler"),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    });
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("leaf textures"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("leaf textures"),
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+        ],
+    });
+    (layout, group)
+}
+
 /// An index buffer, or none for no indices (wgpu refuses empty buffers for drawing).
 fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<wgpu::Buffer> {
     (!indices.is_empty()).then(|| {
@@ -130,10 +216,12 @@ fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<w
 impl Renderer {
     pub(crate) fn new(
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         format: wgpu::TextureFormat,
         scene: &Scene,
     ) -> Renderer {
         let shader = device.create_shader_module(wgpu::include_wgsl!("shader.wgsl"));
+        let (leaf_layout, leaf_group) = leaf_textures(device, queue);
         let uniform_layout = |dynamic: bool, size: u64| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: None,
@@ -153,7 +241,11 @@ impl Renderer {
         let material_layout = uniform_layout(true, 32);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
-            bind_group_layouts: &[Some(&globals_layout), Some(&material_layout)],
+            bind_group_layouts: &[
+                Some(&globals_layout),
+                Some(&material_layout),
+                Some(&leaf_layout),
+            ],
             immediate_size: 0,
         });
         let pipeline = |entry: &str| {
@@ -195,16 +287,21 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        // Materials: terrain, then bark and leaves of each variant, 256 bytes apart.
-        let mut materials: Vec<([f32; 3], [f32; 3])> = vec![(TERRAIN, ID_TERRAIN)];
+        // Materials: terrain, then bark and leaves of each variant, 256 bytes apart. The
+        // colour's fourth component is the leaf texture layer plus one (0: no texture).
+        let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, 0.0)];
         for v in &scene.variants {
-            materials.push((v.bark_colour, ID_BARK));
-            materials.push((v.leaf_colour, ID_LEAF));
+            materials.push((v.bark_colour, ID_BARK, 0.0));
+            materials.push((
+                v.leaf_colour,
+                ID_LEAF,
+                1.0 + leaf_layer(v.leaf_shape) as f32,
+            ));
         }
         let mut bytes = vec![0u8; materials.len() * MATERIAL_STRIDE as usize];
-        for (i, (colour, id)) in materials.iter().enumerate() {
+        for (i, (colour, id, layer)) in materials.iter().enumerate() {
             let m: [f32; 8] = [
-                colour[0], colour[1], colour[2], 1.0, id[0], id[1], id[2], 1.0,
+                colour[0], colour[1], colour[2], *layer, id[0], id[1], id[2], 1.0,
             ];
             bytes[i * MATERIAL_STRIDE as usize..][..32].copy_from_slice(bytemuck::bytes_of(&m));
         }
@@ -266,6 +363,7 @@ impl Renderer {
             translation_scale: [0.0, 0.0, 0.0, 1.0],
         };
         Renderer {
+            leaf_group,
             shaded: pipeline("fs_main"),
             ids: pipeline("fs_id"),
             globals,
@@ -374,6 +472,7 @@ impl Renderer {
             &self.shaded
         });
         pass.set_bind_group(0, &self.globals_group, &[]);
+        pass.set_bind_group(2, &self.leaf_group, &[]);
         let mut stats = FrameStats::default();
         pass.set_bind_group(1, &self.material_group, &[0]);
         pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));
@@ -527,7 +626,7 @@ impl Offscreen {
             device(&instance, None).await?
         };
         let format = wgpu::TextureFormat::Rgba8UnormSrgb;
-        let renderer = Renderer::new(&device, format, scene);
+        let renderer = Renderer::new(&device, &queue, format, scene);
         let (colour, view, depth) = targets(&device, format, width, height, true);
         // Rows of a texture-to-buffer copy must be 256-byte aligned.
         let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)

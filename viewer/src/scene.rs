@@ -1,7 +1,7 @@
 //! The CPU side of the viewer: the forest and terrain as flat buffers, and the camera.
 
 use bytemuck::{Pod, Zeroable};
-use sylva::forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
+use sylva::forest::{ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species};
 use sylva::instancing::Span;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3};
 use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
@@ -22,6 +22,7 @@ pub(crate) struct VariantGeometry {
     pub(crate) leaves: Vec<u32>,
     pub(crate) bark_colour: [f32; 3],
     pub(crate) leaf_colour: [f32; 3],
+    pub(crate) leaf_shape: LeafShape,
 }
 
 /// One cached instance with its placements: one instanced draw per non-empty index range.
@@ -148,6 +149,7 @@ impl Scene {
                     leaves: v.cache.leaves.clone(),
                     bark_colour: s.bark,
                     leaf_colour: s.leaf,
+                    leaf_shape: s.leaf_shape,
                 }
             })
             .collect();

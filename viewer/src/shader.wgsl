@@ -15,6 +15,10 @@ struct Material {
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(1) @binding(0) var<uniform> material: Material;
+// The procedural leaf textures, one layer per leaf shape; material.colour.w is the layer
+// plus one, 0 for untextured materials.
+@group(2) @binding(0) var leaf_textures: texture_2d_array<f32>;
+@group(2) @binding(1) var leaf_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -28,6 +32,7 @@ struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
 };
 
 fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
@@ -42,17 +47,34 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.clip = globals.view_proj * vec4<f32>(world, 1.0);
     out.world = world;
     out.normal = rotate(in.rotation, in.normal);
+    out.uv = in.uv;
     return out;
+}
+
+// The leaf texture's colour, or white for untextured materials; discards where the leaf
+// card is clear (alpha-tested foliage).
+fn leaf_texel(uv: vec2<f32>) -> vec3<f32> {
+    let layer = i32(material.colour.w + 0.5) - 1;
+    // Sampled in uniform control flow; the layer is clamped for untextured materials.
+    let texel = textureSample(leaf_textures, leaf_sampler, uv, max(layer, 0));
+    if (layer < 0) {
+        return vec3<f32>(1.0);
+    }
+    if (texel.a < 0.5) {
+        discard;
+    }
+    return texel.rgb;
 }
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    let albedo = material.colour.rgb * leaf_texel(in.uv);
     var n = normalize(in.normal);
     if (!front) {
         n = -n;
     }
     let diffuse = max(dot(n, globals.light.xyz), 0.0);
-    let lit = material.colour.rgb * (0.35 + 0.65 * diffuse);
+    let lit = albedo * (0.35 + 0.65 * diffuse);
     let fog = 1.0 - exp(-distance(in.world, globals.camera.xyz) * globals.fog.x);
     return vec4<f32>(mix(lit, globals.sky.rgb, clamp(fog, 0.0, 1.0)), 1.0);
 }
@@ -60,5 +82,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
 // Flat material ids, for tests that count what covers the picture.
 @fragment
 fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
-    return material.id;
+    // Clear parts of leaf cards are no leaf.
+    let texel = leaf_texel(in.uv);
+    return material.id + vec4<f32>(0.0 * texel, 0.0);
 }
