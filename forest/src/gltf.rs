@@ -380,7 +380,10 @@ fn write_placements(
         let mut s = vec![0f32; 3 * count];
         let mut cursor: Vec<usize> = nodes[start..end].iter().map(|n| n.first - first).collect();
         let range = start as u32..end as u32;
-        builder.stream(terrain, region, &mut |block: &PlacementBlock| {
+        // Only the variants of this chunk's nodes need their trees expanded.
+        let (first_variant, last_variant) = (nodes[start].variant, nodes[end - 1].variant);
+        let wanted = |v: u16| (first_variant..=last_variant).contains(&usize::from(v));
+        builder.stream_variants(terrain, region, &wanted, &mut |block: &PlacementBlock| {
             for p in &block.placements {
                 let node = node_of[p.variant as usize][p.instance as usize];
                 if !range.contains(&node) {

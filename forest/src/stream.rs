@@ -118,18 +118,19 @@ impl ForestBuilder {
         Ok(out)
     }
 
-    /// One block: its trees and their placements.
+    /// One block: its trees and the placements of those whose variant `expand` accepts.
     pub fn block(
         &self,
         terrain: &dyn HeightField,
         index: usize,
         region: Rect,
+        expand: &(dyn Fn(u16) -> bool + Sync),
         assembler: &mut Assembler,
     ) -> Result<PlacementBlock, ForestError> {
         let trees = self.trees(terrain, region);
         let mut placements = Vec::with_capacity(trees.len() * 8);
         let variants = self.variants();
-        for tree in &trees {
+        for tree in trees.iter().filter(|t| expand(t.variant)) {
             let variant = u32::from(tree.variant);
             let cache = &variants
                 .get(usize::from(tree.variant))
@@ -182,6 +183,19 @@ impl ForestBuilder {
         region: Rect,
         sink: &mut dyn PlacementSink,
     ) -> Result<StreamStats, ForestError> {
+        self.stream_variants(terrain, region, &|_| true, sink)
+    }
+
+    /// As [`ForestBuilder::stream`], expanding only the trees whose variant `expand` accepts
+    /// (every tree is still placed and handed on): a consumer that needs the placements of a
+    /// few variants at a time skips the work for the others.
+    pub fn stream_variants(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        region: Rect,
+        expand: &(dyn Fn(u16) -> bool + Sync),
+        sink: &mut dyn PlacementSink,
+    ) -> Result<StreamStats, ForestError> {
         let blocks = self.blocks(region)?;
         let wave = rayon::current_num_threads().max(1) * 2;
         let mut stats = StreamStats::default();
@@ -190,7 +204,7 @@ impl ForestBuilder {
                 .par_iter()
                 .enumerate()
                 .map_init(Assembler::new, |assembler, (k, &rect)| {
-                    self.block(terrain, w * wave + k, rect, assembler)
+                    self.block(terrain, w * wave + k, rect, expand, assembler)
                 })
                 .collect();
             for block in done {
