@@ -1,8 +1,8 @@
-//! Forests: species, patch-based density management, placement on any terrain, instanced
-//! placements and glTF export.
+//! Forests: species, patch-based density management, placement on any terrain, forests
+//! streamed block by block on every core, and streamed glTF export.
 //!
 //! ```
-//! use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
+//! use sylva_forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
 //! use sylva_terrain::{FlatPlane, glam::Vec2};
 //!
 //! let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
@@ -11,10 +11,17 @@
 //! config.budget = 4 << 20;
 //! let builder = ForestBuilder::new(config)?;
 //! let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
-//! let forest = builder.build(&ground, Rect::new(Vec2::ZERO, Vec2::splat(200.0)));
-//! assert!(!forest.trees.is_empty());
-//! let placed = forest.placements()?;
-//! assert!(placed.iter().map(|b| b.placements.count).sum::<usize>() >= forest.trees.len());
+//! let region = Rect::new(Vec2::ZERO, Vec2::splat(200.0));
+//! // Block by block: each block's trees and every instance transform, in order.
+//! let mut placed = 0;
+//! let stats = builder.stream(&ground, region, &mut |block: &PlacementBlock| {
+//!     placed += block.placements.len();
+//!     Ok(())
+//! })?;
+//! assert!(stats.trees > 0 && placed >= stats.trees);
+//! // Or all at once, for small forests.
+//! let forest = builder.build(&ground, region);
+//! assert_eq!(forest.trees.len(), stats.trees);
 //! # Ok::<(), sylva_forest::ForestError>(())
 //! ```
 //!

@@ -22,7 +22,7 @@ pub struct Species {
     pub grammar: LSystem,
     /// Generations of a canopy tree.
     pub generations: u32,
-    /// Derivation steps of a seedling (fewer than `generations`).
+    /// Generations of a seedling (fewer than `generations`).
     pub seedling_generations: u32,
     /// Turtle and meshing settings, tropism included.
     pub turtle: TurtleOptions,
