@@ -27,7 +27,8 @@ use crate::texture::{LeafShape, Texture};
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct GltfOptions {
-    /// Terrain colour, linear RGB.
+    /// Terrain tint, linear RGB, multiplied with the ground colours by slope and altitude
+    /// ([`sylva_terrain::ground`]) that the terrain's vertices carry.
     pub terrain_colour: [f32; 3],
     /// Roughness of every material (all are dielectric: metallic 0).
     pub roughness: f32,
@@ -40,7 +41,7 @@ pub struct GltfOptions {
 impl Default for GltfOptions {
     fn default() -> Self {
         GltfOptions {
-            terrain_colour: [0.32, 0.30, 0.18],
+            terrain_colour: [1.0, 1.0, 1.0],
             roughness: 0.9,
             chunk_bytes: CHUNK_BYTES,
         }
@@ -323,6 +324,7 @@ fn write_geometry(
     if let Some(t) = terrain {
         put(w, bytemuck::cast_slice(&t.vertices))?;
         put(w, bytemuck::cast_slice(&t.indices))?;
+        put(w, bytemuck::cast_slice(&document.terrain_colours))?;
     }
     for &v in &document.used_variants {
         let cache = &variants[v].cache;
@@ -443,6 +445,8 @@ struct Document {
     used_variants: Vec<usize>,
     /// The leaf textures as PNG, in layout order after the cache buffers.
     images: Vec<Vec<u8>>,
+    /// The terrain's ground colours, after its indices.
+    terrain_colours: Vec<[f32; 3]>,
     /// Offset in the BIN chunk where the placement sections start.
     placement_base: usize,
     bin_len: usize,
@@ -586,6 +590,7 @@ impl Document {
             offset += len;
             (at, offset)
         };
+        let mut terrain_colours = Vec::new();
         if let Some(t) = terrain {
             let vbytes = size_of_val(t.vertices.as_slice());
             let view = a.view(section(vbytes).0, vbytes, Some(32), Some(ARRAY_BUFFER));
@@ -593,6 +598,15 @@ impl Document {
             let ibytes = 4 * t.indices.len();
             let iview = a.view(section(ibytes).0, ibytes, None, Some(ELEMENT_ARRAY_BUFFER));
             let indices = a.accessor(iview, 0, UNSIGNED_INT, t.indices.len(), "SCALAR", None);
+            terrain_colours = t.ground_colours();
+            let cbytes = 12 * terrain_colours.len();
+            let cview = a.view(section(cbytes).0, cbytes, None, Some(ARRAY_BUFFER));
+            let colours = a.accessor(cview, 0, FLOAT, terrain_colours.len(), "VEC3", None);
+            // Ground colours by slope and altitude, as vertex colours.
+            let attributes = format!(
+                "{},\"COLOR_0\":{colours}}}",
+                attributes.trim_end_matches('}')
+            );
             let material = a.material("terrain", options.terrain_colour, options.roughness, None);
             a.meshes.push(format!(
                 "{{\"name\":\"terrain\",\"primitives\":[{{\"attributes\":{attributes},\"indices\":{indices},\"material\":{material}}}]}}"
@@ -755,6 +769,7 @@ impl Document {
             json,
             used_variants,
             images,
+            terrain_colours,
             placement_base,
             bin_len,
         })

@@ -32,6 +32,7 @@ mod diamond_square;
 mod erosion;
 mod error;
 mod field;
+pub mod ground;
 mod hash;
 mod heightmap;
 mod io;

@@ -332,3 +332,31 @@ fn forged_png_headers_are_errors_not_allocations() {
         3
     );
 }
+
+/// The ground palette: grass on the flats, soil then rock as the slope rises, snow on the
+/// heights but not on cliffs; one colour per mesh vertex.
+#[test]
+fn ground_colours_follow_slope_and_altitude() {
+    use sylva_terrain::ground::{GRASS, ROCK, SNOW, SOIL, ground_colour};
+    let near = |a: [f32; 3], b: [f32; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-5);
+    assert!(near(ground_colour(1.0, 0.2), GRASS));
+    assert!(near(ground_colour(0.75, 0.2), SOIL));
+    assert!(near(ground_colour(0.5, 0.2), ROCK));
+    assert!(near(ground_colour(1.0, 1.0), SNOW));
+    assert!(near(ground_colour(0.5, 1.0), ROCK));
+    let steps = [1.0, 0.95, 0.9, 0.85, 0.8, 0.75, 0.7, 0.6, 0.5];
+    let rockiness: Vec<f32> = steps.iter().map(|&up| ground_colour(up, 0.3)[2]).collect();
+    assert!(
+        rockiness.windows(2).all(|w| w[1] >= w[0] - 1e-6),
+        "{rockiness:?}"
+    );
+    let m = DiamondSquare::new(33)
+        .with_seed(3)
+        .generate()
+        .unwrap()
+        .mesh(1)
+        .unwrap();
+    let colours = m.ground_colours();
+    assert_eq!(colours.len(), m.vertices.len());
+    assert!(colours.iter().flatten().all(|c| (0.0..=1.0).contains(c)));
+}

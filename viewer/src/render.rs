@@ -83,6 +83,8 @@ pub(crate) struct Renderer {
     instances: Option<wgpu::Buffer>,
     draws: Vec<Draw>,
     fog_density: f32,
+    /// Lowest and highest terrain vertex, for the ground colour by altitude.
+    terrain_heights: (f32, f32),
 }
 
 fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
@@ -289,7 +291,8 @@ impl Renderer {
         });
         // Materials: terrain, then bark and leaves of each variant, 256 bytes apart. The
         // colour's fourth component is the leaf texture layer plus one (0: no texture).
-        let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, 0.0)];
+        // The terrain's fourth component is -1: the shader paints it by slope and altitude.
+        let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, -1.0)];
         for v in &scene.variants {
             materials.push((v.bark_colour, ID_BARK, 0.0));
             materials.push((
@@ -399,6 +402,12 @@ impl Renderer {
             }),
             draws,
             fog_density: 1.2 / scene.side,
+            terrain_heights: scene
+                .terrain_vertices
+                .iter()
+                .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v.position[1]), hi.max(v.position[1]))
+                }),
         }
     }
 
@@ -428,8 +437,8 @@ impl Renderer {
                 } else {
                     self.fog_density
                 },
-                0.0,
-                0.0,
+                self.terrain_heights.0,
+                self.terrain_heights.1,
                 0.0,
             ],
         };

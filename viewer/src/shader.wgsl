@@ -66,9 +66,27 @@ fn leaf_texel(uv: vec2<f32>) -> vec3<f32> {
     return texel.rgb;
 }
 
+// Ground colour by slope and altitude: the palette of sylva_terrain::ground, repeated here.
+fn ground(normal: vec3<f32>, height: f32) -> vec3<f32> {
+    let grass = vec3<f32>(0.20, 0.30, 0.09);
+    let soil = vec3<f32>(0.30, 0.23, 0.14);
+    let rock = vec3<f32>(0.36, 0.35, 0.33);
+    let snow_colour = vec3<f32>(0.85, 0.87, 0.90);
+    let slope = 1.0 - clamp(normal.y, 0.0, 1.0);
+    let soil_w = smoothstep(0.08, 0.25, slope);
+    let rock_w = smoothstep(0.25, 0.45, slope);
+    let snow_w = smoothstep(0.80, 0.90, height) * (1.0 - rock_w);
+    return mix(mix(mix(grass, soil, soil_w), rock, rock_w), snow_colour, snow_w);
+}
+
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    let albedo = material.colour.rgb * leaf_texel(in.uv);
+    var albedo = material.colour.rgb * leaf_texel(in.uv);
+    if (material.colour.w < -0.5) {
+        // fog.yz: the lowest and highest terrain.
+        let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
+        albedo = ground(normalize(in.normal), clamp(height, 0.0, 1.0));
+    }
     var n = normalize(in.normal);
     if (!front) {
         n = -n;

@@ -1,0 +1,60 @@
+//! Ground colours by slope and altitude: grass on the flats, soil on slopes, rock on cliffs,
+//! snow on the heights. One palette, so every client of the terrain paints it alike (the
+//! viewer's shader repeats these numbers).
+
+use crate::mesh::TerrainMesh;
+
+/// Linear RGB of grass, soil, rock and snow.
+pub const GRASS: [f32; 3] = [0.20, 0.30, 0.09];
+/// Bare soil on moderate slopes.
+pub const SOIL: [f32; 3] = [0.30, 0.23, 0.14];
+/// Rock on steep slopes.
+pub const ROCK: [f32; 3] = [0.36, 0.35, 0.33];
+/// Snow on the highest ground.
+pub const SNOW: [f32; 3] = [0.85, 0.87, 0.90];
+
+fn smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
+    let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
+}
+
+/// The ground colour where the surface normal's up component is `up` (1 flat, 0 vertical)
+/// at relative height `height` (0 the lowest ground, 1 the highest): soil from about 23
+/// degrees of slope, rock from about 41, snow over the top tenth where it is not rock.
+///
+/// ```
+/// use sylva_terrain::ground::{GRASS, ground_colour};
+/// assert_eq!(ground_colour(1.0, 0.0), GRASS); // flat and low: grass
+/// let cliff = ground_colour(0.3, 0.5);
+/// assert!(cliff[0] > GRASS[0] && cliff[2] > GRASS[2]); // steep: rock
+/// ```
+pub fn ground_colour(up: f32, height: f32) -> [f32; 3] {
+    let slope = 1.0 - up.clamp(0.0, 1.0);
+    let soil = smoothstep(0.08, 0.25, slope);
+    let rock = smoothstep(0.25, 0.45, slope);
+    let snow = smoothstep(0.80, 0.90, height) * (1.0 - rock);
+    let ground = mix(mix(GRASS, SOIL, soil), ROCK, rock);
+    mix(ground, SNOW, snow)
+}
+
+impl TerrainMesh {
+    /// The ground colour of every vertex ([`ground_colour`]), heights taken relative to the
+    /// mesh's own lowest and highest vertex.
+    pub fn ground_colours(&self) -> Vec<[f32; 3]> {
+        let (lo, hi) = self
+            .vertices
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v.position[1]), hi.max(v.position[1]))
+            });
+        let span = (hi - lo).max(1e-6);
+        self.vertices
+            .iter()
+            .map(|v| ground_colour(v.normal[1], (v.position[1] - lo) / span))
+            .collect()
+    }
+}
