@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Renders a GLB with three.js in headless Chromium and checks that three.js loaded its
+# instanced meshes and leaf textures. usage: .ci/three/render.sh FILE.glb OUT.png [EYE]
+# Needs Debian's chromium and npm's three in .ci/three/node_modules (CI installs both).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+glb="$(realpath "$1")"; out="$(realpath -m "$2")"; eye="${3:-}"
+cp "$glb" "$here/forest.glb"
+port=$((20000 + RANDOM % 10000))
+# A static server on loopback only, stopped when the script ends.
+node -e '
+  const http = require("http"), fs = require("fs"), path = require("path");
+  const root = process.argv[1];
+  const types = { ".html": "text/html", ".js": "text/javascript", ".glb": "model/gltf-binary" };
+  http.createServer((req, res) => {
+    const file = path.join(root, decodeURIComponent(req.url.split("?")[0]));
+    if (!file.startsWith(root)) { res.writeHead(403); return res.end(); }
+    fs.readFile(file, (err, data) => {
+      if (err) { res.writeHead(404); return res.end(); }
+      res.writeHead(200, { "Content-Type": types[path.extname(file)] || "application/octet-stream" });
+      res.end(data);
+    });
+  }).listen(Number(process.argv[2]), "127.0.0.1");
+' "$here" "$port" &
+server=$!
+trap 'kill $server 2>/dev/null; rm -f "$here/forest.glb"' EXIT
+sleep 1
+url="http://127.0.0.1:$port/render.html?file=forest.glb${eye:+&eye=$eye}"
+flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
+  --disable-quic --no-first-run --disable-background-networking --disable-component-update
+  --disable-sync --user-data-dir="$(mktemp -d)" --window-size=960,540
+  --virtual-time-budget=120000)
+title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>[^<]*</title>' || true)
+echo "three.js: $title"
+chromium "${flags[@]}" --screenshot="$out" "$url" 2>/dev/null
+case "$title" in
+  *"rendered instanced="*) ;;
+  *) echo "three.js did not render the file" >&2; exit 1 ;;
+esac
+if [[ "$title" == *"instanced=0 "* || "$title" == *"textured=0 "* || "$title" == *"masked=0"* ]]; then
+  echo "three.js found no instanced meshes or no textured, alpha-masked leaves" >&2
+  exit 1
+fi
