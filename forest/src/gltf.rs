@@ -22,6 +22,7 @@ use crate::error::ForestError;
 use crate::forest::{ForestBuilder, Variant};
 use crate::stream::{PlacementBlock, StreamStats};
 use crate::texture::{LeafShape, Texture};
+use crate::variety::tree_tint;
 
 /// Export settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,8 +77,9 @@ const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
-/// Bytes of one placement in the file: translation, rotation, scale (as three floats).
-const PLACEMENT_BYTES: usize = 12 + 16 + 12;
+/// Bytes of one placement in the file: translation, rotation, scale (as three floats) and the
+/// tree's tint.
+const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12;
 
 /// One instance that is drawn: a node with its own instancing accessors.
 #[derive(Debug, Clone, Copy)]
@@ -363,7 +365,12 @@ fn write_placements(
         path: "glb output".into(),
         message: e.to_string(),
     };
-    let (t_base, r_base, s_base) = (base, base + 12 * total, base + 28 * total);
+    let (t_base, r_base, s_base, c_base) = (
+        base,
+        base + 12 * total,
+        base + 28 * total,
+        base + 40 * total,
+    );
     let mut passes = 0;
     let mut start = 0;
     while start < nodes.len() {
@@ -380,6 +387,7 @@ fn write_placements(
         let mut t = vec![0f32; 3 * count];
         let mut r = vec![0f32; 4 * count];
         let mut s = vec![0f32; 3 * count];
+        let mut c = vec![0f32; 3 * count];
         let mut cursor: Vec<usize> = nodes[start..end].iter().map(|n| n.first - first).collect();
         let range = start as u32..end as u32;
         // Only the variants of this chunk's nodes need their trees expanded.
@@ -397,11 +405,18 @@ fn write_placements(
                 t[3 * *k..3 * *k + 3].copy_from_slice(&x.translation.to_array());
                 r[4 * *k..4 * *k + 4].copy_from_slice(&q.to_array());
                 s[3 * *k..3 * *k + 3].copy_from_slice(&[x.scale; 3]);
+                let tint = block.trees.get(p.tree as usize).map_or([1.0; 3], tree_tint);
+                c[3 * *k..3 * *k + 3].copy_from_slice(&tint);
                 *k += 1;
             }
             Ok(())
         })?;
-        for (section, data, width) in [(t_base, &t, 12), (r_base, &r, 16), (s_base, &s, 12)] {
+        for (section, data, width) in [
+            (t_base, &t, 12),
+            (r_base, &r, 16),
+            (s_base, &s, 12),
+            (c_base, &c, 12),
+        ] {
             w.seek(SeekFrom::Start((section + first * width) as u64))
                 .map_err(io)?;
             w.write_all(bytemuck::cast_slice(data)).map_err(io)?;
@@ -664,6 +679,7 @@ impl Document {
         let t_view = a.view(section(12 * placements).0, 12 * placements, None, None);
         let r_view = a.view(section(16 * placements).0, 16 * placements, None, None);
         let s_view = a.view(section(12 * placements).0, 12 * placements, None, None);
+        let c_view = a.view(section(12 * placements).0, 12 * placements, None, None);
         let bin_len = section(0).1;
         for node in nodes {
             let variant = &variants[node.variant];
@@ -695,6 +711,8 @@ impl Document {
             let t = a.accessor(t_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
             let r = a.accessor(r_view, 16 * node.first, FLOAT, node.count, "VEC4", None);
             let s = a.accessor(s_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
+            // Each tree's tint, as three.js and others read it: the instance colour.
+            let c = a.accessor(c_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
             let name = &species[variant.species].name;
             let tag = if variant.seedling { "seedling" } else { "tree" };
             a.meshes.push(format!(
@@ -706,7 +724,7 @@ impl Document {
                 primitives.join(",")
             ));
             a.nodes.push(format!(
-                "{{\"name\":{},\"mesh\":{},\"extensions\":{{\"EXT_mesh_gpu_instancing\":{{\"attributes\":{{\"TRANSLATION\":{t},\"ROTATION\":{r},\"SCALE\":{s}}}}}}}}}",
+                "{{\"name\":{},\"mesh\":{},\"extensions\":{{\"EXT_mesh_gpu_instancing\":{{\"attributes\":{{\"TRANSLATION\":{t},\"ROTATION\":{r},\"SCALE\":{s},\"_COLOR_0\":{c}}}}}}}}}",
                 quoted(&format!("{name} {tag} instance {}", node.instance)),
                 a.meshes.len() - 1
             ));

@@ -43,6 +43,7 @@ mod patch;
 mod species;
 mod stream;
 mod texture;
+mod variety;
 
 pub use density::{Candidate, DensityModel, Rect};
 pub use error::ForestError;
@@ -56,3 +57,4 @@ pub use stream::{
     BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
 };
 pub use texture::{LEAF_TEXTURE_SIZE, LeafShape, Texture};
+pub use variety::tree_tint;

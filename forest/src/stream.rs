@@ -29,6 +29,8 @@ pub struct Placement {
     pub instance: u32,
     /// Where it goes: T = D * M^-1.
     pub transform: Similarity,
+    /// Index of its tree in the block's trees (for the tree's tint, seed or position).
+    pub tree: u32,
 }
 
 /// The trees of one block and their placements, in tree order.
@@ -130,7 +132,7 @@ impl ForestBuilder {
         let trees = self.trees(terrain, region);
         let mut placements = Vec::with_capacity(trees.len() * 8);
         let variants = self.variants();
-        for tree in trees.iter().filter(|t| expand(t.variant)) {
+        for (index, tree) in trees.iter().enumerate().filter(|(_, t)| expand(t.variant)) {
             let variant = u32::from(tree.variant);
             let cache = &variants
                 .get(usize::from(tree.variant))
@@ -143,6 +145,7 @@ impl ForestBuilder {
                     variant,
                     instance,
                     transform,
+                    tree: index as u32,
                 });
             })?;
         }

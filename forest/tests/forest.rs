@@ -292,6 +292,8 @@ fn exported_glb_is_well_formed_and_counts_match() {
             };
             assert_eq!(count("TRANSLATION"), count("ROTATION"));
             assert_eq!(count("ROTATION"), count("SCALE"));
+            // Each tree's tint rides along as the instance colour.
+            assert_eq!(count("SCALE"), count("_COLOR_0"));
             placements += count("TRANSLATION");
         }
     }

@@ -90,8 +90,8 @@ pub(crate) struct Renderer {
 fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
     const MESH: [wgpu::VertexAttribute; 3] =
         wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
-    const INSTANCE: [wgpu::VertexAttribute; 2] =
-        wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x4];
+    const INSTANCE: [wgpu::VertexAttribute; 3] =
+        wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x4, 5 => Float32x4];
     [
         Some(wgpu::VertexBufferLayout {
             array_stride: 32,
@@ -99,7 +99,7 @@ fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
             attributes: &MESH,
         }),
         Some(wgpu::VertexBufferLayout {
-            array_stride: 32,
+            array_stride: size_of::<InstanceRaw>() as u64,
             step_mode: wgpu::VertexStepMode::Instance,
             attributes: &INSTANCE,
         }),
@@ -364,6 +364,7 @@ impl Renderer {
         let identity = InstanceRaw {
             rotation: [0.0, 0.0, 0.0, 1.0],
             translation_scale: [0.0, 0.0, 0.0, 1.0],
+            tint: [1.0; 4],
         };
         Renderer {
             leaf_group,
@@ -510,7 +511,10 @@ impl Renderer {
                 &[d.material * MATERIAL_STRIDE as u32],
             );
             // Each group's placements sit contiguously in the one instance buffer.
-            pass.set_vertex_buffer(1, instances.slice(d.first_instance * 32..));
+            pass.set_vertex_buffer(
+                1,
+                instances.slice(d.first_instance * size_of::<InstanceRaw>() as u64..),
+            );
             pass.draw_indexed(d.indices.0..d.indices.1, 0, 0..d.instances);
             stats.draws += 1;
             stats.instances += u64::from(d.instances);

@@ -1,7 +1,9 @@
 //! The CPU side of the viewer: the forest and terrain as flat buffers, and the camera.
 
 use bytemuck::{Pod, Zeroable};
-use sylva::forest::{ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species};
+use sylva::forest::{
+    ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species, tree_tint,
+};
 use sylva::instancing::Span;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3};
 use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
@@ -13,6 +15,8 @@ use sylva::turtle::Vertex;
 pub(crate) struct InstanceRaw {
     pub(crate) rotation: [f32; 4],
     pub(crate) translation_scale: [f32; 4],
+    /// The tree's tint (`sylva_forest::tree_tint`), and 1.
+    pub(crate) tint: [f32; 4],
 }
 
 /// One species variant's shared buffers.
@@ -111,7 +115,9 @@ impl Scene {
             .stream(&map, region, &mut |block: &PlacementBlock| {
                 for p in &block.placements {
                     let t = &p.transform;
+                    let tint = block.trees.get(p.tree as usize).map_or([1.0; 3], tree_tint);
                     placed[p.variant as usize][p.instance as usize].push(InstanceRaw {
+                        tint: [tint[0], tint[1], tint[2], 1.0],
                         rotation: t.rotation.to_array(),
                         translation_scale: [
                             t.translation.x,

@@ -26,6 +26,7 @@ struct VertexIn {
     @location(2) uv: vec2<f32>,
     @location(3) rotation: vec4<f32>,
     @location(4) translation_scale: vec4<f32>,
+    @location(5) tint: vec4<f32>,
 };
 
 struct VertexOut {
@@ -33,6 +34,7 @@ struct VertexOut {
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @location(3) tint: vec3<f32>,
 };
 
 fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
@@ -48,6 +50,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.world = world;
     out.normal = rotate(in.rotation, in.normal);
     out.uv = in.uv;
+    out.tint = in.tint.rgb;
     return out;
 }
 
@@ -81,7 +84,7 @@ fn ground(normal: vec3<f32>, height: f32) -> vec3<f32> {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    var albedo = material.colour.rgb * leaf_texel(in.uv);
+    var albedo = material.colour.rgb * leaf_texel(in.uv) * in.tint;
     if (material.colour.w < -0.5) {
         // fog.yz: the lowest and highest terrain.
         let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
