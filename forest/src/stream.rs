@@ -132,7 +132,7 @@ impl ForestBuilder {
         let trees = self.trees(terrain, region);
         let mut placements = Vec::with_capacity(trees.len() * 8);
         let variants = self.variants();
-        for (index, tree) in trees.iter().enumerate().filter(|(_, t)| expand(t.variant)) {
+        for (position, tree) in trees.iter().enumerate().filter(|(_, t)| expand(t.variant)) {
             let variant = u32::from(tree.variant);
             let cache = &variants
                 .get(usize::from(tree.variant))
@@ -145,7 +145,7 @@ impl ForestBuilder {
                     variant,
                     instance,
                     transform,
-                    tree: index as u32,
+                    tree: position as u32,
                 });
             })?;
         }
