@@ -169,7 +169,7 @@ pub fn write_glb(
                 .ok_or_else(|| {
                     ForestError::InvalidExport("a placement of an unknown instance".into())
                 })?;
-            *slot += 1;
+            *slot = slot.saturating_add(1);
         }
         Ok(())
     })?;
