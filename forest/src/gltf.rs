@@ -548,6 +548,27 @@ impl Arrays {
         self.materials.len() - 1
     }
 
+    /// A bark material: the species' colour over the tiling bark texture, when there is one.
+    fn bark_material(
+        &mut self,
+        name: &str,
+        colour: [f32; 3],
+        roughness: f32,
+        texture: Option<usize>,
+    ) -> usize {
+        let texture = texture.map_or(String::new(), |t| {
+            format!(",\"baseColorTexture\":{{\"index\":{t}}}")
+        });
+        self.materials.push(format!(
+            "{{\"name\":{},\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0]{texture},\"metallicFactor\":0.0,\"roughnessFactor\":{roughness}}}}}",
+            quoted(name),
+            colour[0],
+            colour[1],
+            colour[2]
+        ));
+        self.materials.len() - 1
+    }
+
     /// Position (with bounds), normal and uv accessors over interleaved 32-byte vertices.
     fn vertex_attributes(
         &mut self,
@@ -644,7 +665,12 @@ impl Document {
                 shapes.push(shape);
             }
         }
-        let images: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
+        // The bark texture comes last, tiling with its own sampler.
+        let mut images: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
+        let bark_texture = (!used_variants.is_empty()).then(|| {
+            images.push(Texture::bark().png());
+            images.len() - 1
+        });
         for &v in &used_variants {
             let variant = &variants[v];
             let cache = &variant.cache;
@@ -659,8 +685,12 @@ impl Document {
             let leaves_at = section(4 * cache.leaves.len()).0;
             let leaves = index_view(&mut a, leaves_at, cache.leaves.len());
             let s = &species[variant.species];
-            let bark_material =
-                a.material(&format!("{} bark", s.name), s.bark, options.roughness, None);
+            let bark_material = a.bark_material(
+                &format!("{} bark", s.name),
+                s.bark,
+                options.roughness,
+                bark_texture,
+            );
             let texture = shapes.iter().position(|&shape| shape == s.leaf_shape);
             let leaf_material = a.material(
                 &format!("{} leaves", s.name),
@@ -760,13 +790,17 @@ impl Document {
                 .iter()
                 .map(|v| format!("{{\"bufferView\":{v},\"mimeType\":\"image/png\"}}"))
                 .collect();
+            // Leaf cards use sampler 0 (edges clamped), bark sampler 1 (repeated).
             let textures: Vec<String> = (0..image_views.len())
-                .map(|i| format!("{{\"sampler\":0,\"source\":{i}}}"))
+                .map(|i| {
+                    let sampler = usize::from(Some(i) == bark_texture);
+                    format!("{{\"sampler\":{sampler},\"source\":{i}}}")
+                })
                 .collect();
-            // Linear filtering with mipmaps; the cards' edges are clamped, not repeated.
+            // Linear filtering with mipmaps.
             let _ = write!(
                 json,
-                ",\"images\":[{}],\"textures\":[{}],\"samplers\":[{{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}}]",
+                ",\"images\":[{}],\"textures\":[{}],\"samplers\":[{{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}},{{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}}]",
                 images.join(","),
                 textures.join(",")
             );

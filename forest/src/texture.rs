@@ -46,7 +46,7 @@ pub struct Texture {
     pub rgba: Vec<u8>,
 }
 
-/// Side of the leaf textures, in pixels.
+/// Side of the leaf and bark textures, in pixels.
 pub const LEAF_TEXTURE_SIZE: u32 = 128;
 
 impl Texture {
@@ -75,6 +75,36 @@ impl Texture {
                     // A faint yellow-green cast in the veins and blotches, white elsewhere.
                     rgba[i..i + 4].copy_from_slice(&[s, s, (f32::from(s) * 0.92) as u8, 255]);
                 }
+            }
+        }
+        Texture {
+            width: n,
+            height: n,
+            rgba,
+        }
+    }
+
+    /// A bark texture that tiles in both directions (u around a branch, v along it): long
+    /// vertical ridges broken by furrows and a little grain, near white, so that each
+    /// species' bark colour tints it.
+    ///
+    /// ```
+    /// let t = sylva_forest::Texture::bark();
+    /// let n = t.width as usize;
+    /// // Opaque everywhere, and the first column continues the last (it tiles).
+    /// assert!(t.rgba.chunks_exact(4).all(|p| p[3] == 255));
+    /// let gap = |a: usize, b: usize| (t.rgba[a * 4] as i32 - t.rgba[b * 4] as i32).abs();
+    /// assert!((0..n).all(|y| gap(y * n, y * n + n - 1) < 48));
+    /// ```
+    pub fn bark() -> Texture {
+        let n = LEAF_TEXTURE_SIZE;
+        let mut rgba = vec![0u8; (n * n * 4) as usize];
+        for y in 0..n {
+            for x in 0..n {
+                let shade = bark_height(x, y, n);
+                let s = (shade.clamp(0.0, 1.0) * 255.0).round() as u8;
+                let i = ((y * n + x) * 4) as usize;
+                rgba[i..i + 4].copy_from_slice(&[s, s, s, 255]);
             }
         }
         Texture {
@@ -150,4 +180,39 @@ fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
     let along = v - reach * 0.7;
     let phase = (along / 0.045).fract();
     (phase < 0.28 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
+}
+
+/// Periodic value noise on a `cells` x `cells` lattice over a tile of side `n` pixels: it wraps
+/// at the tile's edges, so the texture tiles.
+fn periodic_noise(x: u32, y: u32, n: u32, cells: u32, salt: u64) -> f32 {
+    let (fx, fy) = (
+        x as f32 * cells as f32 / n as f32,
+        y as f32 * cells as f32 / n as f32,
+    );
+    let (x0, y0) = (fx.floor() as u32, fy.floor() as u32);
+    let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+    let corner = |i: u32, j: u32| {
+        unit_f32(hash_cell(
+            salt,
+            i64::from(i % cells),
+            i64::from(j % cells),
+            0,
+        ))
+    };
+    let smooth = |t: f32| t * t * (3.0 - 2.0 * t);
+    let (sx, sy) = (smooth(tx), smooth(ty));
+    let top = corner(x0, y0) * (1.0 - sx) + corner(x0 + 1, y0) * sx;
+    let bottom = corner(x0, y0 + 1) * (1.0 - sx) + corner(x0 + 1, y0 + 1) * sx;
+    top * (1.0 - sy) + bottom * sy
+}
+
+/// Bark relief: ridges running along the branch (few cells across, many along), furrows
+/// between them, fine grain on top.
+fn bark_height(x: u32, y: u32, n: u32) -> f32 {
+    // Stretch the lattice along v: ridges are long.
+    let ridges = periodic_noise(x, y / 4, n, 8, 0xba4c) * 0.6
+        + periodic_noise(x, y / 2, n, 16, 0xba4d) * 0.3
+        + periodic_noise(x, y, n, 32, 0xba4e) * 0.1;
+    let furrow = (1.0 - (ridges - 0.5).abs() * 4.0).clamp(0.0, 1.0);
+    0.95 - 0.35 * furrow + 0.08 * grain(x, y)
 }

@@ -15,8 +15,9 @@ pub struct Vertex {
     pub position: [f32; 3],
     /// Unit normal.
     pub normal: [f32; 3],
-    /// Texture coordinates: on branches u runs around the circumference (0 to 1) and v along
-    /// the length (one unit of v per world unit).
+    /// Texture coordinates: on branches u runs once around the circumference (0 to 1) and v
+    /// along the length, one unit per circumference travelled, so a bark texture that tiles
+    /// once around a branch keeps square texels on thick and thin branches alike.
     pub uv: [f32; 2],
 }
 
@@ -254,7 +255,9 @@ impl GeometrySink for MeshBuilder {
                 (self.ring(start, &ring, s.start_radius, 0.0), 0.0, ring)
             }
         };
-        let v1 = v0 + s.length;
+        // v advances by the length in circumferences at the segment's mean radius.
+        let circumference = std::f32::consts::PI * (s.start_radius + s.end_radius);
+        let v1 = v0 + s.length / circumference.max(1e-4);
         let b = self.ring(end, &ring, s.end_radius, v1);
         self.join(a, b);
         let id = s.id as usize;

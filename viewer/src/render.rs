@@ -119,6 +119,9 @@ fn buffer(
     })
 }
 
+/// The layer of the bark texture in the viewer's texture array, after the leaf shapes.
+const BARK_LAYER: u32 = 2;
+
 /// The layer of a leaf shape's texture in the viewer's texture array.
 fn leaf_layer(shape: LeafShape) -> u32 {
     match shape {
@@ -127,14 +130,17 @@ fn leaf_layer(shape: LeafShape) -> u32 {
     }
 }
 
-/// The procedural leaf textures as one two-layer texture array (broadleaf, needles) with a
-/// linear sampler, and the bind group layout the shader reads them through.
+/// The procedural textures as one texture array (broadleaf, needles, bark) with a linear
+/// sampler, and the bind group layout the shader reads them through.
 fn leaf_textures(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
 ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let shapes = [LeafShape::Broadleaf, LeafShape::Needles];
-    let images: Vec<Texture> = shapes.iter().map(|&s| Texture::leaf(s)).collect();
+    let images = [
+        Texture::leaf(LeafShape::Broadleaf),
+        Texture::leaf(LeafShape::Needles),
+        Texture::bark(),
+    ];
     let data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
     let texture = device.create_texture_with_data(
         queue,
@@ -143,7 +149,7 @@ fn leaf_textures(
             size: wgpu::Extent3d {
                 width: images[0].width,
                 height: images[0].height,
-                depth_or_array_layers: shapes.len() as u32,
+                depth_or_array_layers: images.len() as u32,
             },
             mip_level_count: 1,
             sample_count: 1,
@@ -294,7 +300,7 @@ impl Renderer {
         // The terrain's fourth component is -1: the shader paints it by slope and altitude.
         let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, -1.0)];
         for v in &scene.variants {
-            materials.push((v.bark_colour, ID_BARK, 0.0));
+            materials.push((v.bark_colour, ID_BARK, 1.0 + BARK_LAYER as f32));
             materials.push((
                 v.leaf_colour,
                 ID_LEAF,

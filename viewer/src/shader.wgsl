@@ -15,8 +15,8 @@ struct Material {
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(1) @binding(0) var<uniform> material: Material;
-// The procedural leaf textures, one layer per leaf shape; material.colour.w is the layer
-// plus one, 0 for untextured materials.
+// The procedural textures, one layer each: broadleaf, needles, bark; material.colour.w is the
+// layer plus one, 0 for untextured materials. Bark (layer 2) tiles; leaf cards do not.
 @group(2) @binding(0) var leaf_textures: texture_2d_array<f32>;
 @group(2) @binding(1) var leaf_sampler: sampler;
 
@@ -58,8 +58,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
 // card is clear (alpha-tested foliage).
 fn leaf_texel(uv: vec2<f32>) -> vec3<f32> {
     let layer = i32(material.colour.w + 0.5) - 1;
+    let tiled = select(uv, fract(uv), layer == 2);
     // Sampled in uniform control flow; the layer is clamped for untextured materials.
-    let texel = textureSample(leaf_textures, leaf_sampler, uv, max(layer, 0));
+    let texel = textureSample(leaf_textures, leaf_sampler, tiled, max(layer, 0));
     if (layer < 0) {
         return vec3<f32>(1.0);
     }
