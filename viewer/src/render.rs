@@ -69,7 +69,7 @@ struct Draw {
 }
 
 pub(crate) struct Renderer {
-    leaf_group: wgpu::BindGroup,
+    texture_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
     ids: wgpu::RenderPipeline,
     globals: wgpu::Buffer,
@@ -132,7 +132,7 @@ fn leaf_layer(shape: LeafShape) -> u32 {
 
 /// The procedural textures as one texture array (broadleaf, needles, bark) with a linear
 /// sampler, and the bind group layout the shader reads them through.
-fn leaf_textures(
+fn textures(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
 ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
@@ -145,7 +145,7 @@ fn leaf_textures(
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
-            label: Some("leaf textures"),
+            label: Some("textures"),
             size: wgpu::Extent3d {
                 width: images[0].width,
                 height: images[0].height,
@@ -166,13 +166,13 @@ fn leaf_textures(
         ..Default::default()
     });
     let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("leaf sampler"),
+        label: Some("texture sampler"),
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
     });
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("leaf textures"),
+        label: Some("textures"),
         entries: &[
             wgpu::BindGroupLayoutEntry {
                 binding: 0,
@@ -193,7 +193,7 @@ fn leaf_textures(
         ],
     });
     let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("leaf textures"),
+        label: Some("textures"),
         layout: &layout,
         entries: &[
             wgpu::BindGroupEntry {
@@ -229,7 +229,7 @@ impl Renderer {
         scene: &Scene,
     ) -> Renderer {
         let shader = device.create_shader_module(wgpu::include_wgsl!("shader.wgsl"));
-        let (leaf_layout, leaf_group) = leaf_textures(device, queue);
+        let (texture_layout, texture_group) = textures(device, queue);
         let uniform_layout = |dynamic: bool, size: u64| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: None,
@@ -252,7 +252,7 @@ impl Renderer {
             bind_group_layouts: &[
                 Some(&globals_layout),
                 Some(&material_layout),
-                Some(&leaf_layout),
+                Some(&texture_layout),
             ],
             immediate_size: 0,
         });
@@ -373,7 +373,7 @@ impl Renderer {
             tint: [1.0; 4],
         };
         Renderer {
-            leaf_group,
+            texture_group,
             shaded: pipeline("fs_main"),
             ids: pipeline("fs_id"),
             globals,
@@ -488,7 +488,7 @@ impl Renderer {
             &self.shaded
         });
         pass.set_bind_group(0, &self.globals_group, &[]);
-        pass.set_bind_group(2, &self.leaf_group, &[]);
+        pass.set_bind_group(2, &self.texture_group, &[]);
         let mut stats = FrameStats::default();
         pass.set_bind_group(1, &self.material_group, &[0]);
         pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));

@@ -17,8 +17,8 @@ struct Material {
 @group(1) @binding(0) var<uniform> material: Material;
 // The procedural textures, one layer each: broadleaf, needles, bark; material.colour.w is the
 // layer plus one, 0 for untextured materials. Bark (layer 2) tiles; leaf cards do not.
-@group(2) @binding(0) var leaf_textures: texture_2d_array<f32>;
-@group(2) @binding(1) var leaf_sampler: sampler;
+@group(2) @binding(0) var textures: texture_2d_array<f32>;
+@group(2) @binding(1) var texture_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -54,20 +54,20 @@ fn vs_main(in: VertexIn) -> VertexOut {
     return out;
 }
 
-// The leaf texture's colour, or white for untextured materials; discards where the leaf
-// card is clear (alpha-tested foliage).
-fn leaf_texel(uv: vec2<f32>) -> vec3<f32> {
+// The material's texture colour (leaf card or bark), or white for untextured materials;
+// discards where a leaf card is clear (alpha-tested foliage).
+fn texel(uv: vec2<f32>) -> vec3<f32> {
     let layer = i32(material.colour.w + 0.5) - 1;
     let tiled = select(uv, fract(uv), layer == 2);
     // Sampled in uniform control flow; the layer is clamped for untextured materials.
-    let texel = textureSample(leaf_textures, leaf_sampler, tiled, max(layer, 0));
+    let sampled = textureSample(textures, texture_sampler, tiled, max(layer, 0));
     if (layer < 0) {
         return vec3<f32>(1.0);
     }
-    if (texel.a < 0.5) {
+    if (sampled.a < 0.5) {
         discard;
     }
-    return texel.rgb;
+    return sampled.rgb;
 }
 
 // Ground colour by slope and altitude: the palette of sylva_terrain::ground, repeated here.
@@ -85,7 +85,7 @@ fn ground(normal: vec3<f32>, height: f32) -> vec3<f32> {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    var albedo = material.colour.rgb * leaf_texel(in.uv) * in.tint;
+    var albedo = material.colour.rgb * texel(in.uv) * in.tint;
     if (material.colour.w < -0.5) {
         // fog.yz: the lowest and highest terrain.
         let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
@@ -104,7 +104,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
 // Flat material ids, for tests that count what covers the picture.
 @fragment
 fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
-    // Clear parts of leaf cards are no leaf.
-    let texel = leaf_texel(in.uv);
-    return material.id + vec4<f32>(0.0 * texel, 0.0);
+    // Clear parts of leaf cards are no leaf: texel() discards them.
+    _ = texel(in.uv);
+    return material.id;
 }
