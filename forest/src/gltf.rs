@@ -21,7 +21,7 @@ use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::{ForestBuilder, Variant};
 use crate::stream::{PlacementBlock, StreamStats};
-use crate::texture::{LeafShape, Texture};
+use crate::texture::{BarkPattern, LeafShape, Texture};
 use crate::variety::tree_tint;
 
 /// Export settings.
@@ -665,12 +665,17 @@ impl Document {
                 shapes.push(shape);
             }
         }
-        // The bark texture comes last, tiling with its own sampler.
+        // Then one bark texture per pattern in use, tiling with their own sampler.
         let mut images: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
-        let bark_texture = (!used_variants.is_empty()).then(|| {
-            images.push(Texture::bark().png());
-            images.len() - 1
-        });
+        let mut patterns: Vec<BarkPattern> = Vec::new();
+        for &v in &used_variants {
+            let pattern = species[variants[v].species].bark_pattern;
+            if !patterns.contains(&pattern) {
+                patterns.push(pattern);
+            }
+        }
+        let first_bark = images.len();
+        images.extend(patterns.iter().map(|&p| Texture::bark(p).png()));
         for &v in &used_variants {
             let variant = &variants[v];
             let cache = &variant.cache;
@@ -685,6 +690,10 @@ impl Document {
             let leaves_at = section(4 * cache.leaves.len()).0;
             let leaves = index_view(&mut a, leaves_at, cache.leaves.len());
             let s = &species[variant.species];
+            let bark_texture = patterns
+                .iter()
+                .position(|&p| p == s.bark_pattern)
+                .map(|k| first_bark + k);
             let bark_material = a.bark_material(
                 &format!("{} bark", s.name),
                 s.bark,
@@ -793,7 +802,7 @@ impl Document {
             // Leaf cards use sampler 0 (edges clamped), bark sampler 1 (repeated).
             let textures: Vec<String> = (0..image_views.len())
                 .map(|i| {
-                    let sampler = usize::from(Some(i) == bark_texture);
+                    let sampler = usize::from(i >= first_bark);
                     format!("{{\"sampler\":{sampler},\"source\":{i}}}")
                 })
                 .collect();

@@ -7,7 +7,7 @@ use sylva_lsys::{GrammarFileError, LSystem};
 use sylva_turtle::{Skeleton, Tropism, TurtleOptions, interpret};
 
 use crate::error::ForestError;
-use crate::texture::LeafShape;
+use crate::texture::{BarkPattern, LeafShape};
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
@@ -32,6 +32,8 @@ pub struct Species {
     pub leaf: [f32; 3],
     /// What its leaf cards show.
     pub leaf_shape: LeafShape,
+    /// What its bark texture shows.
+    pub bark_pattern: BarkPattern,
     /// Relative frequency among the forest's species.
     pub weight: f32,
 }
@@ -71,6 +73,7 @@ impl Species {
             bark: [0.30, 0.20, 0.12],
             leaf: [0.18, 0.42, 0.12],
             leaf_shape: LeafShape::Broadleaf,
+            bark_pattern: BarkPattern::Furrowed,
             weight: 1.0,
         }
     }
@@ -137,8 +140,9 @@ impl Species {
     /// `seedling_generations`, `angle`, `step`, `length_unit`, `width`, `width_unit`, `sides`,
     /// `bark` and `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle
     /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
-    /// (length and width), `leaf_shape` (`broadleaf` or `needles`: the card's texture) and
-    /// `tropism` (direction x y z and susceptibility). Errors name the file, line and column;
+    /// (length and width), `leaf_shape` (`broadleaf` or `needles`: the card's texture),
+    /// `bark_texture` (`furrowed` or `smooth`) and `tropism` (direction x y z and
+    /// susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
     /// ```no_run
@@ -327,6 +331,15 @@ impl Species {
                 )
             })?;
         }
+        if let Some((l, c, _, v)) = find("bark_texture") {
+            s.bark_pattern = BarkPattern::from_name(v).ok_or_else(|| {
+                err(
+                    *l,
+                    *c,
+                    format!("bark_texture must be 'furrowed' or 'smooth', not '{v}'"),
+                )
+            })?;
+        }
         for (l, c, k, _) in &fields {
             const KNOWN: &[&str] = &[
                 "name",
@@ -346,6 +359,7 @@ impl Species {
                 "leaf_size",
                 "tropism",
                 "leaf_shape",
+                "bark_texture",
             ];
             if !KNOWN.contains(&k.as_str()) {
                 return Err(err(

@@ -5,7 +5,7 @@
 //! in u. Colours are near white with veins and blotches darker: the species' leaf colour is
 //! multiplied in by the material, so one texture serves every species of a shape.
 
-use sylva_base::hash::{hash_cell, unit_f32};
+use sylva_base::hash::{hash_cell, mix, unit_f32};
 
 /// What a species' leaf cards show.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -32,6 +32,34 @@ impl LeafShape {
         [LeafShape::Broadleaf, LeafShape::Needles]
             .into_iter()
             .find(|s| s.name() == name)
+    }
+}
+
+/// What a species' bark texture shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum BarkPattern {
+    /// Long ridges and furrows, as on oaks, pines and spruces.
+    #[default]
+    Furrowed,
+    /// Smooth, with dark horizontal lenticels, as on birches.
+    Smooth,
+}
+
+impl BarkPattern {
+    /// The name used in species files.
+    pub fn name(self) -> &'static str {
+        match self {
+            BarkPattern::Furrowed => "furrowed",
+            BarkPattern::Smooth => "smooth",
+        }
+    }
+
+    /// The pattern called `name` in species files.
+    pub fn from_name(name: &str) -> Option<BarkPattern> {
+        [BarkPattern::Furrowed, BarkPattern::Smooth]
+            .into_iter()
+            .find(|p| p.name() == name)
     }
 }
 
@@ -84,24 +112,29 @@ impl Texture {
         }
     }
 
-    /// A bark texture that tiles in both directions (u around a branch, v along it): long
-    /// vertical ridges broken by furrows and a little grain, near white, so that each
-    /// species' bark colour tints it.
+    /// A bark texture that tiles in both directions (u around a branch, v along it), near
+    /// white so that each species' bark colour tints it: long ridges broken by furrows
+    /// ([`BarkPattern::Furrowed`]) or smooth bark with dark lenticels
+    /// ([`BarkPattern::Smooth`]), with a little grain.
     ///
     /// ```
-    /// let t = sylva_forest::Texture::bark();
+    /// use sylva_forest::{BarkPattern, Texture};
+    /// let t = Texture::bark(BarkPattern::Furrowed);
     /// let n = t.width as usize;
     /// // Opaque everywhere, and the first column continues the last (it tiles).
     /// assert!(t.rgba.chunks_exact(4).all(|p| p[3] == 255));
     /// let gap = |a: usize, b: usize| (t.rgba[a * 4] as i32 - t.rgba[b * 4] as i32).abs();
     /// assert!((0..n).all(|y| gap(y * n, y * n + n - 1) < 48));
     /// ```
-    pub fn bark() -> Texture {
+    pub fn bark(pattern: BarkPattern) -> Texture {
         let n = LEAF_TEXTURE_SIZE;
         let mut rgba = vec![0u8; (n * n * 4) as usize];
         for y in 0..n {
             for x in 0..n {
-                let shade = bark_height(x, y, n);
+                let shade = match pattern {
+                    BarkPattern::Smooth => smooth_bark(x, y, n),
+                    _ => bark_height(x, y, n),
+                };
                 let s = (shade.clamp(0.0, 1.0) * 255.0).round() as u8;
                 let i = ((y * n + x) * 4) as usize;
                 rgba[i..i + 4].copy_from_slice(&[s, s, s, 255]);
@@ -215,4 +248,20 @@ fn bark_height(x: u32, y: u32, n: u32) -> f32 {
         + periodic_noise(x, y, n, 32, 0xba4e) * 0.1;
     let furrow = (1.0 - (ridges - 0.5).abs() * 4.0).clamp(0.0, 1.0);
     0.95 - 0.35 * furrow + 0.08 * grain(x, y)
+}
+
+/// Smooth bark with lenticels: short dark horizontal dashes scattered on a pale surface.
+fn smooth_bark(x: u32, y: u32, n: u32) -> f32 {
+    // Dashes sit on a periodic lattice of 6 x 24 cells (wide around, short along), each
+    // with a random length and offset, so the pattern tiles.
+    let (cols, rows) = (6u32, 24u32);
+    let (cw, ch) = (n / cols, n / rows);
+    let (cx, cy) = (x / cw, y / ch);
+    let h = hash_cell(0xb1c4, i64::from(cx % cols), i64::from(cy % rows), 0);
+    let length = 0.3 + 0.6 * unit_f32(h);
+    let offset = unit_f32(mix(h)) * (1.0 - length);
+    let (fx, fy) = ((x % cw) as f32 / cw as f32, (y % ch) as f32 / ch as f32);
+    let dash = fx >= offset && fx <= offset + length && (0.35..0.65).contains(&fy);
+    let blotch = periodic_noise(x, y, n, 8, 0xb1c5);
+    (if dash { 0.35 } else { 0.97 - 0.12 * blotch }) + 0.04 * grain(x, y)
 }

@@ -4,8 +4,8 @@ use std::path::Path;
 
 use proptest::prelude::*;
 use sylva_forest::{
-    Candidate, DensityModel, ForestBuilder, ForestConfig, ForestError, GltfOptions, LeafShape,
-    PatchDensity, PatchSpecies, PlacementBlock, Rect, Species, Texture, write_glb,
+    BarkPattern, Candidate, DensityModel, ForestBuilder, ForestConfig, ForestError, GltfOptions,
+    LeafShape, PatchDensity, PatchSpecies, PlacementBlock, Rect, Species, Texture, write_glb,
 };
 use sylva_terrain::glam::Vec2;
 use sylva_terrain::{DiamondSquare, FlatPlane, HeightField};
@@ -603,6 +603,7 @@ fn hostile_species_files() {
         ("grammar: kenwood-leafy\ngenerations: 99999999999\n", 2),
         ("grammar: kenwood-leafy\nleaf_size: -1 -1\n", 2),
         ("grammar: kenwood-leafy\nleaf_shape: maple\n", 2),
+        ("grammar: kenwood-leafy\nbark_texture: scaly\n", 2),
         ("grammar: \u{0}\n", 1),
         ("\u{feff}grammar: kenwood-leafy\nnonsense\n", 2),
         ("\u{feff}\u{feff}grammar: kenwood-leafy\n", 1),
@@ -717,6 +718,38 @@ fn tropism_is_honoured_in_species() {
             other => panic!("{bad}: {other:?}"),
         }
     }
+}
+
+/// Bark textures are pure functions of their pattern; smooth (birch) bark is paler, with dark
+/// lenticels.
+#[test]
+fn bark_textures_tile_and_differ_by_pattern() {
+    let furrowed = Texture::bark(BarkPattern::Furrowed);
+    let smooth = Texture::bark(BarkPattern::Smooth);
+    assert!(furrowed != smooth);
+    for t in [&furrowed, &smooth] {
+        assert_eq!(
+            t,
+            &Texture::bark(if *t == furrowed {
+                BarkPattern::Furrowed
+            } else {
+                BarkPattern::Smooth
+            })
+        );
+        assert!(t.rgba.chunks_exact(4).all(|p| p[3] == 255));
+    }
+    // Birch bark is paler on average than furrowed bark, with dark lenticels.
+    let mean = |t: &Texture| {
+        t.rgba.chunks_exact(4).map(|p| f32::from(p[0])).sum::<f32>() / (t.rgba.len() / 4) as f32
+    };
+    assert!(mean(&smooth) > mean(&furrowed));
+    assert!(smooth.rgba.chunks_exact(4).any(|p| p[0] < 110));
+    let birch = Species::parse_file(
+        "grammar: sylva-birch\nbark_texture: smooth\n",
+        Path::new("b.species"),
+    )
+    .unwrap();
+    assert_eq!(birch.bark_pattern, BarkPattern::Smooth);
 }
 
 /// Leaf textures are pure functions of their shape, opaque inside the leaves and clear

@@ -8,7 +8,7 @@ use sylva::terrain::glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 use crate::scene::{Camera, InstanceRaw, Scene};
-use sylva::forest::{LeafShape, Texture};
+use sylva::forest::{BarkPattern, LeafShape, Texture};
 
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const MATERIAL_STRIDE: u64 = 256;
@@ -119,8 +119,14 @@ fn buffer(
     })
 }
 
-/// The layer of the bark texture in the viewer's texture array, after the leaf shapes.
-const BARK_LAYER: u32 = 2;
+/// The layer of a bark pattern's texture in the viewer's texture array, after the leaf
+/// shapes; the shader tiles layers from 2 on.
+fn bark_layer(pattern: BarkPattern) -> u32 {
+    match pattern {
+        BarkPattern::Smooth => 3,
+        _ => 2,
+    }
+}
 
 /// The layer of a leaf shape's texture in the viewer's texture array.
 fn leaf_layer(shape: LeafShape) -> u32 {
@@ -130,7 +136,8 @@ fn leaf_layer(shape: LeafShape) -> u32 {
     }
 }
 
-/// The procedural textures as one texture array (broadleaf, needles, bark) with a linear
+/// The procedural textures as one texture array (broadleaf, needles, furrowed and smooth
+/// bark) with a linear
 /// sampler, and the bind group layout the shader reads them through.
 fn textures(
     device: &wgpu::Device,
@@ -139,7 +146,8 @@ fn textures(
     let images = [
         Texture::leaf(LeafShape::Broadleaf),
         Texture::leaf(LeafShape::Needles),
-        Texture::bark(),
+        Texture::bark(BarkPattern::Furrowed),
+        Texture::bark(BarkPattern::Smooth),
     ];
     let data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
     let texture = device.create_texture_with_data(
@@ -300,7 +308,11 @@ impl Renderer {
         // The terrain's fourth component is -1: the shader paints it by slope and altitude.
         let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, -1.0)];
         for v in &scene.variants {
-            materials.push((v.bark_colour, ID_BARK, 1.0 + BARK_LAYER as f32));
+            materials.push((
+                v.bark_colour,
+                ID_BARK,
+                1.0 + bark_layer(v.bark_pattern) as f32,
+            ));
             materials.push((
                 v.leaf_colour,
                 ID_LEAF,

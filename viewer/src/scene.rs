@@ -2,7 +2,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use sylva::forest::{
-    ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species, tree_tint,
+    BarkPattern, ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species, tree_tint,
 };
 use sylva::instancing::Span;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3};
@@ -27,6 +27,7 @@ pub(crate) struct VariantGeometry {
     pub(crate) bark_colour: [f32; 3],
     pub(crate) leaf_colour: [f32; 3],
     pub(crate) leaf_shape: LeafShape,
+    pub(crate) bark_pattern: BarkPattern,
 }
 
 /// One cached instance with its placements: one instanced draw per non-empty index range.
@@ -156,6 +157,7 @@ impl Scene {
                     bark_colour: s.bark,
                     leaf_colour: s.leaf,
                     leaf_shape: s.leaf_shape,
+                    bark_pattern: s.bark_pattern,
                 }
             })
             .collect();

@@ -15,8 +15,9 @@ struct Material {
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(1) @binding(0) var<uniform> material: Material;
-// The procedural textures, one layer each: broadleaf, needles, bark; material.colour.w is the
-// layer plus one, 0 for untextured materials. Bark (layer 2) tiles; leaf cards do not.
+// The procedural textures, one layer each: broadleaf, needles, furrowed and smooth bark;
+// material.colour.w is the layer plus one, 0 for untextured materials. Bark (layers 2 and 3)
+// tiles; leaf cards do not.
 @group(2) @binding(0) var textures: texture_2d_array<f32>;
 @group(2) @binding(1) var texture_sampler: sampler;
 
@@ -58,7 +59,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
 // discards where a leaf card is clear (alpha-tested foliage).
 fn texel(uv: vec2<f32>) -> vec3<f32> {
     let layer = i32(material.colour.w + 0.5) - 1;
-    let tiled = select(uv, fract(uv), layer == 2);
+    let tiled = select(uv, fract(uv), layer >= 2);
     // Sampled in uniform control flow; the layer is clamped for untextured materials.
     let sampled = textureSample(textures, texture_sampler, tiled, max(layer, 0));
     if (layer < 0) {
