@@ -1,0 +1,179 @@
+//! Writing a laid-out GLB: the header and JSON chunk, the geometry and textures, then the
+//! placements chunk by chunk, each chunk gathered from one streaming pass.
+
+use std::fs::File;
+use std::io::{BufWriter, Seek, SeekFrom, Write};
+use std::path::Path;
+
+use sylva_terrain::{HeightField, TerrainMesh};
+
+use super::document::{Document, padding};
+use super::{Node, PLACEMENT_BYTES, io_error};
+use crate::density::Rect;
+use crate::error::ForestError;
+use crate::forest::{ForestBuilder, Variant};
+use crate::stream::PlacementBlock;
+use crate::variety::tree_tint;
+
+/// Creates `path`, writes the GLB header, the JSON chunk and the BIN chunk header, then lets
+/// `body` write the binary content; returns what `body` returns.
+pub(super) fn write_file(
+    path: &Path,
+    document: &Document,
+    body: impl FnOnce(&mut BufWriter<File>) -> Result<usize, ForestError>,
+) -> Result<usize, ForestError> {
+    let io = |e: std::io::Error| io_error(path, &e);
+    let file = File::create(path).map_err(io)?;
+    let mut w = BufWriter::with_capacity(1 << 20, file);
+    let total = u32::try_from(document.total).map_err(|_| {
+        ForestError::InvalidExport(format!(
+            "{} bytes is beyond the 4 GiB a GLB can hold",
+            document.total
+        ))
+    })?;
+    w.write_all(b"glTF").map_err(io)?;
+    w.write_all(&2u32.to_le_bytes()).map_err(io)?;
+    w.write_all(&total.to_le_bytes()).map_err(io)?;
+    w.write_all(&(document.json.len() as u32).to_le_bytes())
+        .map_err(io)?;
+    w.write_all(b"JSON").map_err(io)?;
+    w.write_all(document.json.as_bytes()).map_err(io)?;
+    if document.bin_len > 0 {
+        w.write_all(&(document.bin_len as u32).to_le_bytes())
+            .map_err(io)?;
+        w.write_all(b"BIN\0").map_err(io)?;
+    }
+    let passes = body(&mut w)?;
+    w.flush().map_err(io)?;
+    let file = w.into_inner().map_err(|e| io(e.into_error()))?;
+    let end = file.metadata().map_err(io)?.len();
+    if end as usize != document.total {
+        return Err(ForestError::InvalidExport(format!(
+            "wrote {end} bytes where the layout has {}",
+            document.total
+        )));
+    }
+    file.sync_all().map_err(io)?;
+    Ok(passes)
+}
+
+/// Terrain and cache buffers, in layout order, each padded to 4 bytes.
+pub(super) fn write_geometry(
+    w: &mut BufWriter<File>,
+    variants: &[Variant],
+    terrain: Option<&TerrainMesh>,
+    document: &Document,
+) -> Result<(), ForestError> {
+    let io = |e: std::io::Error| ForestError::Io {
+        path: "glb output".into(),
+        message: e.to_string(),
+    };
+    let mut written = 0usize;
+    let mut put = |w: &mut BufWriter<File>, bytes: &[u8]| -> Result<(), ForestError> {
+        w.write_all(bytes).map_err(io)?;
+        written += bytes.len();
+        Ok(())
+    };
+    if let Some(t) = terrain {
+        put(w, bytemuck::cast_slice(&t.vertices))?;
+        put(w, bytemuck::cast_slice(&t.indices))?;
+        put(w, bytemuck::cast_slice(&document.terrain_colours))?;
+    }
+    for &v in &document.used_variants {
+        let cache = &variants[v].cache;
+        put(w, bytemuck::cast_slice(&cache.vertices))?;
+        put(w, bytemuck::cast_slice(&cache.bark))?;
+        put(w, bytemuck::cast_slice(&cache.leaves))?;
+    }
+    // Every buffer above is a whole number of 4-byte words; images are padded to one.
+    for image in &document.images {
+        put(w, image)?;
+        put(w, &[0; 3][..padding(image.len())])?;
+    }
+    debug_assert_eq!(written, document.placement_base);
+    Ok(())
+}
+
+/// Streams the forest once per chunk of nodes, gathering those nodes' placements in memory
+/// and writing them to the T, R and S sections, which start at file offset `base`. Returns
+/// the number of passes.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one call site; the pieces are all different"
+)]
+pub(super) fn write_placements(
+    w: &mut BufWriter<File>,
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+    nodes: &[Node],
+    node_of: &[Vec<u32>],
+    base: usize,
+    total: usize,
+    chunk_bytes: usize,
+) -> Result<usize, ForestError> {
+    let io = |e: std::io::Error| ForestError::Io {
+        path: "glb output".into(),
+        message: e.to_string(),
+    };
+    let (t_base, r_base, s_base, c_base) = (
+        base,
+        base + 12 * total,
+        base + 28 * total,
+        base + 40 * total,
+    );
+    let mut passes = 0;
+    let mut start = 0;
+    while start < nodes.len() {
+        // The nodes of this pass: as many as fit in a chunk (at least one).
+        let mut end = start + 1;
+        while end < nodes.len()
+            && (nodes[end].first + nodes[end].count - nodes[start].first) * PLACEMENT_BYTES
+                <= chunk_bytes
+        {
+            end += 1;
+        }
+        let first = nodes[start].first;
+        let count = nodes[end - 1].first + nodes[end - 1].count - first;
+        let mut t = vec![0f32; 3 * count];
+        let mut r = vec![0f32; 4 * count];
+        let mut s = vec![0f32; 3 * count];
+        let mut c = vec![0f32; 3 * count];
+        let mut cursor: Vec<usize> = nodes[start..end].iter().map(|n| n.first - first).collect();
+        let range = start as u32..end as u32;
+        // Only the variants of this chunk's nodes need their trees expanded.
+        let (first_variant, last_variant) = (nodes[start].variant, nodes[end - 1].variant);
+        let wanted = |v: u16| (first_variant..=last_variant).contains(&usize::from(v));
+        builder.stream_variants(terrain, region, &wanted, &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let node = node_of[p.variant as usize][p.instance as usize];
+                if !range.contains(&node) {
+                    continue;
+                }
+                let k = &mut cursor[(node - range.start) as usize];
+                let x = &p.transform;
+                let q = x.rotation.normalize();
+                t[3 * *k..3 * *k + 3].copy_from_slice(&x.translation.to_array());
+                r[4 * *k..4 * *k + 4].copy_from_slice(&q.to_array());
+                s[3 * *k..3 * *k + 3].copy_from_slice(&[x.scale; 3]);
+                let tint = block.trees.get(p.tree as usize).map_or([1.0; 3], tree_tint);
+                c[3 * *k..3 * *k + 3].copy_from_slice(&tint);
+                *k += 1;
+            }
+            Ok(())
+        })?;
+        for (section, data, width) in [
+            (t_base, &t, 12),
+            (r_base, &r, 16),
+            (s_base, &s, 12),
+            (c_base, &c, 12),
+        ] {
+            w.seek(SeekFrom::Start((section + first * width) as u64))
+                .map_err(io)?;
+            w.write_all(bytemuck::cast_slice(data)).map_err(io)?;
+        }
+        passes += 1;
+        start = end;
+    }
+    Ok(passes)
+}

@@ -1,0 +1,290 @@
+//! glTF 2.0 binary (.glb) export, streamed: the terrain, one mesh per used cached instance,
+//! and each instance's placements through EXT_mesh_gpu_instancing.
+//!
+//! A forest of a million trees has millions of placements, more than should sit in memory at
+//! once. The writer streams the forest twice or more: a first pass counts the placements of
+//! every instance, which fixes the whole layout (JSON and binary offsets); then each pass
+//! gathers the placements of a range of instances (at most [`CHUNK_BYTES`] of them) and
+//! writes them where the layout says. Memory holds the caches, the JSON text and one chunk.
+//! The file is written beside its destination under a temporary name and renamed when
+//! complete, so an error (a bad path, a full disk) never leaves a half-written file.
+
+mod document;
+mod file;
+
+use std::path::{Path, PathBuf};
+
+use sylva_terrain::{HeightField, TerrainMesh};
+use sylva_turtle::Vertex;
+
+use crate::density::Rect;
+use crate::error::ForestError;
+use crate::forest::ForestBuilder;
+use crate::stream::{PlacementBlock, StreamStats};
+use document::Document;
+use file::{write_file, write_geometry, write_placements};
+
+/// Export settings.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct GltfOptions {
+    /// Terrain tint, linear RGB, multiplied with the ground colours by slope and altitude
+    /// ([`sylva_terrain::ground`]) that the terrain's vertices carry.
+    pub terrain_colour: [f32; 3],
+    /// Roughness of every material (all are dielectric: metallic 0).
+    pub roughness: f32,
+    /// Most bytes of placements gathered in memory per writing pass (at least one instance's
+    /// worth is always gathered). Smaller means less memory and more passes; the file is the
+    /// same. Default [`CHUNK_BYTES`].
+    pub chunk_bytes: usize,
+}
+
+impl Default for GltfOptions {
+    fn default() -> Self {
+        GltfOptions {
+            terrain_colour: [1.0, 1.0, 1.0],
+            roughness: 0.9,
+            chunk_bytes: CHUNK_BYTES,
+        }
+    }
+}
+
+/// What was written.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct GlbStats {
+    /// File size in bytes.
+    pub bytes: usize,
+    /// Trees in the forest.
+    pub trees: usize,
+    /// Of which seedlings.
+    pub seedlings: usize,
+    /// Instance meshes written (one node each).
+    pub instance_nodes: usize,
+    /// Instance placements written.
+    pub placements: usize,
+    /// Placements of instances with no geometry (a branch introduced at the last generation
+    /// of a species without leaf symbols), left out of the file.
+    pub empty_placements: usize,
+    /// Times the forest was streamed: one count, then one per chunk of placements.
+    pub passes: usize,
+}
+
+/// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, 1.6 million placements of 40 bytes.
+pub const CHUNK_BYTES: usize = 64 << 20;
+
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+const FLOAT: u32 = 5126;
+const UNSIGNED_INT: u32 = 5125;
+/// Bytes of one placement in the file: translation, rotation, scale (as three floats) and the
+/// tree's tint.
+const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12;
+
+/// One instance that is drawn: a node with its own instancing accessors.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    pub(crate) variant: usize,
+    pub(crate) instance: usize,
+    /// First placement of this node in the T/R/S sections, counted in placements.
+    pub(crate) first: usize,
+    pub(crate) count: usize,
+}
+
+/// Writes the forest of `region` on `terrain`, and optionally a terrain mesh, as a binary glTF
+/// at `path`. The file declares EXT_mesh_gpu_instancing; every node of an instance mesh
+/// carries TRANSLATION, ROTATION and SCALE accessors of equal count, float components and unit
+/// quaternions. The output is a pure function of its inputs, at any thread count.
+///
+/// ```
+/// use sylva_forest::{ForestBuilder, ForestConfig, GltfOptions, Rect, Species, write_glb};
+/// use sylva_terrain::{FlatPlane, glam::Vec2};
+///
+/// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
+/// leafy.turtle.step = 0.5;
+/// let mut config = ForestConfig::new(vec![leafy]);
+/// config.budget = 4 << 20;
+/// let builder = ForestBuilder::new(config)?;
+/// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
+/// let path = std::env::temp_dir().join("sylva-doctest-forest.glb");
+/// let region = Rect::new(Vec2::ZERO, Vec2::splat(200.0));
+/// let stats = write_glb(&builder, &ground, region, None, &GltfOptions::default(), &path)?;
+/// assert_eq!(std::fs::metadata(&path).unwrap().len() as usize, stats.bytes);
+/// assert!(stats.placements >= stats.trees);
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), sylva_forest::ForestError>(())
+/// ```
+pub fn write_glb(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+    terrain_mesh: Option<&TerrainMesh>,
+    options: &GltfOptions,
+    path: &Path,
+) -> Result<GlbStats, ForestError> {
+    let variants = builder.variants();
+    let terrain_mesh = terrain_mesh.filter(|t| !t.indices.is_empty());
+    if let Some(t) = terrain_mesh {
+        check_mesh(
+            t.vertices.iter().map(|v| (&v.position, &v.normal)),
+            &t.indices,
+        )?;
+    }
+    for v in variants {
+        check_mesh(
+            v.cache
+                .vertices
+                .iter()
+                .map(|v: &Vertex| (&v.position, &v.normal)),
+            v.cache.bark.iter().chain(&v.cache.leaves),
+        )?;
+        let (bark, leaves) = (v.cache.bark.len(), v.cache.leaves.len());
+        if v.cache
+            .instances
+            .iter()
+            .any(|i| i.bark.end() as usize > bark || i.leaves.end() as usize > leaves)
+        {
+            return Err(ForestError::InvalidExport(
+                "an instance spans past its cache's indices".into(),
+            ));
+        }
+    }
+
+    // Pass 1: count the placements of every instance, checking each transform.
+    let mut counts: Vec<Vec<u32>> = variants
+        .iter()
+        .map(|v| vec![0; v.cache.instances.len()])
+        .collect();
+    let counted = builder.stream(terrain, region, &mut |block: &PlacementBlock| {
+        for p in &block.placements {
+            let t = &p.transform;
+            if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
+                return Err(ForestError::InvalidExport(format!(
+                    "placement {t:?} is not a valid TRS transform"
+                )));
+            }
+            let slot = counts
+                .get_mut(p.variant as usize)
+                .and_then(|c| c.get_mut(p.instance as usize))
+                .ok_or_else(|| {
+                    ForestError::InvalidExport("a placement of an unknown instance".into())
+                })?;
+            *slot = slot.saturating_add(1);
+        }
+        Ok(())
+    })?;
+
+    // The layout: which instances become nodes, and where every byte goes.
+    let mut nodes = Vec::new();
+    let mut node_of: Vec<Vec<u32>> = Vec::with_capacity(variants.len());
+    let mut placements = 0usize;
+    let mut empty_placements = 0usize;
+    for (v, variant) in variants.iter().enumerate() {
+        let mut map = vec![u32::MAX; variant.cache.instances.len()];
+        for (i, inst) in variant.cache.instances.iter().enumerate() {
+            let count = counts[v][i] as usize;
+            if count == 0 {
+                continue;
+            }
+            if inst.bark.is_empty() && inst.leaves.is_empty() {
+                empty_placements += count;
+                continue;
+            }
+            map[i] = nodes.len() as u32;
+            nodes.push(Node {
+                variant: v,
+                instance: i,
+                first: placements,
+                count,
+            });
+            placements += count;
+        }
+        node_of.push(map);
+    }
+    drop(counts);
+    let document = Document::lay_out(builder, terrain_mesh, options, &nodes, placements)?;
+
+    let temporary = temporary_path(path)?;
+    let written = write_file(&temporary, &document, |file| {
+        write_geometry(file, variants, terrain_mesh, &document)?;
+        write_placements(
+            file,
+            builder,
+            terrain,
+            region,
+            &nodes,
+            &node_of,
+            document.bin_start() + document.placement_base,
+            placements,
+            options.chunk_bytes,
+        )
+    });
+    let passes = match written {
+        Ok(passes) => passes,
+        Err(e) => {
+            // Nothing half-written stays behind.
+            let _ = std::fs::remove_file(&temporary);
+            return Err(e);
+        }
+    };
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io_error(path, &e)
+    })?;
+    let StreamStats {
+        trees, seedlings, ..
+    } = counted;
+    Ok(GlbStats {
+        bytes: document.total,
+        trees,
+        seedlings,
+        instance_nodes: nodes.len(),
+        placements,
+        empty_placements,
+        passes: 1 + passes,
+    })
+}
+
+fn io_error(path: &Path, e: &std::io::Error) -> ForestError {
+    ForestError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    }
+}
+
+/// A hidden name beside `path` for the file while it is written.
+fn temporary_path(path: &Path) -> Result<PathBuf, ForestError> {
+    let name = path.file_name().ok_or_else(|| ForestError::Io {
+        path: path.display().to_string(),
+        message: "not a file name".into(),
+    })?;
+    let mut hidden = std::ffi::OsString::from(".");
+    hidden.push(name);
+    hidden.push(format!(".{}.partial", std::process::id()));
+    Ok(path.with_file_name(hidden))
+}
+
+/// Every vertex finite with a unit normal, every index in range.
+fn check_mesh<'a>(
+    vertices: impl ExactSizeIterator<Item = (&'a [f32; 3], &'a [f32; 3])>,
+    indices: impl IntoIterator<Item = &'a u32>,
+) -> Result<(), ForestError> {
+    let n = vertices.len() as u32;
+    for (p, normal) in vertices {
+        if !p.iter().all(|c| c.is_finite()) {
+            return Err(ForestError::InvalidExport(
+                "a vertex position is not finite".into(),
+            ));
+        }
+        let len = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+        if !(len - 1.0).abs().lt(&1e-3) {
+            return Err(ForestError::InvalidExport(format!(
+                "normal {normal:?} is not unit length"
+            )));
+        }
+    }
+    if indices.into_iter().any(|&i| i >= n) {
+        return Err(ForestError::InvalidExport("index out of range".into()));
+    }
+    Ok(())
+}
