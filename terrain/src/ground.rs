@@ -2,6 +2,8 @@
 //! snow on the heights. One palette, so every client of the terrain paints it alike (the
 //! viewer's shader repeats these numbers).
 
+use glam::Vec3;
+
 use crate::mesh::TerrainMesh;
 
 /// Linear RGB of grass, soil, rock and snow.
@@ -16,10 +18,6 @@ pub const SNOW: [f32; 3] = [0.85, 0.87, 0.90];
 fn smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
     let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
-}
-
-fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
-    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
 }
 
 /// The ground colour where the surface normal's up component is `up` (1 flat, 0 vertical)
@@ -37,8 +35,12 @@ pub fn ground_colour(up: f32, height: f32) -> [f32; 3] {
     let soil = smoothstep(0.08, 0.25, slope);
     let rock = smoothstep(0.25, 0.45, slope);
     let snow = smoothstep(0.80, 0.90, height) * (1.0 - rock);
-    let ground = mix(mix(GRASS, SOIL, soil), ROCK, rock);
-    mix(ground, SNOW, snow)
+    let [grass, soil_colour, rock_colour, snow_colour] = [GRASS, SOIL, ROCK, SNOW].map(Vec3::from);
+    grass
+        .lerp(soil_colour, soil)
+        .lerp(rock_colour, rock)
+        .lerp(snow_colour, snow)
+        .to_array()
 }
 
 impl TerrainMesh {
