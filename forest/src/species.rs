@@ -233,10 +233,7 @@ impl Species {
             match find(k) {
                 None => Ok(default),
                 Some((l, c, _, v)) => {
-                    let parts: Vec<f32> = v
-                        .split_whitespace()
-                        .filter_map(|s| s.parse().ok())
-                        .collect();
+                    let parts = numbers(v);
                     match parts.as_slice() {
                         [r, g, b] if parts.iter().all(|x| (0.0..=1.0).contains(x)) => {
                             Ok([*r, *g, *b])
@@ -261,10 +258,7 @@ impl Species {
         s.turtle.angle = number("angle", angle.unwrap_or(s.turtle.angle), -360.0, 360.0)?;
         s.turtle.tropism = tropism;
         if let Some((l, c, _, v)) = find("tropism") {
-            let parts: Vec<f32> = v
-                .split_whitespace()
-                .filter_map(|s| s.parse().ok())
-                .collect();
+            let parts = numbers(v);
             match parts.as_slice() {
                 [x, y, z, e]
                     if parts.iter().all(|p| p.is_finite())
@@ -305,10 +299,7 @@ impl Species {
             }
         }
         if let Some((l, c, _, v)) = find("leaf_size") {
-            let parts: Vec<f32> = v
-                .split_whitespace()
-                .filter_map(|s| s.parse().ok())
-                .collect();
+            let parts = numbers(v);
             match parts.as_slice() {
                 [a, b] if parts.iter().all(|x| x.is_finite() && *x > 0.0 && *x < 1e3) => {
                     s.turtle.leaf_size = [*a, *b]
@@ -379,4 +370,13 @@ fn angle_between(a: Vec3, b: Vec3) -> f32 {
         .dot(b.normalize_or_zero())
         .clamp(-1.0, 1.0);
     d.acos()
+}
+
+/// The numbers in a species-file value, in order (words that are not numbers are passed
+/// over; the caller checks how many there must be).
+fn numbers(value: &str) -> Vec<f32> {
+    value
+        .split_whitespace()
+        .filter_map(|word| word.parse().ok())
+        .collect()
 }
