@@ -6,7 +6,7 @@
 //! it after installing lavapipe). `SYLVA_BLESS=1` rewrites the reference image:
 //! `SYLVA_BLESS=1 cargo test -p sylva-viewer golden`.
 
-use crate::render::{self, ID_BARK, ID_LEAF, ID_TERRAIN, Mode};
+use crate::render::{ID_BARK, ID_LEAF, ID_TERRAIN, Mode};
 use crate::scene::{self, Camera, Scene, SceneOptions};
 
 const SIZE: (u32, u32) = (320, 180);
@@ -45,14 +45,15 @@ fn default_scene_renders_terrain_and_trees() {
     })
     .expect("default scene builds");
     let camera = Camera::overview(scene.side, 40.0);
-    let offscreen = match pollster::block_on(render::Offscreen::new(&scene, SIZE.0, SIZE.1)) {
-        Ok(o) => o,
-        Err(e) if std::env::var_os("SYLVA_REQUIRE_GPU").is_none() => {
-            eprintln!("skipping the headless render: {e}");
-            return;
-        }
-        Err(e) => panic!("{e}"),
-    };
+    let offscreen =
+        match pollster::block_on(crate::offscreen::Offscreen::new(&scene, SIZE.0, SIZE.1)) {
+            Ok(o) => o,
+            Err(e) if std::env::var_os("SYLVA_REQUIRE_GPU").is_none() => {
+                eprintln!("skipping the headless render: {e}");
+                return;
+            }
+            Err(e) => panic!("{e}"),
+        };
     let (ids, _) = offscreen
         .frame(&scene, &camera, Mode::Ids)
         .expect("id render");

@@ -16,8 +16,10 @@
 mod cli;
 #[cfg(test)]
 mod golden;
+mod offscreen;
 mod render;
 mod scene;
+mod textures;
 mod window;
 
 use std::process::ExitCode;
@@ -133,7 +135,7 @@ fn run() -> Result<(), String> {
             };
             let t = Instant::now();
             let offscreen =
-                pollster::block_on(render::Offscreen::new(&scene, args.size.0, args.size.1))?;
+                pollster::block_on(offscreen::Offscreen::new(&scene, args.size.0, args.size.1))?;
             let (pixels, stats) = offscreen.frame(&scene, &camera, mode)?;
             let first_ms = t.elapsed().as_secs_f64() * 1e3;
             // Steady frame time: the median of further frames, read back like the first.

@@ -1,0 +1,145 @@
+//! Headless rendering: an offscreen target with its own device, frames read back as RGBA.
+
+use crate::render::{FrameStats, Mode, Renderer, View, device, targets};
+use crate::scene::{Camera, Scene};
+
+/// Mesa's Vulkan device-select layer looks for a Wayland compositor while adapters are
+/// enumerated, and where there is no desktop session (CI, servers) libwayland prints
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment." to stderr. Offscreen
+/// rendering needs no compositor, so in exactly that case, and only while the adapter is
+/// requested, stderr is silenced; the guard restores it when dropped.
+#[cfg(unix)]
+fn quiet_wayland_probe() -> Option<gag::Gag> {
+    let no_session = std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|d| d.is_empty());
+    if no_session {
+        gag::Gag::stderr().ok()
+    } else {
+        None
+    }
+}
+
+/// Elsewhere there is no Wayland probe to quiet.
+#[cfg(not(unix))]
+fn quiet_wayland_probe() -> Option<()> {
+    None
+}
+
+/// An offscreen target with its device: renders frames and reads them back.
+pub(crate) struct Offscreen {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    renderer: Renderer,
+    colour: wgpu::Texture,
+    view: wgpu::TextureView,
+    depth: wgpu::TextureView,
+    readback: wgpu::Buffer,
+    size: (u32, u32),
+    padded_row: u32,
+    /// The adapter's name and backend.
+    pub(crate) adapter: String,
+}
+
+impl Offscreen {
+    pub(crate) async fn new(scene: &Scene, width: u32, height: u32) -> Result<Offscreen, String> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let (adapter, device, queue) = {
+            let _quiet = quiet_wayland_probe();
+            device(&instance, None).await?
+        };
+        let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+        let renderer = Renderer::new(&device, &queue, format, scene);
+        let (colour, view, depth) = targets(&device, format, width, height, true);
+        // Rows of a texture-to-buffer copy must be 256-byte aligned.
+        let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(padded_row) * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let info = adapter.get_info();
+        Ok(Offscreen {
+            device,
+            queue,
+            renderer,
+            colour,
+            view,
+            depth,
+            readback,
+            size: (width, height),
+            padded_row,
+            adapter: format!("{} ({:?})", info.name, info.backend),
+        })
+    }
+
+    /// Renders one frame and returns it as tightly packed RGBA8 (sRGB) rows.
+    pub(crate) fn frame(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        mode: Mode,
+    ) -> Result<(Vec<u8>, FrameStats), String> {
+        let (width, height) = self.size;
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let (view_proj, eye) = camera.view_proj(scene, width as f32 / height as f32);
+        let stats = self.renderer.render(
+            &self.queue,
+            &mut encoder,
+            &self.view,
+            &self.depth,
+            View {
+                view_proj,
+                eye,
+                mode,
+            },
+        );
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.colour,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_row),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([encoder.finish()]);
+        let slice = self.readback.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| format!("device poll: {e}"))?;
+        rx.recv()
+            .map_err(|e| e.to_string())?
+            .map_err(|e| format!("reading the frame back: {e}"))?;
+        let row = (width * 4) as usize;
+        let mut pixels = Vec::with_capacity(row * height as usize);
+        {
+            let data = slice
+                .get_mapped_range()
+                .map_err(|e| format!("reading the frame back: {e}"))?;
+            for r in 0..height as usize {
+                let start = r * self.padded_row as usize;
+                pixels.extend_from_slice(&data[start..start + row]);
+            }
+        }
+        self.readback.unmap();
+        Ok((pixels, stats))
+    }
+}

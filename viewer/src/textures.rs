@@ -1,0 +1,103 @@
+//! The procedural textures on the GPU: leaf cards and bark as one texture array, and which
+//! layer a material reads.
+
+use sylva::forest::{BarkPattern, LeafShape, Texture};
+use wgpu::util::DeviceExt;
+
+/// The layer of a bark pattern's texture in the viewer's texture array, after the leaf
+/// shapes; the shader tiles layers from 2 on.
+pub(crate) fn bark_layer(pattern: BarkPattern) -> u32 {
+    match pattern {
+        BarkPattern::Smooth => 3,
+        _ => 2,
+    }
+}
+
+/// The layer of a leaf shape's texture in the viewer's texture array.
+pub(crate) fn leaf_layer(shape: LeafShape) -> u32 {
+    match shape {
+        LeafShape::Needles => 1,
+        _ => 0,
+    }
+}
+
+/// The procedural textures as one texture array (broadleaf, needles, furrowed and smooth
+/// bark) with a linear
+/// sampler, and the bind group layout the shader reads them through.
+pub(crate) fn textures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
+    let images = [
+        Texture::leaf(LeafShape::Broadleaf),
+        Texture::leaf(LeafShape::Needles),
+        Texture::bark(BarkPattern::Furrowed),
+        Texture::bark(BarkPattern::Smooth),
+    ];
+    let data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("textures"),
+            size: wgpu::Extent3d {
+                width: images[0].width,
+                height: images[0].height,
+                depth_or_array_layers: images.len() as u32,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &data,
+    );
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("texture sampler"),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    });
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("textures"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("textures"),
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+        ],
+    });
+    (layout, group)
+}
