@@ -1,5 +1,6 @@
 //! Grammar text: the parser of grammars, expressions and words, and the printer back to text.
 
+pub(crate) mod comments;
 pub(crate) mod cursor;
 pub(crate) mod expr_parser;
 pub(crate) mod parser;

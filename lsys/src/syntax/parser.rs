@@ -8,6 +8,7 @@ use crate::model::alphabet::{Alphabet, POP, PUSH, SymbolId};
 use crate::model::expr::{Expr, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
 use crate::model::word::Word;
+use crate::syntax::comments::strip_block_comments;
 use crate::syntax::cursor::Cursor;
 use crate::syntax::expr_parser::{Scope, parse_expr};
 
@@ -38,55 +39,6 @@ impl Scope for Names<'_> {
 fn no_vars() -> &'static HashMap<String, u16> {
     static EMPTY: std::sync::OnceLock<HashMap<String, u16>> = std::sync::OnceLock::new();
     EMPTY.get_or_init(HashMap::new)
-}
-
-/// Replaces `/* ... */` comments by spaces, keeping newlines so positions stay right.
-fn strip_block_comments(src: &[char]) -> Result<Vec<char>, ParseError> {
-    let mut out = Vec::with_capacity(src.len());
-    let (mut line, mut col) = (1, 1);
-    let mut i = 0;
-    while i < src.len() {
-        if src[i] == '/' && src.get(i + 1) == Some(&'*') {
-            let (start_line, start_col) = (line, col);
-            out.extend([' ', ' ']);
-            i += 2;
-            col += 2;
-            loop {
-                if i >= src.len() {
-                    return Err(ParseError::new(
-                        start_line,
-                        start_col,
-                        "comment opened here is never closed with '*/'",
-                    ));
-                }
-                if src[i] == '*' && src.get(i + 1) == Some(&'/') {
-                    out.extend([' ', ' ']);
-                    i += 2;
-                    col += 2;
-                    break;
-                }
-                if src[i] == '\n' {
-                    out.push('\n');
-                    line += 1;
-                    col = 1;
-                } else {
-                    out.push(' ');
-                    col += 1;
-                }
-                i += 1;
-            }
-            continue;
-        }
-        if src[i] == '\n' {
-            line += 1;
-            col = 1;
-        } else {
-            col += 1;
-        }
-        out.push(src[i]);
-        i += 1;
-    }
-    Ok(out)
 }
 
 pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
