@@ -150,7 +150,9 @@ fn forest_of_seed_1_trees_and_placements() {
     }
     assert_eq!(
         (forest.trees.len(), trees.0, placements.0),
-        (313, 0x4ff7_c767_fa36_ef3b, 0xcf19_5934_0b63_8925),
+        // Changed with issue 12: patches of 0.8 times the weighted mean canopy diameter (was
+        // the widest) and eight seedlings per patch (was three), so that the canopy closes.
+        (1123, 0x1b0d_d966_cade_58a3, 0x8600_7bce_82d5_1415),
         "{} {:#x} {:#x}",
         forest.trees.len(),
         trees.0,

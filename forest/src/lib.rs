@@ -56,5 +56,5 @@ pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
 pub use stream::{
     BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
 };
-pub use texture::{BarkPattern, LEAF_TEXTURE_SIZE, LeafShape, Texture};
+pub use texture::{BarkPattern, LeafShape, TEXTURE_SIZE, Texture};
 pub use variety::tree_tint;

@@ -140,7 +140,8 @@ impl Species {
     /// `seedling_generations`, `angle`, `step`, `length_unit`, `width`, `width_unit`, `sides`,
     /// `bark` and `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle
     /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
-    /// (length and width), `leaf_shape` (`broadleaf` or `needles`: the card's texture),
+    /// (length and width), `leaf_facing` (0 to 1: how far cards turn to face the sky, see
+    /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf` or `needles`: the card's texture),
     /// `bark_texture` (`furrowed` or `smooth`) and `tropism` (direction x y z and
     /// susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
@@ -313,6 +314,7 @@ impl Species {
                 }
             }
         }
+        s.turtle.leaf_facing = number("leaf_facing", s.turtle.leaf_facing, 0.0, 1.0)?;
         if let Some((l, c, _, v)) = find("leaf_shape") {
             s.leaf_shape = LeafShape::from_name(v).ok_or_else(|| {
                 err(
@@ -348,6 +350,7 @@ impl Species {
                 "weight",
                 "leaves",
                 "leaf_size",
+                "leaf_facing",
                 "tropism",
                 "leaf_shape",
                 "bark_texture",

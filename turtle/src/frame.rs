@@ -64,6 +64,39 @@ impl Frame {
         self.rotate_local(Quat::from_rotation_y(radians));
     }
 
+    /// This frame rolled about its heading by `amount` (0 to 1) of the way towards the roll
+    /// whose up vector points most nearly at the sky (+Y) or away from it, whichever is the
+    /// smaller turn: a card in the heading-left plane then lies as flat as its heading allows.
+    /// A vertical heading has no such roll and keeps its frame.
+    ///
+    /// ```
+    /// use sylva_turtle::Frame;
+    /// let mut f = Frame::IDENTITY;
+    /// f.pitch(60f32.to_radians()); // heading tilted, up vector no longer vertical
+    /// f.roll(0.7);
+    /// let flat = f.facing_sky(1.0);
+    /// assert!((flat.heading() - f.heading()).length() < 1e-5);
+    /// assert!(flat.left().y.abs() < 1e-5); // the left vector is level: the card faces up
+    /// ```
+    pub fn facing_sky(&self, amount: f32) -> Frame {
+        let amount = amount.clamp(0.0, 1.0);
+        let h = self.heading();
+        let sky = Vec3::Y - h * h.y;
+        if amount == 0.0 || sky.length_squared() < 1e-8 {
+            return *self;
+        }
+        let (up, left) = (self.up(), self.left());
+        let mut target = sky.normalize();
+        if target.dot(up) < 0.0 {
+            target = -target;
+        }
+        // Rolling by r turns U into cos(r) U - sin(r) L.
+        let r = (-left.dot(target)).atan2(up.dot(target));
+        let mut out = *self;
+        out.roll(r * amount);
+        out
+    }
+
     fn rotate_local(&mut self, q: Quat) {
         self.rotation = (self.rotation * q).normalize();
     }

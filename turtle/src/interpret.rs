@@ -211,7 +211,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
             Command::Leaf => {
                 let scale = arg(0)?.unwrap_or(1.0).abs();
                 sink.leaf(
-                    &state.frame,
+                    &state.frame.facing_sky(options.leaf_facing),
                     [options.leaf_size[0] * scale, options.leaf_size[1] * scale],
                 );
                 stats.leaves += 1;

@@ -53,6 +53,11 @@ pub struct TurtleOptions {
     pub tropism: Option<Tropism>,
     /// Leaf quad length (along the heading) and width.
     pub leaf_size: [f32; 2],
+    /// How far each leaf card turns about its heading towards facing the sky (+Y), from 0
+    /// (the card lies in the turtle's heading-left plane) to 1 (its blade faces up as far as
+    /// the heading allows). Leaves turn their blades to the light; from above, cards that
+    /// face up cover the ground where edge-on cards would not.
+    pub leaf_facing: f32,
     /// Cylinders or frustums.
     pub shape: BranchShape,
     /// Vertices around each ring (at least 3).
@@ -79,6 +84,7 @@ impl Default for TurtleOptions {
             angle_factor: 0.9,
             tropism: None,
             leaf_size: [0.3, 0.15],
+            leaf_facing: 0.0,
             shape: BranchShape::Frustum,
             radial_segments: 8,
             caps: false,

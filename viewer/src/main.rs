@@ -10,10 +10,12 @@
 //! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run. The
 //! title shows draw calls, instances, triangles and frame time; `--frames N` closes the window
 //! after N frames and prints the median frame time. Headless (`--screenshot`):
-//! renders one frame offscreen and writes a PNG; without a GPU it runs on Mesa's software
+//! renders one frame offscreen and writes a PNG (with `--ids`, flat material colours, and
+//! prints what share of the picture terrain, bark, leaves and sky cover); without a GPU it runs on Mesa's software
 //! drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
 mod cli;
+mod coverage;
 #[cfg(test)]
 mod golden;
 mod offscreen;
@@ -171,6 +173,9 @@ fn run() -> Result<(), String> {
                         times.len()
                     ))
             );
+            if args.ids {
+                println!("coverage: {}", coverage::Coverage::of_ids(&pixels));
+            }
             Ok(())
         }
         None => window::run(scene, args.camera, args.frames),
