@@ -57,4 +57,4 @@ pub use stream::{
     BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
 };
 pub use texture::{BarkPattern, LeafShape, TEXTURE_SIZE, Texture};
-pub use variety::tree_tint;
+pub use variety::{tree_tint, tree_wind};

@@ -47,7 +47,7 @@ pub use error::TurtleError;
 pub use frame::Frame;
 pub use glam;
 pub use interpret::{InterpretStats, interpret};
-pub use mesh::{Material, Mesh, MeshBuilder, Vertex};
+pub use mesh::{Material, Mesh, MeshBuilder, Vertex, Wind};
 pub use obj::write_obj;
 pub use options::{BranchShape, Tropism, TurtleOptions};
 pub use sink::{GeometrySink, NullSink, Segment};

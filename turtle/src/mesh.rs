@@ -7,7 +7,7 @@ use crate::frame::Frame;
 use crate::options::{BranchShape, TurtleOptions};
 use crate::sink::{GeometrySink, Segment};
 
-/// One mesh vertex: 32 bytes, `#[repr(C)]` and `Pod` for direct upload.
+/// One mesh vertex: 48 bytes, `#[repr(C)]` and `Pod` for direct upload.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, Pod, Zeroable)]
 pub struct Vertex {
@@ -19,6 +19,62 @@ pub struct Vertex {
     /// along the length, one unit per circumference travelled, so a bark texture that tiles
     /// once around a branch keeps square texels on thick and thin branches alike.
     pub uv: [f32; 2],
+    /// Wind data: xyz is the pivot, where the vertex's branch leaves its parent (a leaf's
+    /// own base for leaf cards), in the mesh's space, so it moves with any transform applied
+    /// to the vertex; w is the branch's hierarchy depth (its bracket depth, 0 for the trunk;
+    /// a leaf card is one deeper than the branch carrying it) plus a phase in `[0, 1)` drawn
+    /// per branch: `floor(w)` is the depth, `fract(w)` the phase. See [`Wind`].
+    pub wind: [f32; 4],
+}
+
+/// The wind data of a vertex, unpacked from [`Vertex::wind`].
+///
+/// ```
+/// use sylva_turtle::{Wind, Vertex};
+/// let v = Vertex { wind: [1.0, 2.0, 3.0, 4.25], ..Default::default() };
+/// assert_eq!(Wind::of(&v), Wind { pivot: [1.0, 2.0, 3.0], depth: 4, phase: 0.25 });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wind {
+    /// Where the branch leaves its parent.
+    pub pivot: [f32; 3],
+    /// Bracket depth of the branch.
+    pub depth: u32,
+    /// A per-branch phase in `[0, 1)`, so that branches do not sway in step.
+    pub phase: f32,
+}
+
+impl Wind {
+    /// Unpacks a vertex's wind data.
+    pub fn of(vertex: &Vertex) -> Wind {
+        let w = vertex.wind[3].max(0.0);
+        Wind {
+            pivot: [vertex.wind[0], vertex.wind[1], vertex.wind[2]],
+            depth: w.floor() as u32,
+            phase: w.fract(),
+        }
+    }
+
+    /// Packs into [`Vertex::wind`]'s layout.
+    pub fn packed(&self) -> [f32; 4] {
+        // Keep the fraction below 1 after rounding to f32 next to large depths.
+        let phase = self.phase.clamp(0.0, 0.999);
+        [
+            self.pivot[0],
+            self.pivot[1],
+            self.pivot[2],
+            self.depth as f32 + phase,
+        ]
+    }
+
+    /// The wind data of a branch whose first segment is `segment`: phase drawn from its id.
+    fn branch(pivot: Vec3, depth: u32, segment: u32) -> Wind {
+        Wind {
+            pivot: pivot.to_array(),
+            depth,
+            phase: sylva_base::hash::unit_f32(sylva_base::hash::mix(u64::from(segment) + 1)),
+        }
+    }
 }
 
 /// Which surface a triangle belongs to.
@@ -91,6 +147,8 @@ struct RingEnd {
     /// turtle between segments (`/`, `\`) does not twist the tube.
     ring: RingFrame,
     radius: f32,
+    /// Wind data of the axis the ring belongs to, packed.
+    wind: [f32; 4],
 }
 
 /// The orientation of one ring of a tube.
@@ -132,6 +190,8 @@ pub struct MeshBuilder {
     caps: bool,
     circle: Vec<(f32, f32)>,
     ends: Vec<RingEnd>,
+    /// Bracket depth of the last segment drawn: leaves and polygons sit one deeper.
+    depth: u32,
 }
 
 impl MeshBuilder {
@@ -150,6 +210,7 @@ impl MeshBuilder {
             caps: options.caps,
             circle,
             ends: Vec::new(),
+            depth: 0,
         }
     }
 
@@ -158,7 +219,14 @@ impl MeshBuilder {
         std::mem::take(&mut self.mesh)
     }
 
-    fn ring(&mut self, center: Vec3, frame: &RingFrame, radius: f32, v: f32) -> u32 {
+    fn ring(
+        &mut self,
+        center: Vec3,
+        frame: &RingFrame,
+        radius: f32,
+        v: f32,
+        wind: [f32; 4],
+    ) -> u32 {
         let first = self.mesh.vertices.len() as u32;
         let (l, u) = (frame.left, frame.up);
         let sides = (self.circle.len() - 1) as f32;
@@ -168,6 +236,7 @@ impl MeshBuilder {
                 position: (center + d * radius).to_array(),
                 normal: d.to_array(),
                 uv: [i as f32 / sides, v],
+                wind,
             });
         }
         first
@@ -181,7 +250,14 @@ impl MeshBuilder {
         }
     }
 
-    fn cap(&mut self, center: Vec3, frame: &RingFrame, radius: f32, facing_forward: bool) {
+    fn cap(
+        &mut self,
+        center: Vec3,
+        frame: &RingFrame,
+        radius: f32,
+        facing_forward: bool,
+        wind: [f32; 4],
+    ) {
         let normal = if facing_forward {
             frame.heading
         } else {
@@ -193,6 +269,7 @@ impl MeshBuilder {
             position: center.to_array(),
             normal: normal.to_array(),
             uv: [0.5, 0.5],
+            wind,
         });
         let n = self.circle.len() - 1;
         for &(c, s) in &self.circle[..n] {
@@ -200,6 +277,7 @@ impl MeshBuilder {
                 position: (center + (l * c + u * s) * radius).to_array(),
                 normal: normal.to_array(),
                 uv: [0.5 + 0.5 * c, 0.5 + 0.5 * s],
+                wind,
             });
         }
         for i in 0..n as u32 {
@@ -212,7 +290,7 @@ impl MeshBuilder {
         }
     }
 
-    fn quad(&mut self, corners: [Vec3; 4], normal: Vec3) {
+    fn quad(&mut self, corners: [Vec3; 4], normal: Vec3, wind: [f32; 4]) {
         let first = self.mesh.vertices.len() as u32;
         let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
         for (p, uv) in corners.into_iter().zip(uvs) {
@@ -220,6 +298,7 @@ impl MeshBuilder {
                 position: p.to_array(),
                 normal: normal.to_array(),
                 uv,
+                wind,
             });
         }
         self.mesh.leaves.extend_from_slice(&[
@@ -236,6 +315,7 @@ impl MeshBuilder {
 impl GeometrySink for MeshBuilder {
     fn begin(&mut self) {
         self.ends.clear();
+        self.depth = 0;
     }
 
     fn segment(&mut self, s: &Segment) {
@@ -245,20 +325,29 @@ impl GeometrySink for MeshBuilder {
             (BranchShape::Frustum, true, Some(p)) => self.ends.get(p as usize).copied(),
             _ => None,
         };
-        let (a, v0, ring) = match shared {
-            Some(e) => (e.first_vertex, e.v, e.ring.transported(s.frame.heading())),
+        let (a, v0, ring, wind) = match shared {
+            Some(e) => (
+                e.first_vertex,
+                e.v,
+                e.ring.transported(s.frame.heading()),
+                e.wind,
+            ),
             None => {
+                // A new axis: its pivot is where it starts.
+                let wind = Wind::branch(start, s.depth, s.id).packed();
                 let ring = RingFrame::of(&s.frame);
                 if self.caps {
-                    self.cap(start, &ring, s.start_radius, false);
+                    self.cap(start, &ring, s.start_radius, false, wind);
                 }
-                (self.ring(start, &ring, s.start_radius, 0.0), 0.0, ring)
+                let first = self.ring(start, &ring, s.start_radius, 0.0, wind);
+                (first, 0.0, ring, wind)
             }
         };
+        self.depth = s.depth;
         // v advances by the length in circumferences at the segment's mean radius.
         let circumference = std::f32::consts::PI * (s.start_radius + s.end_radius);
         let v1 = v0 + s.length / circumference.max(1e-4);
-        let b = self.ring(end, &ring, s.end_radius, v1);
+        let b = self.ring(end, &ring, s.end_radius, v1, wind);
         self.join(a, b);
         let id = s.id as usize;
         if self.ends.len() <= id {
@@ -270,9 +359,10 @@ impl GeometrySink for MeshBuilder {
             center: end,
             ring,
             radius: s.end_radius,
+            wind,
         };
         if self.caps && self.shape == BranchShape::Cylinder {
-            self.cap(end, &ring, s.end_radius, true);
+            self.cap(end, &ring, s.end_radius, true, wind);
         }
     }
 
@@ -281,7 +371,7 @@ impl GeometrySink for MeshBuilder {
             && self.shape == BranchShape::Frustum
             && let Some(e) = self.ends.get(id as usize).copied()
         {
-            self.cap(e.center, &e.ring, e.radius, true);
+            self.cap(e.center, &e.ring, e.radius, true, e.wind);
         }
     }
 
@@ -300,11 +390,14 @@ impl GeometrySink for MeshBuilder {
             return;
         };
         let first = self.mesh.vertices.len() as u32;
+        // A polygon sways about its first vertex, one level deeper than the last branch.
+        let wind = Wind::branch(vertices[0], self.depth + 1, first).packed();
         for p in vertices {
             self.mesh.vertices.push(Vertex {
                 position: p.to_array(),
                 normal: normal.to_array(),
                 uv: [0.5, 0.5],
+                wind,
             });
         }
         for i in 1..vertices.len() as u32 - 1 {
@@ -317,7 +410,11 @@ impl GeometrySink for MeshBuilder {
     fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
         let (h, l) = (frame.heading() * size[0], frame.left() * (size[1] * 0.5));
         let p = frame.position;
+        // A card flutters about its base, one level deeper than the branch carrying it; its
+        // phase comes from its first vertex's index, distinct per card.
+        let first = self.mesh.vertices.len() as u32;
+        let wind = Wind::branch(p, self.depth + 1, first).packed();
         // Counter-clockwise seen from the up vector, which is the leaf's normal.
-        self.quad([p + l, p - l, p - l + h, p + l + h], frame.up());
+        self.quad([p + l, p - l, p - l + h, p + l + h], frame.up(), wind);
     }
 }

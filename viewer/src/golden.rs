@@ -141,3 +141,45 @@ fn default_scene_renders_terrain_and_trees() {
         "frame differs from {GOLDEN}: mean {mean:.2}, far {far_fraction:.4}"
     );
 }
+
+/// The wind moves the trees and nothing else: in a breeze, two moments of the cycle differ;
+/// in still air they are the same picture.
+#[test]
+fn wind_sways_trees_and_still_air_does_not() {
+    let birch = scene::default_species().expect("bundled species")[1].clone();
+    let scene = Scene::build(SceneOptions {
+        seed: 3,
+        side: 60.0,
+        species: vec![birch],
+        budget: 4 << 20,
+    })
+    .expect("birch stand builds");
+    let size = (160, 90);
+    let Some(mut offscreen) = offscreen(&scene, size) else {
+        return;
+    };
+    let camera = Camera::parse("20,30,0,8,2").expect("camera");
+    let mut frame_at = |wind: f32, time: f32| {
+        offscreen.wind = wind;
+        offscreen.time = time;
+        offscreen
+            .frame(&scene, &camera, Mode::Ids)
+            .expect("id render")
+            .0
+    };
+    let changed = |a: &[u8], b: &[u8]| {
+        a.chunks_exact(4)
+            .zip(b.chunks_exact(4))
+            .filter(|(p, q)| p != q)
+            .count() as f64
+            / f64::from(size.0 * size.1)
+    };
+    let (breeze_0, breeze_1) = (frame_at(1.0, 0.0), frame_at(1.0, 0.7));
+    let moved = changed(&breeze_0, &breeze_1);
+    eprintln!(
+        "a breeze moves {:.1}% of the pixels in 0.7 s",
+        100.0 * moved
+    );
+    assert!(moved > 0.005, "{moved}");
+    assert_eq!(changed(&frame_at(0.0, 0.0), &frame_at(0.0, 0.7)), 0.0);
+}

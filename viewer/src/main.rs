@@ -3,15 +3,18 @@
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
-//!     [--screenshot PATH [--size WxH] [--ids] [--frames N]]
+//!     [--screenshot PATH [--size WxH] [--ids] [--frames N] [--wind S] [--time T]]
 //! ```
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
-//! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run. The
-//! title shows draw calls, instances, triangles and frame time; `--frames N` closes the window
-//! after N frames and prints the median frame time. Headless (`--screenshot`):
-//! renders one frame offscreen and writes a PNG (with `--ids`, flat material colours, and
-//! prints what share of the picture terrain, bark, leaves and sky cover); without a GPU it runs on Mesa's software
+//! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run; the
+//! trees sway in a breeze. The title shows draw calls, instances, triangles and frame time;
+//! `--frames N` closes the window after N frames and prints the median frame time.
+//!
+//! Headless (`--screenshot`): renders one frame offscreen and writes a PNG, in a wind of
+//! strength `--wind` (1, a breeze, by default; 0 for still air) at `--time` seconds into its
+//! cycle. With `--ids` the picture shows flat material colours and the viewer prints what
+//! share of it terrain, bark, leaves and sky cover. Without a GPU it runs on Mesa's software
 //! drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
 mod cli;
@@ -21,6 +24,7 @@ mod golden;
 mod offscreen;
 mod render;
 mod scene;
+mod shadow;
 mod textures;
 mod window;
 
@@ -36,10 +40,12 @@ struct Args {
     size: (u32, u32),
     ids: bool,
     frames: u32,
+    wind: f32,
+    time: f32,
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES] [--budget-mb MB] \
-                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N]]";
+                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -52,6 +58,8 @@ fn parse() -> Result<Args, String> {
     let mut size = (1280u32, 720u32);
     let mut ids = false;
     let mut frames = 0u32;
+    let mut wind = 1.0f32;
+    let mut time = 0.0f32;
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
         match a.as_str() {
@@ -77,9 +85,17 @@ fn parse() -> Result<Args, String> {
             }
             "--ids" => ids = true,
             "--frames" => frames = flags.value("--frames")?,
+            "--wind" => wind = flags.value("--wind")?,
+            "--time" => time = flags.value("--time")?,
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
+    }
+    if !(0.0..=10.0).contains(&wind) {
+        return Err(format!("--wind {wind}: expected a strength from 0 to 10"));
+    }
+    if !time.is_finite() {
+        return Err(format!("--time {time}: expected a number of seconds"));
     }
     if !(side > 10.0 && side <= 20_000.0) {
         return Err(format!("--area {side}: expected 10 to 20000 metres"));
@@ -112,6 +128,8 @@ fn parse() -> Result<Args, String> {
         size,
         ids,
         frames,
+        wind,
+        time,
     })
 }
 
@@ -136,8 +154,10 @@ fn run() -> Result<(), String> {
                 render::Mode::Shaded
             };
             let t = Instant::now();
-            let offscreen =
+            let mut offscreen =
                 pollster::block_on(offscreen::Offscreen::new(&scene, args.size.0, args.size.1))?;
+            offscreen.wind = args.wind;
+            offscreen.time = args.time;
             let (pixels, stats) = offscreen.frame(&scene, &camera, mode)?;
             let first_ms = t.elapsed().as_secs_f64() * 1e3;
             // Steady frame time: the median of further frames, read back like the first.

@@ -37,6 +37,9 @@ pub(crate) struct Offscreen {
     padded_row: u32,
     /// The adapter's name and backend.
     pub(crate) adapter: String,
+    /// Wind strength and the moment of the wind's cycle the frames show (seconds).
+    pub(crate) wind: f32,
+    pub(crate) time: f32,
 }
 
 impl Offscreen {
@@ -71,6 +74,8 @@ impl Offscreen {
             size: (width, height),
             padded_row,
             adapter: format!("{} ({:?})", info.name, info.backend),
+            wind: 1.0,
+            time: 0.0,
         })
     }
 
@@ -92,7 +97,10 @@ impl Offscreen {
             View {
                 view_proj,
                 eye,
+                forward: camera.forward(),
                 mode,
+                wind: self.wind,
+                time: self.time,
             },
         );
         encoder.copy_texture_to_buffer(

@@ -5,14 +5,20 @@ use std::num::NonZeroU64;
 
 use bytemuck::{Pod, Zeroable};
 use sylva::terrain::glam::{Mat4, Vec3};
+use sylva::turtle::Vertex;
 use wgpu::util::DeviceExt;
 
 use crate::scene::{InstanceRaw, Scene};
+use crate::shadow::{ShadowMap, light_view_proj};
 use crate::textures::{bark_layer, leaf_layer, textures};
 
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const MATERIAL_STRIDE: u64 = 256;
-pub(crate) const SKY: [f32; 3] = [0.55, 0.70, 0.88];
+/// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
+pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
+const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
+/// Towards the sun: high in the south-west, so trunks cast long-ish shadows.
+const SUN: Vec3 = Vec3::new(0.45, 0.75, 0.35);
 pub(crate) const TERRAIN: [f32; 3] = [0.36, 0.33, 0.20];
 
 /// Flat colours of the id mode: terrain, bark, leaves (sky is the clear colour, black).
@@ -24,10 +30,14 @@ pub(crate) const ID_LEAF: [f32; 3] = [0.0, 0.0, 1.0];
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct Globals {
     view_proj: [[f32; 4]; 4],
+    inverse_view_proj: [[f32; 4]; 4],
+    light_view_proj: [[f32; 4]; 4],
     camera: [f32; 4],
     light: [f32; 4],
-    sky: [f32; 4],
+    horizon: [f32; 4],
+    zenith: [f32; 4],
     fog: [f32; 4],
+    wind: [f32; 4],
 }
 
 /// What one frame drew.
@@ -38,12 +48,17 @@ pub(crate) struct FrameStats {
     pub(crate) triangles: u64,
 }
 
-/// Where the frame is seen from and how it is shaded.
+/// Where the frame is seen from, how it is shaded and how the wind blows.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct View {
     pub(crate) view_proj: Mat4,
     pub(crate) eye: Vec3,
+    /// The camera's viewing direction: the shadow map covers what lies ahead.
+    pub(crate) forward: Vec3,
     pub(crate) mode: Mode,
+    /// Wind strength (1: a breeze; 0: still air) and the time in seconds.
+    pub(crate) wind: f32,
+    pub(crate) time: f32,
 }
 
 /// Shading or flat material ids.
@@ -72,6 +87,9 @@ pub(crate) struct Renderer {
     texture_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
     ids: wgpu::RenderPipeline,
+    shadow_pipeline: wgpu::RenderPipeline,
+    sky: wgpu::RenderPipeline,
+    shadow: ShadowMap,
     globals: wgpu::Buffer,
     globals_group: wgpu::BindGroup,
     material_group: wgpu::BindGroup,
@@ -88,13 +106,15 @@ pub(crate) struct Renderer {
 }
 
 fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
-    const MESH: [wgpu::VertexAttribute; 3] =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
-    const INSTANCE: [wgpu::VertexAttribute; 3] =
-        wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x4, 5 => Float32x4];
+    const MESH: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
+    ];
+    const INSTANCE: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4
+    ];
     [
         Some(wgpu::VertexBufferLayout {
-            array_stride: 32,
+            array_stride: size_of::<Vertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &MESH,
         }),
@@ -157,14 +177,89 @@ impl Renderer {
         };
         let globals_layout = uniform_layout(false, size_of::<Globals>() as u64);
         let material_layout = uniform_layout(true, 32);
+        let shadow = ShadowMap::new(device, DEPTH);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
             bind_group_layouts: &[
                 Some(&globals_layout),
                 Some(&material_layout),
                 Some(&texture_layout),
+                Some(&shadow.layout),
             ],
             immediate_size: 0,
+        });
+        // The shadow pass writes the map, so its pipeline does not read it.
+        let shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shadow"),
+            bind_group_layouts: &[
+                Some(&globals_layout),
+                Some(&material_layout),
+                Some(&texture_layout),
+            ],
+            immediate_size: 0,
+        });
+        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow"),
+            layout: Some(&shadow_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_shadow"),
+                compilation_options: Default::default(),
+                buffers: &vertex_layouts(),
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                // Against shadow acne on surfaces lit at a grazing angle.
+                bias: wgpu::DepthBiasState {
+                    constant: 2,
+                    slope_scale: 2.0,
+                    clamp: 0.0,
+                },
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_shadow"),
+                compilation_options: Default::default(),
+                targets: &[],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        // The sky: drawn first, behind everything, without touching depth.
+        let sky = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("sky"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_sky"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_sky"),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
         });
         let pipeline = |entry: &str| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -285,18 +380,34 @@ impl Renderer {
             rotation: [0.0, 0.0, 0.0, 1.0],
             translation_scale: [0.0, 0.0, 0.0, 1.0],
             tint: [1.0; 4],
+            tree: [0.0; 4],
         };
+        // Terrain vertices in the trees' vertex layout (no wind: the shader leaves the
+        // terrain material still).
+        let terrain: Vec<Vertex> = scene
+            .terrain_vertices
+            .iter()
+            .map(|t| Vertex {
+                position: t.position,
+                normal: t.normal,
+                uv: t.uv,
+                wind: [0.0; 4],
+            })
+            .collect();
         Renderer {
             texture_group,
             shaded: pipeline("fs_main"),
             ids: pipeline("fs_id"),
+            shadow_pipeline,
+            sky,
+            shadow,
             globals,
             globals_group,
             material_group,
             terrain_vertices: buffer(
                 device,
                 "terrain vertices",
-                bytemuck::cast_slice(&scene.terrain_vertices),
+                bytemuck::cast_slice(&terrain),
                 wgpu::BufferUsages::VERTEX,
             ),
             terrain_indices: buffer(
@@ -332,7 +443,8 @@ impl Renderer {
         }
     }
 
-    /// Records one frame into `encoder`.
+    /// Records one frame into `encoder`: the shadow map (shaded mode), then the sky, the
+    /// terrain and the forest.
     pub(crate) fn render(
         &self,
         queue: &wgpu::Queue,
@@ -341,38 +453,47 @@ impl Renderer {
         depth: &wgpu::TextureView,
         view: View,
     ) -> FrameStats {
-        let View {
-            view_proj,
-            eye,
-            mode,
-        } = view;
-        let light = Vec3::new(0.4, 0.8, 0.3).normalize();
+        let shaded = view.mode == Mode::Shaded;
+        let sun = SUN.normalize();
+        let light_view_proj = light_view_proj(view.eye, view.forward, sun);
+        let wind = Vec3::new(0.8, 0.0, 0.6) * view.wind.max(0.0);
+        let rgb1 = |c: [f32; 3]| [c[0], c[1], c[2], 1.0];
         let globals = Globals {
-            view_proj: view_proj.to_cols_array_2d(),
-            camera: [eye.x, eye.y, eye.z, 1.0],
-            light: [light.x, light.y, light.z, 0.0],
-            sky: [SKY[0], SKY[1], SKY[2], 1.0],
+            view_proj: view.view_proj.to_cols_array_2d(),
+            inverse_view_proj: view.view_proj.inverse().to_cols_array_2d(),
+            light_view_proj: light_view_proj.to_cols_array_2d(),
+            camera: [view.eye.x, view.eye.y, view.eye.z, 1.0],
+            light: [sun.x, sun.y, sun.z, if shaded { 1.0 } else { 0.0 }],
+            horizon: rgb1(HORIZON),
+            zenith: rgb1(ZENITH),
             fog: [
-                if mode == Mode::Ids {
-                    0.0
-                } else {
-                    self.fog_density
-                },
+                if shaded { self.fog_density } else { 0.0 },
                 self.terrain_heights.0,
                 self.terrain_heights.1,
                 0.0,
             ],
+            wind: [wind.x, 0.0, wind.z, view.time],
         };
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
-        let clear = match mode {
-            Mode::Shaded => wgpu::Color {
-                r: f64::from(SKY[0]),
-                g: f64::from(SKY[1]),
-                b: f64::from(SKY[2]),
-                a: 1.0,
-            },
-            Mode::Ids => wgpu::Color::BLACK,
-        };
+        if shaded {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.shadow.view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.shadow_pipeline);
+            self.draw_scene(&mut pass, false);
+        }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("forest"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -380,7 +501,7 @@ impl Renderer {
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
                     store: wgpu::StoreOp::Store,
                 },
             })],
@@ -396,22 +517,36 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(if mode == Mode::Ids {
-            &self.ids
-        } else {
-            &self.shaded
-        });
+        pass.set_bind_group(0, &self.globals_group, &[]);
+        pass.set_bind_group(1, &self.material_group, &[0]);
+        pass.set_bind_group(2, &self.texture_group, &[]);
+        pass.set_bind_group(3, &self.shadow.group, &[]);
+        if shaded {
+            // In id mode the sky stays the clear colour, black.
+            pass.set_pipeline(&self.sky);
+            pass.draw(0..3, 0..1);
+        }
+        pass.set_pipeline(if shaded { &self.shaded } else { &self.ids });
+        self.draw_scene(&mut pass, true)
+    }
+
+    /// Draws the terrain and every instance group with the pipeline already set; `terrain`
+    /// false leaves the terrain out (the shadow pass: the ground casts no shadow that
+    /// matters, and it is the largest single mesh).
+    fn draw_scene(&self, pass: &mut wgpu::RenderPass<'_>, terrain: bool) -> FrameStats {
         pass.set_bind_group(0, &self.globals_group, &[]);
         pass.set_bind_group(2, &self.texture_group, &[]);
         let mut stats = FrameStats::default();
-        pass.set_bind_group(1, &self.material_group, &[0]);
-        pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));
-        pass.set_vertex_buffer(1, self.identity.slice(..));
-        pass.set_index_buffer(self.terrain_indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.terrain_count, 0, 0..1);
-        stats.draws += 1;
-        stats.instances += 1;
-        stats.triangles += u64::from(self.terrain_count / 3);
+        if terrain {
+            pass.set_bind_group(1, &self.material_group, &[0]);
+            pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));
+            pass.set_vertex_buffer(1, self.identity.slice(..));
+            pass.set_index_buffer(self.terrain_indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.terrain_count, 0, 0..1);
+            stats.draws += 1;
+            stats.instances += 1;
+            stats.triangles += u64::from(self.terrain_count / 3);
+        }
         let Some(instances) = &self.instances else {
             return stats;
         };

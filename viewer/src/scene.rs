@@ -3,6 +3,7 @@
 use bytemuck::{Pod, Zeroable};
 use sylva::forest::{
     BarkPattern, ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species, tree_tint,
+    tree_wind,
 };
 use sylva::instancing::Span;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3};
@@ -17,6 +18,8 @@ pub(crate) struct InstanceRaw {
     pub(crate) translation_scale: [f32; 4],
     /// The tree's tint (`sylva_forest::tree_tint`), and 1.
     pub(crate) tint: [f32; 4],
+    /// The tree's base and wind phase (`sylva_forest::tree_wind`).
+    pub(crate) tree: [f32; 4],
 }
 
 /// One species variant's shared buffers.
@@ -116,9 +119,11 @@ impl Scene {
             .stream(&map, region, &mut |block: &PlacementBlock| {
                 for p in &block.placements {
                     let t = &p.transform;
-                    let tint = block.trees.get(p.tree as usize).map_or([1.0; 3], tree_tint);
+                    let tree = block.trees.get(p.tree as usize);
+                    let tint = tree.map_or([1.0; 3], tree_tint);
                     placed[p.variant as usize][p.instance as usize].push(InstanceRaw {
                         tint: [tint[0], tint[1], tint[2], 1.0],
+                        tree: tree.map_or([0.0; 4], tree_wind),
                         rotation: t.rotation.to_array(),
                         translation_scale: [
                             t.translation.x,

@@ -1,11 +1,22 @@
-// sylva viewer: instanced branches with TRS per instance, Lambert plus ambient, distance fog.
+// sylva viewer: instanced branches with TRS per instance, swaying in the wind; a sun with a
+// shadow map, hemispheric ambient light, a sky gradient and distance fog.
 
 struct Globals {
     view_proj: mat4x4<f32>,
+    // The inverse of view_proj, for the sky's view rays.
+    inverse_view_proj: mat4x4<f32>,
+    light_view_proj: mat4x4<f32>,
     camera: vec4<f32>,
+    // xyz: towards the sun (unit); w: 1 when the shadow map is in use.
     light: vec4<f32>,
-    sky: vec4<f32>,
+    // Sky colour at the horizon (rgb); w unused.
+    horizon: vec4<f32>,
+    // Sky colour overhead (rgb); w unused.
+    zenith: vec4<f32>,
+    // x: fog density per metre; y, z: the lowest and highest terrain.
     fog: vec4<f32>,
+    // xz: wind direction times strength (horizontal); w: time in seconds.
+    wind: vec4<f32>,
 };
 
 struct Material {
@@ -15,19 +26,27 @@ struct Material {
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(1) @binding(0) var<uniform> material: Material;
-// The procedural textures, one layer each: broadleaf, needles, furrowed and smooth bark;
-// material.colour.w is the layer plus one, 0 for untextured materials. Bark (layers 2 and 3)
-// tiles; leaf cards do not.
+// The procedural textures, one layer each: broadleaf, needles, furrowed and smooth bark, then
+// the two barks' normal maps; material.colour.w is the colour layer plus one (0 for
+// untextured materials, -1 for the terrain). Bark (layers 2 and 3) tiles; leaf cards do not.
 @group(2) @binding(0) var textures: texture_2d_array<f32>;
 @group(2) @binding(1) var texture_sampler: sampler;
+@group(3) @binding(0) var shadow_map: texture_depth_2d;
+@group(3) @binding(1) var shadow_sampler: sampler_comparison;
+
+const TAU: f32 = 6.2831853;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
-    @location(3) rotation: vec4<f32>,
-    @location(4) translation_scale: vec4<f32>,
-    @location(5) tint: vec4<f32>,
+    // Pivot (xyz, mesh space) and branch depth plus phase (w).
+    @location(3) wind: vec4<f32>,
+    @location(4) rotation: vec4<f32>,
+    @location(5) translation_scale: vec4<f32>,
+    @location(6) tint: vec4<f32>,
+    // The tree's base (xyz, world) and phase (w).
+    @location(7) tree: vec4<f32>,
 };
 
 struct VertexOut {
@@ -43,10 +62,43 @@ fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     return v + q.w * t + cross(q.xyz, t);
 }
 
+fn is_terrain() -> bool {
+    return material.colour.w < -0.5;
+}
+
+// How far the wind moves a world-space point: the whole tree bends about its base (more the
+// higher the point), each branch sways about its pivot (more the longer its lever and the
+// deeper the branch) and leaf cards flutter, each with its own phase. Every term reads
+// either world-space geometry or the tree's own data, so instanced branches move as one tree.
+fn sway(world: vec3<f32>, pivot: vec3<f32>, packed: f32, tree: vec4<f32>) -> vec3<f32> {
+    let strength = length(globals.wind.xz);
+    if (strength < 1e-4 || is_terrain()) {
+        return vec3<f32>(0.0);
+    }
+    let dir = vec3<f32>(globals.wind.x, 0.0, globals.wind.z) / strength;
+    let t = globals.wind.w;
+    let depth = floor(packed);
+    let phase = fract(packed) + tree.w;
+    let height = max(world.y - tree.y, 0.0);
+    let gust = 0.75 + 0.25 * sin(t * 0.7 + tree.w * TAU);
+    let bend = 0.0009 * height * height * gust * (0.8 + 0.2 * sin(t * 1.3 + tree.w * TAU));
+    let lever = length(world - pivot);
+    let branch = 0.025 * lever * min(depth, 4.0) * sin(t * 2.1 + phase * TAU);
+    let flutter = 0.02 * lever * step(3.5, depth) * sin(t * 7.0 + phase * 3.0 * TAU);
+    return strength * (dir * (bend + branch) + vec3<f32>(0.0, branch * 0.3 + flutter, 0.0));
+}
+
+fn to_world(in: VertexIn) -> vec3<f32> {
+    let s = in.translation_scale.w;
+    let world = in.translation_scale.xyz + s * rotate(in.rotation, in.position);
+    let pivot = in.translation_scale.xyz + s * rotate(in.rotation, in.wind.xyz);
+    return world + sway(world, pivot, in.wind.w, in.tree);
+}
+
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
     var out: VertexOut;
-    let world = in.translation_scale.xyz + in.translation_scale.w * rotate(in.rotation, in.position);
+    let world = to_world(in);
     out.clip = globals.view_proj * vec4<f32>(world, 1.0);
     out.world = world;
     out.normal = rotate(in.rotation, in.normal);
@@ -55,20 +107,27 @@ fn vs_main(in: VertexIn) -> VertexOut {
     return out;
 }
 
-// The material's texture colour (leaf card or bark), or white for untextured materials;
-// discards where a leaf card is clear (alpha-tested foliage).
-fn texel(uv: vec2<f32>) -> vec3<f32> {
+struct Texel {
+    colour: vec3<f32>,
+    // Tangent-space normal from the bark's normal map; (0, 0, 1) elsewhere.
+    normal: vec3<f32>,
+    alpha: f32,
+};
+
+// The material's texture (leaf card or bark) with the bark's normal map, or white for
+// untextured materials. Sampled in uniform control flow; callers discard clear texels.
+fn texel(uv: vec2<f32>) -> Texel {
     let layer = i32(material.colour.w + 0.5) - 1;
-    let tiled = select(uv, fract(uv), layer >= 2);
-    // Sampled in uniform control flow; the layer is clamped for untextured materials.
+    let bark = layer >= 2;
+    let tiled = select(uv, fract(uv), bark);
     let sampled = textureSample(textures, texture_sampler, tiled, max(layer, 0));
-    if (layer < 0) {
-        return vec3<f32>(1.0);
-    }
-    if (sampled.a < 0.5) {
-        discard;
-    }
-    return sampled.rgb;
+    let normal = textureSample(textures, texture_sampler, tiled, select(0, layer + 2, bark));
+    var out: Texel;
+    out.colour = select(vec3<f32>(1.0), sampled.rgb, layer >= 0);
+    out.alpha = select(1.0, sampled.a, layer >= 0);
+    // Normal maps are uploaded sRGB-encoded, so sampling returns their plain values.
+    out.normal = select(vec3<f32>(0.0, 0.0, 1.0), normal.rgb * 2.0 - 1.0, bark);
+    return out;
 }
 
 // Ground colour by slope and altitude: the palette of sylva_terrain::ground, repeated here.
@@ -84,11 +143,64 @@ fn ground(normal: vec3<f32>, height: f32) -> vec3<f32> {
     return mix(mix(mix(grass, soil, soil_w), rock, rock_w), snow_colour, snow_w);
 }
 
+// The sky seen along `dir`: horizon colour low down, zenith colour overhead, a glow around the
+// sun.
+fn sky(dir: vec3<f32>) -> vec3<f32> {
+    let up = clamp(dir.y, 0.0, 1.0);
+    let base = mix(globals.horizon.rgb, globals.zenith.rgb, pow(up, 0.6));
+    let sun = pow(max(dot(dir, globals.light.xyz), 0.0), 64.0);
+    return base + vec3<f32>(1.0, 0.9, 0.7) * sun * 0.5;
+}
+
+// 1 where the sun reaches `world`, 0 in shadow, from a 3 x 3 percentage-closer filter; lit
+// outside the shadow map's box.
+fn sunlit(world: vec3<f32>, normal: vec3<f32>) -> f32 {
+    if (globals.light.w < 0.5) {
+        return 1.0;
+    }
+    // Offset along the normal against acne on surfaces that face away from the sun.
+    let p = globals.light_view_proj * vec4<f32>(world + normal * 0.08, 1.0);
+    let uv = vec2<f32>(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
+    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || p.z > 1.0) {
+        return 1.0;
+    }
+    let texel_size = 1.0 / vec2<f32>(textureDimensions(shadow_map));
+    var lit = 0.0;
+    for (var i = -1; i <= 1; i++) {
+        for (var j = -1; j <= 1; j++) {
+            let offset = vec2<f32>(f32(i), f32(j)) * texel_size;
+            lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, p.z - 0.0015);
+        }
+    }
+    return lit / 9.0;
+}
+
+// A normal from the tangent-space `mapped` normal around the surface normal `n`, with the
+// tangent frame taken from screen-space derivatives of position and uv (no tangents needed).
+fn perturb(n: vec3<f32>, mapped: vec3<f32>, dp_dx: vec3<f32>, dp_dy: vec3<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> vec3<f32> {
+    let dp2perp = cross(dp_dy, n);
+    let dp1perp = cross(n, dp_dx);
+    let t = dp2perp * duv_dx.x + dp1perp * duv_dy.x;
+    let b = dp2perp * duv_dx.y + dp1perp * duv_dy.y;
+    let scale = inverseSqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
+    // The map's green points up the image, towards smaller v.
+    let perturbed = t * scale * mapped.x - b * scale * mapped.y + n * mapped.z;
+    return normalize(select(n, perturbed, all(perturbed == perturbed)));
+}
+
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    var albedo = material.colour.rgb * texel(in.uv) * in.tint;
-    if (material.colour.w < -0.5) {
-        // fog.yz: the lowest and highest terrain.
+    // Derivatives first, in uniform control flow.
+    let dp_dx = dpdx(in.world);
+    let dp_dy = dpdy(in.world);
+    let duv_dx = dpdx(in.uv);
+    let duv_dy = dpdy(in.uv);
+    let tex = texel(in.uv);
+    if (tex.alpha < 0.5) {
+        discard;
+    }
+    var albedo = material.colour.rgb * tex.colour * in.tint;
+    if (is_terrain()) {
         let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
         albedo = ground(normalize(in.normal), clamp(height, 0.0, 1.0));
     }
@@ -96,16 +208,73 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     if (!front) {
         n = -n;
     }
-    let diffuse = max(dot(n, globals.light.xyz), 0.0);
-    let lit = albedo * (0.35 + 0.65 * diffuse);
-    let fog = 1.0 - exp(-distance(in.world, globals.camera.xyz) * globals.fog.x);
-    return vec4<f32>(mix(lit, globals.sky.rgb, clamp(fog, 0.0, 1.0)), 1.0);
+    n = perturb(n, tex.normal, dp_dx, dp_dy, duv_dx, duv_dy);
+    let l = globals.light.xyz;
+    // Leaf cards pass some light through: their back faces glow a little.
+    let translucent = select(0.0, 0.35, material.colour.w > 0.5 && material.colour.w < 2.5);
+    let facing = dot(n, l);
+    let diffuse = max(facing, 0.0) + translucent * max(-facing, 0.0);
+    let shadow = sunlit(in.world, n);
+    // Hemispheric ambient: sky light from above, light bounced off the ground from below.
+    let bounce = vec3<f32>(0.20, 0.22, 0.12);
+    let ambient = mix(bounce, globals.zenith.rgb, n.y * 0.5 + 0.5) * 0.55;
+    let sun_colour = vec3<f32>(1.0, 0.95, 0.85);
+    let lit = albedo * (ambient + sun_colour * diffuse * shadow * 0.9);
+    let to_eye = in.world - globals.camera.xyz;
+    let fog = 1.0 - exp(-length(to_eye) * globals.fog.x);
+    let haze = sky(normalize(vec3<f32>(to_eye.x, 0.0, to_eye.z) + vec3<f32>(0.0, 0.05, 0.0)));
+    return vec4<f32>(mix(lit, haze, clamp(fog, 0.0, 1.0)), 1.0);
 }
 
 // Flat material ids, for tests that count what covers the picture.
 @fragment
 fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
-    // Clear parts of leaf cards are no leaf: texel() discards them.
-    _ = texel(in.uv);
+    // Clear parts of leaf cards are no leaf.
+    if (texel(in.uv).alpha < 0.5) {
+        discard;
+    }
     return material.id;
+}
+
+// The shadow map: depth from the sun, leaf cards cut by their alpha like in the main pass.
+struct ShadowOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) uv: vec2<f32>,
+};
+
+@vertex
+fn vs_shadow(in: VertexIn) -> ShadowOut {
+    var out: ShadowOut;
+    out.clip = globals.light_view_proj * vec4<f32>(to_world(in), 1.0);
+    out.uv = in.uv;
+    return out;
+}
+
+@fragment
+fn fs_shadow(in: ShadowOut) {
+    if (texel(in.uv).alpha < 0.5) {
+        discard;
+    }
+}
+
+// The sky: one triangle over the whole screen at the far plane, coloured along each view ray.
+struct SkyOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) ndc: vec2<f32>,
+};
+
+@vertex
+fn vs_sky(@builtin(vertex_index) i: u32) -> SkyOut {
+    let ndc = vec2<f32>(f32(i / 2u) * 4.0 - 1.0, f32(i % 2u) * 4.0 - 1.0);
+    var out: SkyOut;
+    out.clip = vec4<f32>(ndc, 1.0, 1.0);
+    out.ndc = ndc;
+    return out;
+}
+
+@fragment
+fn fs_sky(in: SkyOut) -> @location(0) vec4<f32> {
+    let far = globals.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
+    let dir = normalize(far.xyz / far.w - globals.camera.xyz);
+    return vec4<f32>(sky(dir), 1.0);
 }

@@ -21,8 +21,28 @@ pub(crate) fn leaf_layer(shape: LeafShape) -> u32 {
     }
 }
 
+/// A texture of plain values (a normal map) re-encoded so that the sRGB array, which decodes
+/// every texel to linear, hands the shader the original values.
+fn srgb_encoded(mut texture: Texture) -> Texture {
+    let encode = |v: u8| {
+        let x = f32::from(v) / 255.0;
+        let s = if x <= 0.003_130_8 {
+            12.92 * x
+        } else {
+            1.055 * x.powf(1.0 / 2.4) - 0.055
+        };
+        (s * 255.0).round() as u8
+    };
+    for px in texture.rgba.chunks_exact_mut(4) {
+        for c in &mut px[..3] {
+            *c = encode(*c);
+        }
+    }
+    texture
+}
+
 /// The procedural textures as one texture array (broadleaf, needles, furrowed and smooth
-/// bark) with a linear
+/// bark, then the two barks' normal maps, each two layers after its colour) with a linear
 /// sampler, and the bind group layout the shader reads them through.
 pub(crate) fn textures(
     device: &wgpu::Device,
@@ -33,6 +53,8 @@ pub(crate) fn textures(
         Texture::leaf(LeafShape::Needles),
         Texture::bark(BarkPattern::Furrowed),
         Texture::bark(BarkPattern::Smooth),
+        srgb_encoded(Texture::bark_normal(BarkPattern::Furrowed)),
+        srgb_encoded(Texture::bark_normal(BarkPattern::Smooth)),
     ];
     let data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
     let texture = device.create_texture_with_data(

@@ -31,6 +31,8 @@ struct App {
     keys: HashSet<KeyCode>,
     captured: bool,
     last: Instant,
+    /// When the window opened: the wind's clock.
+    started: Instant,
     frame_ms: f64,
     error: Option<String>,
     lost: Arc<AtomicBool>,
@@ -53,6 +55,7 @@ pub(crate) fn run(scene: Scene, camera: Option<Camera>, max_frames: u32) -> Resu
         keys: HashSet::new(),
         captured: false,
         last: Instant::now(),
+        started: Instant::now(),
         frame_ms: 0.0,
         error: None,
         lost: Arc::new(AtomicBool::new(false)),
@@ -170,7 +173,10 @@ impl App {
             View {
                 view_proj,
                 eye,
+                forward: self.camera.forward(),
                 mode: Mode::Shaded,
+                wind: 1.0,
+                time: self.started.elapsed().as_secs_f32(),
             },
         );
         gpu.queue.submit([encoder.finish()]);

@@ -4,6 +4,7 @@
 use std::fmt::Write as _;
 
 use sylva_terrain::TerrainMesh;
+use sylva_turtle::Vertex;
 
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfOptions, Node, UNSIGNED_INT};
 use crate::error::ForestError;
@@ -80,18 +81,22 @@ impl Arrays {
         self.accessors.len() - 1
     }
 
-    /// A dielectric material of `colour`, over `texture` when given. A leaf card is
-    /// double-sided, its texture's alpha cut at one half.
+    /// A dielectric material of `colour`, over `texture` when given, with a tangent-space
+    /// normal texture when given. A leaf card is double-sided, its texture's alpha cut at one
+    /// half.
     fn material(
         &mut self,
         name: &str,
         colour: [f32; 3],
         roughness: f32,
-        texture: Option<usize>,
+        (texture, normal): (Option<usize>, Option<usize>),
         leaf_card: bool,
     ) -> usize {
         let texture = texture.map_or(String::new(), |t| {
             format!(",\"baseColorTexture\":{{\"index\":{t}}}")
+        });
+        let normal = normal.map_or(String::new(), |t| {
+            format!(",\"normalTexture\":{{\"index\":{t}}}")
         });
         let card = if leaf_card {
             ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true"
@@ -99,7 +104,7 @@ impl Arrays {
             ""
         };
         self.materials.push(format!(
-            "{{\"name\":{},\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0]{texture},\"metallicFactor\":0.0,\"roughnessFactor\":{roughness}}}{card}}}",
+            "{{\"name\":{},\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0]{texture},\"metallicFactor\":0.0,\"roughnessFactor\":{roughness}}}{normal}{card}}}",
             quoted(name),
             colour[0],
             colour[1],
@@ -108,11 +113,15 @@ impl Arrays {
         self.materials.len() - 1
     }
 
-    /// Position (with bounds), normal and uv accessors over interleaved 32-byte vertices.
+    /// Position (with bounds), normal and uv accessors over interleaved vertices that start
+    /// with those three (terrain vertices, 32 bytes); for tree vertices (48 bytes), also their
+    /// `_WIND` ([`sylva_turtle::Vertex::wind`], after the uv) and the `TANGENT`s in the view
+    /// `tree`.
     fn vertex_attributes(
         &mut self,
         view: usize,
         positions: impl Iterator<Item = [f32; 3]>,
+        tree: Option<usize>,
     ) -> String {
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
@@ -127,7 +136,15 @@ impl Arrays {
         let position = self.accessor(view, 0, FLOAT, count, "VEC3", Some((lo, hi)));
         let normal = self.accessor(view, 12, FLOAT, count, "VEC3", None);
         let uv = self.accessor(view, 24, FLOAT, count, "VEC2", None);
-        format!("{{\"POSITION\":{position},\"NORMAL\":{normal},\"TEXCOORD_0\":{uv}}}")
+        let wind = match tree {
+            Some(tangents) => {
+                let w = self.accessor(view, 32, FLOAT, count, "VEC4", None);
+                let t = self.accessor(tangents, 0, FLOAT, count, "VEC4", None);
+                format!(",\"_WIND\":{w},\"TANGENT\":{t}")
+            }
+            None => String::new(),
+        };
+        format!("{{\"POSITION\":{position},\"NORMAL\":{normal},\"TEXCOORD_0\":{uv}{wind}}}")
     }
 }
 
@@ -169,7 +186,7 @@ impl Document {
         if let Some(t) = terrain {
             let vbytes = size_of_val(t.vertices.as_slice());
             let view = a.view(section(vbytes).0, vbytes, Some(32), Some(ARRAY_BUFFER));
-            let attributes = a.vertex_attributes(view, t.vertices.iter().map(|v| v.position));
+            let attributes = a.vertex_attributes(view, t.vertices.iter().map(|v| v.position), None);
             let ibytes = 4 * t.indices.len();
             let iview = a.view(section(ibytes).0, ibytes, None, Some(ELEMENT_ARRAY_BUFFER));
             let indices = a.accessor(iview, 0, UNSIGNED_INT, t.indices.len(), "SCALAR", None);
@@ -186,7 +203,7 @@ impl Document {
                 "terrain",
                 options.terrain_colour,
                 options.roughness,
-                None,
+                (None, None),
                 false,
             );
             a.meshes.push(format!(
@@ -221,12 +238,21 @@ impl Document {
         }
         let first_bark = images.len();
         images.extend(patterns.iter().map(|&p| Texture::bark(p).png()));
+        let first_normal = images.len();
+        images.extend(patterns.iter().map(|&p| Texture::bark_normal(p).png()));
         for &v in &used_variants {
             let variant = &variants[v];
             let cache = &variant.cache;
             let vbytes = size_of_val(cache.vertices.as_slice());
-            let view = a.view(section(vbytes).0, vbytes, Some(32), Some(ARRAY_BUFFER));
-            let attributes = a.vertex_attributes(view, cache.vertices.iter().map(|v| v.position));
+            let stride = size_of::<Vertex>() as u32;
+            let view = a.view(section(vbytes).0, vbytes, Some(stride), Some(ARRAY_BUFFER));
+            let tbytes = 16 * cache.vertices.len();
+            let tangents = a.view(section(tbytes).0, tbytes, None, Some(ARRAY_BUFFER));
+            let attributes = a.vertex_attributes(
+                view,
+                cache.vertices.iter().map(|v| v.position),
+                Some(tangents),
+            );
             let index_view = |a: &mut Arrays, at: usize, len: usize| {
                 (len > 0).then(|| a.view(at, 4 * len, None, Some(ELEMENT_ARRAY_BUFFER)))
             };
@@ -235,15 +261,15 @@ impl Document {
             let leaves_at = section(4 * cache.leaves.len()).0;
             let leaves = index_view(&mut a, leaves_at, cache.leaves.len());
             let s = &species[variant.species];
-            let bark_texture = patterns
-                .iter()
-                .position(|&p| p == s.bark_pattern)
-                .map(|k| first_bark + k);
+            let pattern = patterns.iter().position(|&p| p == s.bark_pattern);
             let bark_material = a.material(
                 &format!("{} bark", s.name),
                 s.bark,
                 options.roughness,
-                bark_texture,
+                (
+                    pattern.map(|k| first_bark + k),
+                    pattern.map(|k| first_normal + k),
+                ),
                 false,
             );
             let texture = shapes.iter().position(|&shape| shape == s.leaf_shape);
@@ -251,7 +277,7 @@ impl Document {
                 &format!("{} leaves", s.name),
                 s.leaf,
                 options.roughness,
-                texture,
+                (texture, None),
                 true,
             );
             shared[v] = Some((attributes, bark, leaves, bark_material, leaf_material));
@@ -266,6 +292,7 @@ impl Document {
         let r_view = a.view(section(16 * placements).0, 16 * placements, None, None);
         let s_view = a.view(section(12 * placements).0, 12 * placements, None, None);
         let c_view = a.view(section(12 * placements).0, 12 * placements, None, None);
+        let w_view = a.view(section(16 * placements).0, 16 * placements, None, None);
         let bin_len = section(0).1;
         for node in nodes {
             let variant = &variants[node.variant];
@@ -299,6 +326,8 @@ impl Document {
             let s = a.accessor(s_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
             // Each tree's tint, as three.js and others read it: the instance colour.
             let c = a.accessor(c_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
+            // Each tree's base and phase, for wind shaders (`tree_wind`).
+            let w = a.accessor(w_view, 16 * node.first, FLOAT, node.count, "VEC4", None);
             let name = &species[variant.species].name;
             let tag = if variant.seedling { "seedling" } else { "tree" };
             a.meshes.push(format!(
@@ -310,7 +339,7 @@ impl Document {
                 primitives.join(",")
             ));
             a.nodes.push(format!(
-                "{{\"name\":{},\"mesh\":{},\"extensions\":{{\"EXT_mesh_gpu_instancing\":{{\"attributes\":{{\"TRANSLATION\":{t},\"ROTATION\":{r},\"SCALE\":{s},\"_COLOR_0\":{c}}}}}}}}}",
+                "{{\"name\":{},\"mesh\":{},\"extensions\":{{\"EXT_mesh_gpu_instancing\":{{\"attributes\":{{\"TRANSLATION\":{t},\"ROTATION\":{r},\"SCALE\":{s},\"_COLOR_0\":{c},\"_WIND_TREE\":{w}}}}}}}}}",
                 quoted(&format!("{name} {tag} instance {}", node.instance)),
                 a.meshes.len() - 1
             ));

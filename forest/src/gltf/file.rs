@@ -8,12 +8,13 @@ use std::path::Path;
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::document::{Document, padding};
+use super::tangent::tangents;
 use super::{Node, PLACEMENT_BYTES, io_error};
 use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::{ForestBuilder, Variant};
 use crate::stream::PlacementBlock;
-use crate::variety::tree_tint;
+use crate::variety::{tree_tint, tree_wind};
 
 /// Creates `path`, writes the GLB header, the JSON chunk and the BIN chunk header, then lets
 /// `body` write the binary content; returns what `body` returns.
@@ -82,6 +83,11 @@ pub(super) fn write_geometry(
     for &v in &document.used_variants {
         let cache = &variants[v].cache;
         put(w, bytemuck::cast_slice(&cache.vertices))?;
+        // Bark triangles give the tangents (the leaves' normals need none).
+        put(
+            w,
+            bytemuck::cast_slice(&tangents(&cache.vertices, &cache.bark)),
+        )?;
         put(w, bytemuck::cast_slice(&cache.bark))?;
         put(w, bytemuck::cast_slice(&cache.leaves))?;
     }
@@ -116,11 +122,12 @@ pub(super) fn write_placements(
         path: "glb output".into(),
         message: e.to_string(),
     };
-    let (t_base, r_base, s_base, c_base) = (
+    let (t_base, r_base, s_base, c_base, w_base) = (
         base,
         base + 12 * total,
         base + 28 * total,
         base + 40 * total,
+        base + 52 * total,
     );
     let mut passes = 0;
     let mut start = 0;
@@ -139,6 +146,7 @@ pub(super) fn write_placements(
         let mut r = vec![0f32; 4 * count];
         let mut s = vec![0f32; 3 * count];
         let mut c = vec![0f32; 3 * count];
+        let mut wind = vec![0f32; 4 * count];
         let mut cursor: Vec<usize> = nodes[start..end].iter().map(|n| n.first - first).collect();
         let range = start as u32..end as u32;
         // Only the variants of this chunk's nodes need their trees expanded.
@@ -156,8 +164,9 @@ pub(super) fn write_placements(
                 t[3 * *k..3 * *k + 3].copy_from_slice(&x.translation.to_array());
                 r[4 * *k..4 * *k + 4].copy_from_slice(&q.to_array());
                 s[3 * *k..3 * *k + 3].copy_from_slice(&[x.scale; 3]);
-                let tint = block.trees.get(p.tree as usize).map_or([1.0; 3], tree_tint);
-                c[3 * *k..3 * *k + 3].copy_from_slice(&tint);
+                let tree = block.trees.get(p.tree as usize);
+                c[3 * *k..3 * *k + 3].copy_from_slice(&tree.map_or([1.0; 3], tree_tint));
+                wind[4 * *k..4 * *k + 4].copy_from_slice(&tree.map_or([0.0; 4], tree_wind));
                 *k += 1;
             }
             Ok(())
@@ -167,6 +176,7 @@ pub(super) fn write_placements(
             (r_base, &r, 16),
             (s_base, &s, 12),
             (c_base, &c, 12),
+            (w_base, &wind, 16),
         ] {
             w.seek(SeekFrom::Start((section + first * width) as u64))
                 .map_err(io)?;

@@ -11,6 +11,7 @@
 
 mod document;
 mod file;
+mod tangent;
 
 use std::path::{Path, PathBuf};
 
@@ -77,9 +78,9 @@ const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
-/// Bytes of one placement in the file: translation, rotation, scale (as three floats) and the
-/// tree's tint.
-const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12;
+/// Bytes of one placement in the file: translation, rotation, scale (as three floats), the
+/// tree's tint and its wind data.
+const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12 + 16;
 
 /// One instance that is drawn: a node with its own instancing accessors.
 #[derive(Debug, Clone, Copy)]
