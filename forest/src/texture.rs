@@ -287,7 +287,7 @@ fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
     // Needles leave the twig every 0.045 of its length, slanting 35 degrees forward.
     let along = v - reach * 0.7;
     let phase = (along / 0.045).fract();
-    (phase < 0.4 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
+    (phase < 0.62 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
 }
 
 /// Periodic value noise on a lattice of `cells` (across, along) over a tile of side `n`
