@@ -246,6 +246,26 @@ fn species_files_report_file_line_and_column() {
             .contains("key: value")
     );
     assert!(err("name: x").2.contains("missing 'grammar:'"));
+    // Leaf and bark looks: unknown textures and out-of-range facing name their place.
+    assert_eq!(
+        err("grammar: kenwood-leafy\nleaf_shape: fern"),
+        (
+            2,
+            13,
+            "leaf_shape must be 'broadleaf' or 'needles', not 'fern'".into()
+        )
+    );
+    assert_eq!(err("grammar: kenwood-leafy\nbark_texture: velvet").0, 2);
+    assert_eq!(
+        err("grammar: kenwood-leafy\nleaf_facing: 1.5"),
+        (
+            2,
+            14,
+            "leaf_facing must be a number from 0 to 1, not '1.5'".into()
+        )
+    );
+    let facing = Species::parse_file("grammar: kenwood-leafy\nleaf_facing: 0.25", file).unwrap();
+    assert_eq!(facing.turtle.leaf_facing, 0.25);
     // A grammar file with an error is reported in that file's terms.
     let dir = std::env::temp_dir().join(format!("sylva-species-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

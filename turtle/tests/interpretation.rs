@@ -309,6 +309,27 @@ fn turtle_word() -> impl Strategy<Value = String> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
+    /// Turning a leaf to the sky keeps its heading and position, turns the card only about
+    /// the heading, never tilts it further from level than before, and fully turned leaves
+    /// its left vector level.
+    #[test]
+    fn facing_sky_rolls_about_the_heading_towards_level(
+        pitch in -3.2f32..3.2, roll in -3.2f32..3.2, yaw in -3.2f32..3.2, amount in 0.0f32..1.0,
+    ) {
+        let mut f = sylva_turtle::Frame::IDENTITY;
+        f.yaw(yaw);
+        f.pitch(pitch);
+        f.roll(roll);
+        let turned = f.facing_sky(amount);
+        prop_assert!((turned.heading() - f.heading()).length() < 1e-4);
+        prop_assert_eq!(turned.position, f.position);
+        prop_assert!(turned.left().y.abs() <= f.left().y.abs() + 1e-4);
+        let level = f.facing_sky(1.0);
+        if f.heading().y.abs() < 0.999 {
+            prop_assert!(level.left().y.abs() < 1e-3, "{}", level.left());
+        }
+    }
+
     #[test]
     fn frame_stays_orthonormal(text in turtle_word()) {
         #[derive(Default)]
