@@ -19,6 +19,7 @@
 
 mod cli;
 mod coverage;
+mod cull;
 #[cfg(test)]
 mod golden;
 mod offscreen;

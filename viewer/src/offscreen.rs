@@ -1,7 +1,7 @@
 //! Headless rendering: an offscreen target with its own device, frames read back as RGBA.
 
 use crate::render::{FrameStats, Mode, Renderer, View, device, targets};
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
 
 /// Mesa's Vulkan device-select layer looks for a Wayland compositor while adapters are
 /// enumerated, and where there is no desktop session (CI, servers) libwayland prints
@@ -92,13 +92,14 @@ impl Offscreen {
         let stats = self.renderer.render(
             &self.queue,
             &mut encoder,
-            &self.view,
-            &self.depth,
+            (&self.view, &self.depth),
+            scene,
             View {
                 view_proj,
                 eye,
                 forward: camera.forward(),
                 mode,
+                pixels_per_radian: height as f32 / FIELD_OF_VIEW_DEGREES.to_radians(),
                 wind: self.wind,
                 time: self.time,
             },

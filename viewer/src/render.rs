@@ -4,16 +4,20 @@
 use std::num::NonZeroU64;
 
 use bytemuck::{Pod, Zeroable};
-use sylva::terrain::glam::{Mat4, Vec3};
+use sylva::terrain::glam::{Mat4, Quat, Vec3};
 use sylva::turtle::Vertex;
 use wgpu::util::DeviceExt;
 
+use crate::cull::Volume;
 use crate::scene::{InstanceRaw, Scene};
-use crate::shadow::{ShadowMap, light_view_proj};
+use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::{bark_layer, leaf_layer, textures};
 
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const MATERIAL_STRIDE: u64 = 256;
+/// Placements smaller on screen than this many pixels across are not drawn: far twigs and
+/// seedlings that fog would hide anyway.
+const MIN_PIXELS: f32 = 2.0;
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
 const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
@@ -56,6 +60,9 @@ pub(crate) struct View {
     /// The camera's viewing direction: the shadow map covers what lies ahead.
     pub(crate) forward: Vec3,
     pub(crate) mode: Mode,
+    /// The picture's height in pixels over the vertical field of view in radians: how large
+    /// things look, for dropping what is too small to see.
+    pub(crate) pixels_per_radian: f32,
     /// Wind strength (1: a breeze; 0: still air) and the time in seconds.
     pub(crate) wind: f32,
     pub(crate) time: f32,
@@ -74,13 +81,14 @@ struct VariantBuffers {
     leaves: Option<wgpu::Buffer>,
 }
 
+/// One instanced draw: a group's bark or leaf triangles, over the group's placements that
+/// survive culling this frame.
 struct Draw {
     variant: usize,
+    group: usize,
     material: u32,
     indices: (u32, u32),
     bark: bool,
-    first_instance: u64,
-    instances: u32,
 }
 
 pub(crate) struct Renderer {
@@ -98,6 +106,8 @@ pub(crate) struct Renderer {
     terrain_count: u32,
     identity: wgpu::Buffer,
     variants: Vec<VariantBuffers>,
+    /// The placements in view this frame, then those in the sun's box (room for every
+    /// placement twice).
     instances: Option<wgpu::Buffer>,
     draws: Vec<Draw>,
     fog_density: f32,
@@ -358,20 +368,18 @@ impl Renderer {
                 leaves: index_buffer(device, "leaf indices", &v.leaves),
             })
             .collect();
-        let mut all: Vec<InstanceRaw> = Vec::new();
+        let mut placements = 0u64;
         let mut draws = Vec::new();
-        for g in &scene.groups {
-            let first = all.len() as u64;
-            all.extend_from_slice(&g.instances);
+        for (group, g) in scene.groups.iter().enumerate() {
+            placements += g.instances.len() as u64;
             for (bark, span) in [(true, g.bark), (false, g.leaves)] {
                 if !span.is_empty() {
                     draws.push(Draw {
                         variant: g.variant,
+                        group,
                         material: 1 + 2 * g.variant as u32 + u32::from(!bark),
                         indices: (span.start, span.end()),
                         bark,
-                        first_instance: first,
-                        instances: g.instances.len() as u32,
                     });
                 }
             }
@@ -424,13 +432,13 @@ impl Renderer {
                 wgpu::BufferUsages::VERTEX,
             ),
             variants,
-            instances: (!all.is_empty()).then(|| {
-                buffer(
-                    device,
-                    "instances",
-                    bytemuck::cast_slice(&all),
-                    wgpu::BufferUsages::VERTEX,
-                )
+            instances: (placements > 0).then(|| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("instances in view"),
+                    size: 2 * placements * size_of::<InstanceRaw>() as u64,
+                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
             }),
             draws,
             fog_density: 1.2 / scene.side,
@@ -449,8 +457,8 @@ impl Renderer {
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        target: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
+        (target, depth): (&wgpu::TextureView, &wgpu::TextureView),
+        scene: &Scene,
         view: View,
     ) -> FrameStats {
         let shaded = view.mode == Mode::Shaded;
@@ -475,6 +483,30 @@ impl Renderer {
             wind: [wind.x, 0.0, wind.z, view.time],
         };
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        // The placements each pass can see, gathered into the instance buffer: the camera's
+        // first, then the sun's.
+        let mut visible = Vec::new();
+        let in_view = cull(
+            scene,
+            &Volume::of(&view.view_proj),
+            (view.eye, view.pixels_per_radian),
+            &mut visible,
+        );
+        let in_sun = if shaded {
+            // The sun sees the box from afar at one texel per SHADOW_TEXEL metres.
+            let from_sun = view.eye + sun * 1e4;
+            cull(
+                scene,
+                &Volume::of(&light_view_proj),
+                (from_sun, 1e4 / SHADOW_TEXEL),
+                &mut visible,
+            )
+        } else {
+            Vec::new()
+        };
+        if let Some(instances) = &self.instances {
+            queue.write_buffer(instances, 0, bytemuck::cast_slice(&visible));
+        }
         if shaded {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -492,7 +524,7 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.shadow_pipeline);
-            self.draw_scene(&mut pass, false);
+            self.draw_scene(&mut pass, &in_sun, false);
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("forest"),
@@ -527,13 +559,19 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
         pass.set_pipeline(if shaded { &self.shaded } else { &self.ids });
-        self.draw_scene(&mut pass, true)
+        self.draw_scene(&mut pass, &in_view, true)
     }
 
-    /// Draws the terrain and every instance group with the pipeline already set; `terrain`
-    /// false leaves the terrain out (the shadow pass: the ground casts no shadow that
-    /// matters, and it is the largest single mesh).
-    fn draw_scene(&self, pass: &mut wgpu::RenderPass<'_>, terrain: bool) -> FrameStats {
+    /// Draws the terrain and every instance group's placements in `ranges` (first and count
+    /// in the instance buffer, per group) with the pipeline already set; `terrain` false
+    /// leaves the terrain out (the shadow pass: the ground casts no shadow that matters, and
+    /// it is the largest single mesh).
+    fn draw_scene(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        ranges: &[(u64, u32)],
+        terrain: bool,
+    ) -> FrameStats {
         pass.set_bind_group(0, &self.globals_group, &[]);
         pass.set_bind_group(2, &self.texture_group, &[]);
         let mut stats = FrameStats::default();
@@ -552,6 +590,9 @@ impl Renderer {
         };
         let mut bound: Option<(usize, bool)> = None;
         for d in &self.draws {
+            let Some(&(first_instance, count)) = ranges.get(d.group).filter(|r| r.1 > 0) else {
+                continue;
+            };
             let v = &self.variants[d.variant];
             let indices = if d.bark { &v.bark } else { &v.leaves };
             let Some(indices) = indices else { continue };
@@ -568,15 +609,44 @@ impl Renderer {
             // Each group's placements sit contiguously in the one instance buffer.
             pass.set_vertex_buffer(
                 1,
-                instances.slice(d.first_instance * size_of::<InstanceRaw>() as u64..),
+                instances.slice(first_instance * size_of::<InstanceRaw>() as u64..),
             );
-            pass.draw_indexed(d.indices.0..d.indices.1, 0, 0..d.instances);
+            pass.draw_indexed(d.indices.0..d.indices.1, 0, 0..count);
             stats.draws += 1;
-            stats.instances += u64::from(d.instances);
-            stats.triangles += u64::from((d.indices.1 - d.indices.0) / 3) * u64::from(d.instances);
+            stats.instances += u64::from(count);
+            stats.triangles += u64::from((d.indices.1 - d.indices.0) / 3) * u64::from(count);
         }
         stats
     }
+}
+
+/// Appends to `visible` the placements of every group whose bounding sphere touches
+/// `volume` and, seen from `eye` with `pixels_per_radian`, spans at least
+/// [`MIN_PIXELS`]; returns each group's (first, count) in `visible`.
+fn cull(
+    scene: &Scene,
+    volume: &Volume,
+    (eye, pixels_per_radian): (Vec3, f32),
+    visible: &mut Vec<InstanceRaw>,
+) -> Vec<(u64, u32)> {
+    // A sphere of radius r at distance d spans about 2 r / d radians.
+    let min_ratio = 0.5 * MIN_PIXELS / pixels_per_radian.max(1e-6);
+    scene
+        .groups
+        .iter()
+        .map(|g| {
+            let first = visible.len();
+            let (centre, radius) = g.sphere;
+            visible.extend(g.instances.iter().filter(|i| {
+                let [x, y, z, scale] = i.translation_scale;
+                let rotation = Quat::from_array(i.rotation);
+                let world = Vec3::new(x, y, z) + rotation * (centre * scale);
+                let r = radius * scale;
+                volume.touches(world, r) && r >= min_ratio * world.distance(eye)
+            }));
+            (first as u64, (visible.len() - first) as u32)
+        })
+        .collect()
 }
 
 /// A colour and depth target of the given size.

@@ -6,6 +6,8 @@ use sylva::forest::{
     tree_wind,
 };
 use sylva::instancing::Span;
+
+use crate::cull::bounding_sphere;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3};
 use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
 use sylva::turtle::Vertex;
@@ -38,6 +40,9 @@ pub(crate) struct Group {
     pub(crate) variant: usize,
     pub(crate) bark: Span,
     pub(crate) leaves: Span,
+    /// A sphere around the instance's triangles in its own space (centre, radius), with room
+    /// for the wind's sway.
+    pub(crate) sphere: (Vec3, f32),
     pub(crate) instances: Vec<InstanceRaw>,
 }
 
@@ -143,10 +148,18 @@ impl Scene {
                 if instances.is_empty() || (inst.bark.is_empty() && inst.leaves.is_empty()) {
                     continue;
                 }
+                let cache = &v.cache;
+                let corners = cache.bark[inst.bark.range()]
+                    .iter()
+                    .chain(&cache.leaves[inst.leaves.range()])
+                    .filter_map(|&i| cache.vertices.get(i as usize))
+                    .map(|v| Vec3::from(v.position));
+                let (centre, radius) = bounding_sphere(corners);
                 groups.push(Group {
                     variant,
                     bark: inst.bark,
                     leaves: inst.leaves,
+                    sphere: (centre, radius * 1.1 + 0.5),
                     instances,
                 });
             }
@@ -182,6 +195,9 @@ impl Scene {
         self.heightmap.height(x, z)
     }
 }
+
+/// The camera's vertical field of view.
+pub(crate) const FIELD_OF_VIEW_DEGREES: f32 = 60.0;
 
 /// A camera held `height` metres above the terrain.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -256,7 +272,7 @@ impl Camera {
             sylva::terrain::glam::camera::rh::view::look_to_mat4(eye, self.forward(), Vec3::Y);
         // wgpu's clip space is Direct3D's: y up, depth from 0 to 1.
         let proj = sylva::terrain::glam::camera::rh::proj::directx::perspective(
-            60f32.to_radians(),
+            FIELD_OF_VIEW_DEGREES.to_radians(),
             aspect.max(1e-3),
             0.2,
             scene.side * 2.0,

@@ -7,8 +7,10 @@ use sylva::terrain::glam::{Mat4, Vec3};
 /// Side of the shadow map in texels.
 pub(crate) const SHADOW_SIZE: u32 = 2048;
 /// Half the side of the box the shadow map covers, in metres: shadows reach this far around
-/// the point the camera looks at (0.1 m per texel).
+/// the point the camera looks at.
 const HALF_EXTENT: f32 = 100.0;
+/// Metres per shadow-map texel.
+pub(crate) const SHADOW_TEXEL: f32 = 2.0 * HALF_EXTENT / SHADOW_SIZE as f32;
 /// How far the sun's camera stands back from the box's centre; the depth range is twice it.
 const STAND_OFF: f32 = 400.0;
 

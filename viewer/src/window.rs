@@ -12,7 +12,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
 use crate::render::{Mode, Renderer, View, targets};
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
 
 struct Gpu {
     window: Arc<Window>,
@@ -168,13 +168,14 @@ impl App {
         let stats = gpu.renderer.render(
             &gpu.queue,
             &mut encoder,
-            &view,
-            &gpu.depth,
+            (&view, &gpu.depth),
+            &self.scene,
             View {
                 view_proj,
                 eye,
                 forward: self.camera.forward(),
                 mode: Mode::Shaded,
+                pixels_per_radian: gpu.config.height as f32 / FIELD_OF_VIEW_DEGREES.to_radians(),
                 wind: 1.0,
                 time: self.started.elapsed().as_secs_f32(),
             },
