@@ -143,6 +143,28 @@ fn ground(normal: vec3<f32>, height: f32) -> vec3<f32> {
     return mix(mix(mix(grass, soil, soil_w), rock, rock_w), snow_colour, snow_w);
 }
 
+// Value noise on a unit lattice, from a hash of the corners: the ground's fine detail.
+fn hash2(p: vec2<f32>) -> f32 {
+    return fract(sin(dot(p, vec2<f32>(127.1, 311.7))) * 43758.5453);
+}
+
+fn noise(p: vec2<f32>) -> f32 {
+    let i = floor(p);
+    let f = fract(p);
+    let u = f * f * (3.0 - 2.0 * f);
+    let a = hash2(i);
+    let b = hash2(i + vec2<f32>(1.0, 0.0));
+    let c = hash2(i + vec2<f32>(0.0, 1.0));
+    let d = hash2(i + vec2<f32>(1.0, 1.0));
+    return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
+}
+
+// Patches of lighter and darker ground at metre and ten-metre scales, so that the ground
+// does not read as one flat colour up close.
+fn ground_detail(xz: vec2<f32>) -> f32 {
+    return 0.78 + 0.28 * noise(xz * 0.9) + 0.16 * noise(xz * 0.11);
+}
+
 // The sky seen along `dir`: horizon colour low down, zenith colour overhead, a glow around the
 // sun.
 fn sky(dir: vec3<f32>) -> vec3<f32> {
@@ -202,7 +224,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     var albedo = material.colour.rgb * tex.colour * in.tint;
     if (is_terrain()) {
         let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
-        albedo = ground(normalize(in.normal), clamp(height, 0.0, 1.0));
+        albedo = ground(normalize(in.normal), clamp(height, 0.0, 1.0)) * ground_detail(in.world.xz);
     }
     var n = normalize(in.normal);
     if (!front) {
