@@ -2,13 +2,15 @@
 //!
 //! # Crates
 //!
-//! - [`forest`]: species, density management, placement, glTF export.
+//! - [`forest`]: species, density management, placement, glTF export, grown stands.
+//! - [`growth`]: trees grown into their environment in a voxel space (light, collision).
 //! - [`lsys`]: L-system grammars and seeded rewriting.
 //! - [`instancing`]: Kenwood's branch-level instance cache and tree assembly.
 //! - [`turtle`]: 3D turtle interpretation into meshes and skeletons.
 //! - [`terrain`]: diamond-square heightmaps, smoothing, erosion, sampling, export.
 
 pub use sylva_forest as forest;
+pub use sylva_growth as growth;
 pub use sylva_instancing as instancing;
 pub use sylva_lsys as lsys;
 pub use sylva_terrain as terrain;

@@ -33,6 +33,9 @@ pub enum ForestError {
     /// The exporter found something that would make an invalid file, and wrote nothing.
     #[error("refusing to write an invalid glTF file: {0}")]
     InvalidExport(String),
+    /// Growing trees in their environment failed.
+    #[error("growth: {0}")]
+    Growth(#[from] sylva_growth::GrowthError),
     /// Reading or writing a file failed.
     #[error("{path}: {message}")]
     Io {

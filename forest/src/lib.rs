@@ -41,6 +41,7 @@ mod forest;
 mod gltf;
 mod patch;
 mod species;
+mod stand;
 mod stream;
 mod texture;
 mod variety;
@@ -50,9 +51,10 @@ pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
-pub use gltf::{CHUNK_BYTES, GlbStats, GltfOptions, write_glb};
+pub use gltf::{CHUNK_BYTES, GlbStats, GltfOptions, write_glb, write_stand_glb};
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
+pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
 pub use stream::{
     BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
 };

@@ -11,7 +11,10 @@
 
 mod document;
 mod file;
+mod stand;
 mod tangent;
+
+pub use stand::write_stand_glb;
 
 use std::path::{Path, PathBuf};
 

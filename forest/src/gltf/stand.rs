@@ -1,0 +1,296 @@
+//! A grown stand as a binary glTF: one mesh per tree (grown trees share no geometry, so
+//! there is nothing to instance), the terrain, and the species' textures and materials.
+
+use std::path::Path;
+
+use serde_json::{Value, json};
+use sylva_terrain::TerrainMesh;
+use sylva_turtle::{Mesh, Vertex};
+
+use super::document::padding;
+use super::tangent::tangents;
+use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, io_error, temporary_path};
+use crate::error::ForestError;
+use crate::species::Species;
+use crate::stand::GrownStand;
+use crate::texture::{BarkPattern, LeafShape, Texture};
+
+/// The binary buffer and the JSON arrays that point into it.
+#[derive(Debug, Default)]
+struct Builder {
+    bin: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Builder {
+    /// Appends `bytes` (padded to a word) as a buffer view.
+    fn view(&mut self, bytes: &[u8], stride: Option<usize>, target: Option<u32>) -> usize {
+        let mut v = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
+        if let Some(s) = stride {
+            v["byteStride"] = json!(s);
+        }
+        if let Some(t) = target {
+            v["target"] = json!(t);
+        }
+        self.bin.extend_from_slice(bytes);
+        self.bin.resize(self.bin.len() + padding(bytes.len()), 0);
+        self.views.push(v);
+        self.views.len() - 1
+    }
+
+    fn accessor(
+        &mut self,
+        view: usize,
+        offset: usize,
+        component: u32,
+        count: usize,
+        kind: &str,
+    ) -> usize {
+        self.accessors.push(json!({
+            "bufferView": view, "byteOffset": offset, "componentType": component,
+            "count": count, "type": kind,
+        }));
+        self.accessors.len() - 1
+    }
+
+    /// Position (with bounds), normal and uv accessors over `vertices` of `stride` bytes.
+    fn attributes(&mut self, view: usize, positions: &[[f32; 3]]) -> Value {
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        for p in positions {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let n = positions.len();
+        let position = self.accessor(view, 0, FLOAT, n, "VEC3");
+        self.accessors[position]["min"] = json!(lo);
+        self.accessors[position]["max"] = json!(hi);
+        let normal = self.accessor(view, 12, FLOAT, n, "VEC3");
+        let uv = self.accessor(view, 24, FLOAT, n, "VEC2");
+        json!({"POSITION": position, "NORMAL": normal, "TEXCOORD_0": uv})
+    }
+
+    fn indices(&mut self, indices: &[u32]) -> Option<usize> {
+        (!indices.is_empty()).then(|| {
+            let view = self.view(
+                bytemuck::cast_slice(indices),
+                None,
+                Some(ELEMENT_ARRAY_BUFFER),
+            );
+            self.accessor(view, 0, UNSIGNED_INT, indices.len(), "SCALAR")
+        })
+    }
+
+    /// A tree mesh's primitives: bark and leaves over one vertex buffer with wind data and
+    /// tangents.
+    fn tree(&mut self, mesh: &Mesh, bark: usize, leaves: usize) -> Vec<Value> {
+        if mesh.vertices.is_empty() {
+            return Vec::new();
+        }
+        let stride = size_of::<Vertex>();
+        let view = self.view(
+            bytemuck::cast_slice(&mesh.vertices),
+            Some(stride),
+            Some(ARRAY_BUFFER),
+        );
+        let positions: Vec<[f32; 3]> = mesh.vertices.iter().map(|v| v.position).collect();
+        let mut attributes = self.attributes(view, &positions);
+        let wind = self.accessor(view, 32, FLOAT, mesh.vertices.len(), "VEC4");
+        let t = tangents(&mesh.vertices, &mesh.bark);
+        let tview = self.view(bytemuck::cast_slice(&t), None, Some(ARRAY_BUFFER));
+        let tangent = self.accessor(tview, 0, FLOAT, t.len(), "VEC4");
+        attributes["_WIND"] = json!(wind);
+        attributes["TANGENT"] = json!(tangent);
+        let mut primitives = Vec::new();
+        for (indices, material) in [(&mesh.bark, bark), (&mesh.leaves, leaves)] {
+            if let Some(acc) = self.indices(indices) {
+                primitives
+                    .push(json!({"attributes": attributes, "indices": acc, "material": material}));
+            }
+        }
+        primitives
+    }
+}
+
+/// Writes `stand` (meshed with its `species`' turtle settings) and optionally `terrain` as a
+/// binary glTF at `path`: one node per tree, bark with colour and normal textures, leaf cards
+/// alpha-masked and double-sided, the same `_WIND` vertex attribute as forests. The file is
+/// assembled in memory (a stand is tens of trees) and written under a temporary name, then
+/// renamed. Returns the file's size.
+pub fn write_stand_glb(
+    stand: &GrownStand,
+    species: &[Species],
+    terrain: Option<&TerrainMesh>,
+    path: &Path,
+) -> Result<usize, ForestError> {
+    let mut b = Builder::default();
+    let mut nodes = Vec::new();
+    let mut meshes = Vec::new();
+    let mut materials = Vec::new();
+    if let Some(t) = terrain.filter(|t| !t.indices.is_empty()) {
+        let view = b.view(
+            bytemuck::cast_slice(&t.vertices),
+            Some(32),
+            Some(ARRAY_BUFFER),
+        );
+        let positions: Vec<[f32; 3]> = t.vertices.iter().map(|v| v.position).collect();
+        let mut attributes = b.attributes(view, &positions);
+        let colours = t.ground_colours();
+        let cview = b.view(bytemuck::cast_slice(&colours), None, Some(ARRAY_BUFFER));
+        attributes["COLOR_0"] = json!(b.accessor(cview, 0, FLOAT, colours.len(), "VEC3"));
+        let indices = b.indices(&t.indices);
+        materials.push(json!({"name": "terrain", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.9}}));
+        meshes.push(json!({"name": "terrain", "primitives": [{"attributes": attributes, "indices": indices, "material": 0}]}));
+        nodes.push(json!({"name": "terrain", "mesh": 0}));
+    }
+    // Obstacles as grey rock, flat-shaded (no normals: clients shade each face flat).
+    if !stand.obstacles.is_empty() {
+        materials.push(json!({"name": "rock", "pbrMetallicRoughness": {"baseColorFactor": [0.35, 0.34, 0.32, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.95}}));
+        let rock = materials.len() - 1;
+        for (k, (positions, indices)) in stand.obstacles.iter().enumerate() {
+            let valid = indices.iter().all(|&i| (i as usize) < positions.len())
+                && positions.iter().all(|p| p.is_finite());
+            if positions.is_empty() || indices.len() < 3 || !valid {
+                continue;
+            }
+            let points: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
+            let view = b.view(bytemuck::cast_slice(&points), None, Some(ARRAY_BUFFER));
+            let position = b.accessor(view, 0, FLOAT, points.len(), "VEC3");
+            let (lo, hi) = points.iter().fold(
+                ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
+                |(lo, hi), p| {
+                    (
+                        [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                        [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+                    )
+                },
+            );
+            b.accessors[position]["min"] = json!(lo);
+            b.accessors[position]["max"] = json!(hi);
+            let whole = indices.len() / 3 * 3;
+            let acc = b.indices(&indices[..whole]);
+            meshes.push(json!({"name": format!("obstacle {k}"), "primitives": [{"attributes": {"POSITION": position}, "indices": acc, "material": rock}]}));
+            nodes.push(json!({"name": format!("obstacle {k}"), "mesh": meshes.len() - 1}));
+        }
+    }
+    // Textures: one per leaf shape and per bark pattern in use, with the barks' normal maps.
+    let used: Vec<usize> = {
+        let mut u: Vec<usize> = stand.trees.iter().map(|t| t.0).collect();
+        u.sort_unstable();
+        u.dedup();
+        u
+    };
+    let mut images: Vec<Vec<u8>> = Vec::new();
+    let mut textures = Vec::new();
+    let mut texture_of = |image: Vec<u8>, tiled: bool, images: &mut Vec<Vec<u8>>| {
+        images.push(image);
+        textures.push(json!({"sampler": usize::from(tiled), "source": images.len() - 1}));
+        textures.len() - 1
+    };
+    let mut leaf_textures: Vec<(LeafShape, usize)> = Vec::new();
+    let mut bark_textures: Vec<(BarkPattern, usize, usize)> = Vec::new();
+    let mut species_materials = vec![(0usize, 0usize); species.len()];
+    for &s in &used {
+        let sp = species.get(s).ok_or_else(|| {
+            ForestError::InvalidExport(format!("a tree of species {s}, of {}", species.len()))
+        })?;
+        let leaf = match leaf_textures.iter().find(|l| l.0 == sp.leaf_shape) {
+            Some(l) => l.1,
+            None => {
+                let t = texture_of(Texture::leaf(sp.leaf_shape).png(), false, &mut images);
+                leaf_textures.push((sp.leaf_shape, t));
+                t
+            }
+        };
+        let (colour, normal) = match bark_textures.iter().find(|t| t.0 == sp.bark_pattern) {
+            Some(t) => (t.1, t.2),
+            None => {
+                let c = texture_of(Texture::bark(sp.bark_pattern).png(), true, &mut images);
+                let n = texture_of(
+                    Texture::bark_normal(sp.bark_pattern).png(),
+                    true,
+                    &mut images,
+                );
+                bark_textures.push((sp.bark_pattern, c, n));
+                (c, n)
+            }
+        };
+        let [r, g, bl] = sp.bark;
+        materials.push(json!({
+            "name": format!("{} bark", sp.name),
+            "pbrMetallicRoughness": {"baseColorFactor": [r, g, bl, 1.0], "baseColorTexture": {"index": colour}, "metallicFactor": 0.0, "roughnessFactor": 0.9},
+            "normalTexture": {"index": normal},
+        }));
+        let [r, g, bl] = sp.leaf;
+        materials.push(json!({
+            "name": format!("{} leaves", sp.name),
+            "pbrMetallicRoughness": {"baseColorFactor": [r, g, bl, 1.0], "baseColorTexture": {"index": leaf}, "metallicFactor": 0.0, "roughnessFactor": 0.9},
+            "alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": true,
+        }));
+        species_materials[s] = (materials.len() - 2, materials.len() - 1);
+    }
+    for (k, (s, mesh)) in stand.meshes(species).iter().enumerate() {
+        let (bark, leaves) = species_materials[*s];
+        let primitives = b.tree(mesh, bark, leaves);
+        if primitives.is_empty() {
+            continue;
+        }
+        meshes.push(json!({"name": format!("{} {k}", species[*s].name), "primitives": primitives}));
+        nodes.push(json!({"name": format!("{} {k}", species[*s].name), "mesh": meshes.len() - 1}));
+    }
+    let image_views: Vec<Value> = images
+        .iter()
+        .map(|png| json!({"bufferView": b.view(png, None, None), "mimeType": "image/png"}))
+        .collect();
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": "sylva"},
+        "scene": 0,
+        "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": materials,
+        "accessors": b.accessors,
+        "bufferViews": b.views,
+        "buffers": [{"byteLength": b.bin.len()}],
+    });
+    if !image_views.is_empty() {
+        doc["images"] = json!(image_views);
+        doc["textures"] = json!(textures);
+        doc["samplers"] = json!([
+            {"magFilter": 9729, "minFilter": 9987, "wrapS": 33071, "wrapT": 33071},
+            {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497},
+        ]);
+    }
+    let mut text =
+        serde_json::to_string(&doc).map_err(|e| ForestError::InvalidExport(e.to_string()))?;
+    while !text.len().is_multiple_of(4) {
+        text.push(' ');
+    }
+    let total = 12 + 8 + text.len() + 8 + b.bin.len();
+    let total32 = u32::try_from(total).map_err(|_| {
+        ForestError::InvalidExport(format!("{total} bytes is beyond the 4 GiB a GLB can hold"))
+    })?;
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&total32.to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(text.as_bytes());
+    out.extend_from_slice(&(b.bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&b.bin);
+    let temporary = temporary_path(path)?;
+    std::fs::write(&temporary, &out).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io_error(path, &e)
+    })?;
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io_error(path, &e)
+    })?;
+    Ok(total)
+}
