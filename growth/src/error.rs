@@ -16,14 +16,17 @@ pub enum GrowthError {
     /// A grammar failed to derive.
     #[error("grammar: {0}")]
     Grammar(#[from] sylva_lsys::DeriveError),
-    /// A mesh file could not be read; the position is 1-based.
+    /// A mesh file has an error at a line (1-based).
     #[error("{file}:{line}: {message}")]
     MeshFile {
         /// The file.
         file: String,
-        /// Line of the problem (0 when the file itself could not be read).
+        /// Line of the problem.
         line: usize,
         /// What is wrong.
         message: String,
     },
+    /// A file could not be read (the message names it).
+    #[error("{0}")]
+    Io(String),
 }

@@ -21,12 +21,8 @@ pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 pub fn read_obj(path: impl AsRef<Path>) -> Result<(Vec<Vec3>, Vec<u32>), GrowthError> {
     let path = path.as_ref();
     let name = path.display().to_string();
-    let text =
-        sylva_base::text_file::read(path, MAX_OBJ_BYTES).map_err(|e| GrowthError::MeshFile {
-            file: name.clone(),
-            line: 0,
-            message: e.to_string(),
-        })?;
+    let text = sylva_base::text_file::read(path, MAX_OBJ_BYTES)
+        .map_err(|e| GrowthError::Io(e.to_string()))?;
     parse_obj(&text, &name)
 }
 
