@@ -149,6 +149,49 @@ fn buffer(
     })
 }
 
+/// A pipeline drawing the terrain and the instanced trees: both faces (leaves are one-sided
+/// quads), depth tested and written, into `target` (none for the depth-only shadow map).
+fn scene_pipeline(
+    device: &wgpu::Device,
+    shader: &wgpu::ShaderModule,
+    layout: &wgpu::PipelineLayout,
+    (vertex, fragment): (&str, &str),
+    target: Option<wgpu::TextureFormat>,
+    bias: wgpu::DepthBiasState,
+) -> wgpu::RenderPipeline {
+    let targets = [target.map(Into::into)];
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(fragment),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: shader,
+            entry_point: Some(vertex),
+            compilation_options: Default::default(),
+            buffers: &vertex_layouts(),
+        },
+        primitive: wgpu::PrimitiveState {
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias,
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: shader,
+            entry_point: Some(fragment),
+            compilation_options: Default::default(),
+            targets: if target.is_some() { &targets } else { &[] },
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 /// An index buffer, or none for no indices (wgpu refuses empty buffers for drawing).
 fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<wgpu::Buffer> {
     (!indices.is_empty()).then(|| {
@@ -208,41 +251,20 @@ impl Renderer {
             ],
             immediate_size: 0,
         });
-        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shadow"),
-            layout: Some(&shadow_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_shadow"),
-                compilation_options: Default::default(),
-                buffers: &vertex_layouts(),
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                // Against shadow acne on surfaces lit at a grazing angle.
-                bias: wgpu::DepthBiasState {
-                    constant: 2,
-                    slope_scale: 2.0,
-                    clamp: 0.0,
-                },
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_shadow"),
-                compilation_options: Default::default(),
-                targets: &[],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        // Against shadow acne on surfaces lit at a grazing angle.
+        let acne = wgpu::DepthBiasState {
+            constant: 2,
+            slope_scale: 2.0,
+            clamp: 0.0,
+        };
+        let shadow_pipeline = scene_pipeline(
+            device,
+            &shader,
+            &shadow_layout,
+            ("vs_shadow", "fs_shadow"),
+            None,
+            acne,
+        );
         // The sky: drawn first, behind everything, without touching depth.
         let sky = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("sky"),
@@ -271,38 +293,15 @@ impl Renderer {
             multiview_mask: None,
             cache: None,
         });
-        let pipeline = |entry: &str| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &vertex_layouts(),
-                },
-                // Leaves are one-sided quads and polygons: draw both faces.
-                primitive: wgpu::PrimitiveState {
-                    cull_mode: None,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    targets: &[Some(format.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+        let pipeline = |fragment: &str| {
+            scene_pipeline(
+                device,
+                &shader,
+                &layout,
+                ("vs_main", fragment),
+                Some(format),
+                Default::default(),
+            )
         };
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),

@@ -4,6 +4,8 @@
 use sylva::terrain::glam::camera::rh::{proj::directx, view};
 use sylva::terrain::glam::{Mat4, Vec3};
 
+use crate::textures::sampled_texture;
+
 /// Side of the shadow map in texels.
 pub(crate) const SHADOW_SIZE: u32 = 2048;
 /// Half the side of the box the shadow map covers, in metres: shadows reach this far around
@@ -46,41 +48,17 @@ impl ShadowMap {
             compare: Some(wgpu::CompareFunction::LessEqual),
             ..Default::default()
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("shadow"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    count: None,
-                },
-            ],
-        });
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("shadow"),
-            layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&sampler),
-                },
-            ],
-        });
+        let (layout, group) = sampled_texture(
+            device,
+            "shadow",
+            &view,
+            &sampler,
+            (
+                wgpu::TextureSampleType::Depth,
+                wgpu::TextureViewDimension::D2,
+                wgpu::SamplerBindingType::Comparison,
+            ),
+        );
         ShadowMap {
             view,
             layout,

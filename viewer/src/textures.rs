@@ -86,15 +86,41 @@ pub(crate) fn textures(
         min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
     });
+    sampled_texture(
+        device,
+        "textures",
+        &view,
+        &sampler,
+        (
+            wgpu::TextureSampleType::Float { filterable: true },
+            wgpu::TextureViewDimension::D2Array,
+            wgpu::SamplerBindingType::Filtering,
+        ),
+    )
+}
+
+/// A bind group of a texture view (binding 0) and its sampler (binding 1), read by the
+/// fragment shader, with its layout.
+pub(crate) fn sampled_texture(
+    device: &wgpu::Device,
+    label: &str,
+    view: &wgpu::TextureView,
+    sampler: &wgpu::Sampler,
+    (sample_type, view_dimension, sampler_type): (
+        wgpu::TextureSampleType,
+        wgpu::TextureViewDimension,
+        wgpu::SamplerBindingType,
+    ),
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("textures"),
+        label: Some(label),
         entries: &[
             wgpu::BindGroupLayoutEntry {
                 binding: 0,
                 visibility: wgpu::ShaderStages::FRAGMENT,
                 ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    sample_type,
+                    view_dimension,
                     multisampled: false,
                 },
                 count: None,
@@ -102,22 +128,22 @@ pub(crate) fn textures(
             wgpu::BindGroupLayoutEntry {
                 binding: 1,
                 visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ty: wgpu::BindingType::Sampler(sampler_type),
                 count: None,
             },
         ],
     });
     let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("textures"),
+        label: Some(label),
         layout: &layout,
         entries: &[
             wgpu::BindGroupEntry {
                 binding: 0,
-                resource: wgpu::BindingResource::TextureView(&view),
+                resource: wgpu::BindingResource::TextureView(view),
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: wgpu::BindingResource::Sampler(&sampler),
+                resource: wgpu::BindingResource::Sampler(sampler),
             },
         ],
     });
