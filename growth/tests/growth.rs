@@ -43,6 +43,21 @@ fn quad(grid: &mut VoxelGrid, corners: [Vec3; 4]) {
     voxelise_triangles(grid, &corners, &[0, 1, 2, 0, 2, 3]);
 }
 
+/// The space with a plate over all of it at height `y`.
+fn under_plate(y: f32) -> VoxelGrid {
+    let mut g = space();
+    quad(
+        &mut g,
+        [
+            Vec3::new(-8.0, y, -8.0),
+            Vec3::new(8.0, y, -8.0),
+            Vec3::new(8.0, y, 8.0),
+            Vec3::new(-8.0, y, 8.0),
+        ],
+    );
+    g
+}
+
 fn end(s: &sylva_growth::GrownSegment) -> Vec3 {
     s.frame.position + s.frame.heading() * s.length
 }
@@ -94,19 +109,7 @@ fn trees_planted_close_grow_apart() {
 
 #[test]
 fn under_a_canopy_the_shade_tolerant_species_grows_on_and_the_pioneer_stops() {
-    let canopy = || {
-        let mut g = space();
-        quad(
-            &mut g,
-            [
-                Vec3::new(-8.0, 4.0, -8.0),
-                Vec3::new(8.0, 4.0, -8.0),
-                Vec3::new(8.0, 4.0, 8.0),
-                Vec3::new(-8.0, 4.0, 8.0),
-            ],
-        );
-        g
-    };
+    let canopy = || under_plate(4.0);
     let size = |grid: VoxelGrid, response: Response| {
         grow(grid, vec![oak(Vec3::ZERO, 8, 7, response)])[0]
             .segments
@@ -165,17 +168,7 @@ fn a_grammar_can_branch_only_where_there_is_light() {
         response: Response::shade_tolerant(),
     };
     let open = grow(space(), vec![tree(Vec3::ZERO)]);
-    let mut shaded = space();
-    quad(
-        &mut shaded,
-        [
-            Vec3::new(-8.0, 1.0, -8.0),
-            Vec3::new(8.0, 1.0, -8.0),
-            Vec3::new(8.0, 1.0, 8.0),
-            Vec3::new(-8.0, 1.0, 8.0),
-        ],
-    );
-    let dark = grow(shaded, vec![tree(Vec3::new(0.0, 0.0, 0.0))]);
+    let dark = grow(under_plate(1.0), vec![tree(Vec3::ZERO)]);
     let (o, d) = (open[0].segments.len(), dark[0].segments.len());
     eprintln!("segments: {o} in the open, {d} under a plate");
     // In the open every generation forks (up to 2^6 - 1 segments, less any the crowding

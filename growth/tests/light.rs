@@ -24,6 +24,19 @@ fn grid() -> VoxelGrid {
     .unwrap()
 }
 
+/// The grid with every voxel beyond x = 0.1 occupied.
+fn half_space() -> VoxelGrid {
+    let mut g = grid();
+    for z in 0..200 {
+        for y in 0..100 {
+            for x in 101..200 {
+                g.occupy(UVec3::new(x, y, z));
+            }
+        }
+    }
+    g
+}
+
 #[test]
 fn open_sky_gives_one() {
     let l = sky(256, 1).light_at(&grid(), Vec3::new(0.0, 1.0, 0.0));
@@ -52,14 +65,7 @@ fn under_the_middle_of_a_large_plate_there_is_no_direct_and_almost_no_ambient_li
 /// so 1,024 rays give 0.5 within 4 sigma = 0.0625 (a false failure once in 15,000 seeds).
 #[test]
 fn a_half_space_hides_half_the_sky() {
-    let mut g = grid();
-    for z in 0..200 {
-        for y in 0..100 {
-            for x in 101..200 {
-                g.occupy(UVec3::new(x, y, z));
-            }
-        }
-    }
+    let g = half_space();
     let n = 1024;
     let sigma = (0.25f32 / n as f32).sqrt();
     for seed in 0..5 {
@@ -76,14 +82,7 @@ fn a_half_space_hides_half_the_sky() {
 /// standard deviation over seeds by about four.
 #[test]
 fn the_spread_falls_as_one_over_the_square_root_of_the_rays() {
-    let mut g = grid();
-    for z in 0..200 {
-        for y in 0..100 {
-            for x in 101..200 {
-                g.occupy(UVec3::new(x, y, z));
-            }
-        }
-    }
+    let g = half_space();
     let spread = |rays: u32| {
         let v: Vec<f32> = (0..200)
             .map(|seed| {
