@@ -488,7 +488,6 @@ impl Stand {
         let spec = &self.trees[tree];
         let response = spec.response;
         let radius = (apices[a].width * 0.5).max(spec.turtle.min_radius);
-        let reach = radius + grid.voxel_size() * 0.5 * 3f32.sqrt();
         let bud = bud(&apices[a], spec, grid);
         let light = sky.light_at(grid, bud);
         stats.samples += 1;
@@ -522,9 +521,17 @@ impl Stand {
             ap.frame.bend_towards(t.direction, t.susceptibility);
         }
         let start = ap.frame.position;
+        // A segment continuing its axis starts at its parent's end radius: the tube it
+        // sweeps is as wide as the wider end.
+        let start_radius = match (ap.same_axis, ap.last) {
+            (true, Some(last)) => grown[tree].segments[last as usize].end_radius,
+            _ => radius,
+        };
+        let sweep = start_radius.max(radius);
         // The start lies inside the voxels of the segment it grows from and of its siblings
         // at the same joint: against trees, voxels within two conservative radii of the
         // joint do not count; against the obstacles, everything does.
+        let reach = sweep + grid.voxel_size() * 0.5 * 3f32.sqrt();
         let clearance = 2.0 * reach + grid.voxel_size() * 0.5;
         let obstacles = &self.obstacles;
         // A trunk's first segment is rooted: it may start in the ground's voxels.
@@ -532,11 +539,11 @@ impl Stand {
         let free = |grid: &VoxelGrid, heading: Vec3| {
             let end = start + heading * length;
             let obstacles_free = if rooted {
-                capsule_is_free_beyond(obstacles, start, end, radius, clearance)
+                capsule_is_free_beyond(obstacles, start, end, sweep, clearance)
             } else {
-                capsule_is_free(obstacles, start, end, radius)
+                capsule_is_free(obstacles, start, end, sweep)
             };
-            obstacles_free && capsule_is_free_beyond(grid, start, end, radius, clearance)
+            obstacles_free && capsule_is_free_beyond(grid, start, end, sweep, clearance)
         };
         let mut heading = ap.frame.heading();
         if !free(grid, heading) {
@@ -563,16 +570,7 @@ impl Stand {
         }
         let ap = &mut apices[a];
         let end = start + heading * length;
-        voxelise_capsule(
-            grid,
-            start + heading * clearance.min(length * 0.5),
-            end,
-            radius,
-        );
-        let start_radius = match (ap.same_axis, ap.last) {
-            (true, Some(last)) => grown[tree].segments[last as usize].end_radius,
-            _ => radius,
-        };
+        voxelise_capsule(grid, start, end, sweep);
         let id = grown[tree].segments.len() as u32;
         grown[tree].segments.push(GrownSegment {
             frame: ap.frame,
