@@ -44,6 +44,7 @@ mod species;
 mod stand;
 mod stream;
 mod texture;
+mod tiles;
 mod variety;
 
 pub use density::{Candidate, DensityModel, Rect};
@@ -51,7 +52,9 @@ pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
-pub use gltf::{CHUNK_BYTES, GlbStats, GltfOptions, write_glb, write_stand_glb};
+pub use gltf::{
+    CHUNK_BYTES, GlbStats, GltfOptions, write_glb, write_shared_geometry, write_stand_glb,
+};
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
@@ -59,4 +62,8 @@ pub use stream::{
     BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
 };
 pub use texture::{BarkPattern, LeafShape, TEXTURE_SIZE, Texture};
+pub use tiles::{
+    Level, MAX_TILES, TileId, TileScheme, TileStats, TilesetOptions, tile_path, write_tile,
+    write_tileset,
+};
 pub use variety::{tree_tint, tree_wind};

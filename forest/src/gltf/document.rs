@@ -6,16 +6,16 @@ use std::fmt::Write as _;
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
+use super::shared::{self, SharedLayout};
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfOptions, Node, UNSIGNED_INT};
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
-use crate::texture::{BarkPattern, LeafShape, Texture};
 
 /// The JSON chunk and the binary layout, decided before any byte is written.
 #[derive(Debug)]
 pub(super) struct Document {
     pub(super) json: String,
-    /// Variants with at least one node, in order.
+    /// Variants whose buffers this file embeds, in order (none when they are shared).
     pub(super) used_variants: Vec<usize>,
     /// The leaf textures as PNG, in layout order after the cache buffers.
     pub(super) images: Vec<Vec<u8>>,
@@ -45,7 +45,20 @@ impl Arrays {
         stride: Option<u32>,
         target: Option<u32>,
     ) -> usize {
-        let mut v = format!("{{\"buffer\":0,\"byteOffset\":{offset},\"byteLength\":{length}");
+        self.view_in(0, offset, length, stride, target)
+    }
+
+    /// A view into buffer `buffer`: 0 is the GLB's own, 1 the shared geometry file.
+    fn view_in(
+        &mut self,
+        buffer: u32,
+        offset: usize,
+        length: usize,
+        stride: Option<u32>,
+        target: Option<u32>,
+    ) -> usize {
+        let mut v =
+            format!("{{\"buffer\":{buffer},\"byteOffset\":{offset},\"byteLength\":{length}");
         if let Some(s) = stride {
             let _ = write!(v, ",\"byteStride\":{s}");
         }
@@ -218,48 +231,72 @@ impl Document {
         let mut used_variants: Vec<usize> = nodes.iter().map(|n| n.variant).collect();
         used_variants.dedup();
         let mut shared = vec![None; variants.len()];
-        // One texture per leaf shape in use, in order of first use; its image goes after the
-        // cache buffers.
-        let mut shapes: Vec<LeafShape> = Vec::new();
-        for &v in &used_variants {
-            let shape = species[variants[v].species].leaf_shape;
-            if !shapes.contains(&shape) {
-                shapes.push(shape);
+        // Geometry shared with other files (tiles of one world) lives in buffer 1, laid out
+        // for every variant and texture of the world; otherwise the used variants' buffers
+        // and textures follow the terrain in this file.
+        let shared_layout = options
+            .shared_geometry
+            .as_ref()
+            .map(|uri| (uri, SharedLayout::of(builder)));
+        // One texture per leaf shape, then bark colour and normal map per pattern; images in
+        // that order.
+        let (shapes, patterns) = match &shared_layout {
+            Some((_, layout)) => (layout.shapes.clone(), layout.patterns.clone()),
+            None => {
+                let (mut shapes, mut patterns) = (Vec::new(), Vec::new());
+                for &v in &used_variants {
+                    let s = &species[variants[v].species];
+                    if !shapes.contains(&s.leaf_shape) {
+                        shapes.push(s.leaf_shape);
+                    }
+                    if !patterns.contains(&s.bark_pattern) {
+                        patterns.push(s.bark_pattern);
+                    }
+                }
+                (shapes, patterns)
             }
-        }
-        // Then one bark texture per pattern in use, tiling with their own sampler.
-        let mut images: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
-        let mut patterns: Vec<BarkPattern> = Vec::new();
-        for &v in &used_variants {
-            let pattern = species[variants[v].species].bark_pattern;
-            if !patterns.contains(&pattern) {
-                patterns.push(pattern);
-            }
-        }
-        let first_bark = images.len();
-        images.extend(patterns.iter().map(|&p| Texture::bark(p).png()));
-        let first_normal = images.len();
-        images.extend(patterns.iter().map(|&p| Texture::bark_normal(p).png()));
+        };
+        let first_bark = shapes.len();
+        let first_normal = first_bark + patterns.len();
+        let images: Vec<Vec<u8>> = match &shared_layout {
+            Some(_) => Vec::new(),
+            None => shared::images(&shapes, &patterns),
+        };
         for &v in &used_variants {
             let variant = &variants[v];
             let cache = &variant.cache;
             let vbytes = size_of_val(cache.vertices.as_slice());
-            let stride = size_of::<Vertex>() as u32;
-            let view = a.view(section(vbytes).0, vbytes, Some(stride), Some(ARRAY_BUFFER));
             let tbytes = 16 * cache.vertices.len();
-            let tangents = a.view(section(tbytes).0, tbytes, None, Some(ARRAY_BUFFER));
+            let (bbytes, lbytes) = (4 * cache.bark.len(), 4 * cache.leaves.len());
+            // Where the four buffers are: (buffer, offsets).
+            let (buffer, at) = match &shared_layout {
+                Some((_, layout)) => {
+                    let s = layout.variants[v];
+                    (1, [s.vertices, s.tangents, s.bark, s.leaves])
+                }
+                None => (
+                    0,
+                    [
+                        section(vbytes).0,
+                        section(tbytes).0,
+                        section(bbytes).0,
+                        section(lbytes).0,
+                    ],
+                ),
+            };
+            let stride = size_of::<Vertex>() as u32;
+            let view = a.view_in(buffer, at[0], vbytes, Some(stride), Some(ARRAY_BUFFER));
+            let tangents = a.view_in(buffer, at[1], tbytes, None, Some(ARRAY_BUFFER));
             let attributes = a.vertex_attributes(
                 view,
                 cache.vertices.iter().map(|v| v.position),
                 Some(tangents),
             );
             let index_view = |a: &mut Arrays, at: usize, len: usize| {
-                (len > 0).then(|| a.view(at, 4 * len, None, Some(ELEMENT_ARRAY_BUFFER)))
+                (len > 0).then(|| a.view_in(buffer, at, len, None, Some(ELEMENT_ARRAY_BUFFER)))
             };
-            let bark_at = section(4 * cache.bark.len()).0;
-            let bark = index_view(&mut a, bark_at, cache.bark.len());
-            let leaves_at = section(4 * cache.leaves.len()).0;
-            let leaves = index_view(&mut a, leaves_at, cache.leaves.len());
+            let bark = index_view(&mut a, at[2], bbytes);
+            let leaves = index_view(&mut a, at[3], lbytes);
             let s = &species[variant.species];
             let pattern = patterns.iter().position(|&p| p == s.bark_pattern);
             let bark_material = a.material(
@@ -283,9 +320,18 @@ impl Document {
             shared[v] = Some((attributes, bark, leaves, bark_material, leaf_material));
         }
         let mut image_views = Vec::new();
-        for image in &images {
-            let at = section(image.len() + padding(image.len())).0;
-            image_views.push(a.view(at, image.len(), None, None));
+        match &shared_layout {
+            Some((_, layout)) => {
+                for &(at, len) in &layout.images {
+                    image_views.push(a.view_in(1, at, len, None, None));
+                }
+            }
+            None => {
+                for image in &images {
+                    let at = section(image.len() + padding(image.len())).0;
+                    image_views.push(a.view(at, image.len(), None, None));
+                }
+            }
         }
         let placement_base = section(0).0;
         let t_view = a.view(section(12 * placements).0, 12 * placements, None, None);
@@ -390,8 +436,20 @@ impl Document {
                 textures.join(",")
             );
         }
-        if bin_len > 0 {
-            let _ = write!(json, ",\"buffers\":[{{\"byteLength\":{bin_len}}}]");
+        match &shared_layout {
+            Some((uri, layout)) => {
+                let _ = write!(
+                    json,
+                    ",\"buffers\":[{{\"byteLength\":{}}},{{\"uri\":{},\"byteLength\":{}}}]",
+                    bin_len.max(4),
+                    quoted(uri),
+                    layout.len
+                );
+            }
+            None if bin_len > 0 => {
+                let _ = write!(json, ",\"buffers\":[{{\"byteLength\":{bin_len}}}]");
+            }
+            None => {}
         }
         if !nodes.is_empty() {
             json.push_str(",\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
@@ -404,7 +462,11 @@ impl Document {
         Ok(Document {
             total: 12 + 8 + json.len() + bin_chunk,
             json,
-            used_variants,
+            used_variants: if shared_layout.is_some() {
+                Vec::new()
+            } else {
+                used_variants
+            },
             images,
             terrain_colours,
             placement_base,

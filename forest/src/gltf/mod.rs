@@ -9,11 +9,16 @@
 //! The file is written beside its destination under a temporary name and renamed when
 //! complete, so an error (a bad path, a full disk) never leaves a half-written file.
 
+mod coarse;
 mod document;
 mod file;
+mod json_glb;
+mod shared;
 mod stand;
 mod tangent;
 
+pub(crate) use coarse::write_coarse_glb;
+pub use shared::write_shared_geometry;
 pub use stand::write_stand_glb;
 
 use std::path::{Path, PathBuf};
@@ -41,6 +46,10 @@ pub struct GltfOptions {
     /// worth is always gathered). Smaller means less memory and more passes; the file is the
     /// same. Default [`CHUNK_BYTES`].
     pub chunk_bytes: usize,
+    /// The URI (relative to the GLB) of a file written by [`write_shared_geometry`] for the
+    /// same builder: when set, the GLB refers to that file's cache buffers and textures as an
+    /// external buffer instead of embedding them, as the tiles of one world do.
+    pub shared_geometry: Option<String>,
 }
 
 impl Default for GltfOptions {
@@ -49,6 +58,7 @@ impl Default for GltfOptions {
             terrain_colour: [1.0, 1.0, 1.0],
             roughness: 0.9,
             chunk_bytes: CHUNK_BYTES,
+            shared_geometry: None,
         }
     }
 }

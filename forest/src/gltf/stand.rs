@@ -5,115 +5,13 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 use sylva_terrain::TerrainMesh;
-use sylva_turtle::{Mesh, Vertex};
 
-use super::document::padding;
-use super::tangent::tangents;
-use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, io_error, temporary_path};
+use super::json_glb::{Builder, write_glb_file};
+use super::{ARRAY_BUFFER, FLOAT};
 use crate::error::ForestError;
 use crate::species::Species;
 use crate::stand::GrownStand;
 use crate::texture::{BarkPattern, LeafShape, Texture};
-
-/// The binary buffer and the JSON arrays that point into it.
-#[derive(Debug, Default)]
-struct Builder {
-    bin: Vec<u8>,
-    views: Vec<Value>,
-    accessors: Vec<Value>,
-}
-
-impl Builder {
-    /// Appends `bytes` (padded to a word) as a buffer view.
-    fn view(&mut self, bytes: &[u8], stride: Option<usize>, target: Option<u32>) -> usize {
-        let mut v = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
-        if let Some(s) = stride {
-            v["byteStride"] = json!(s);
-        }
-        if let Some(t) = target {
-            v["target"] = json!(t);
-        }
-        self.bin.extend_from_slice(bytes);
-        self.bin.resize(self.bin.len() + padding(bytes.len()), 0);
-        self.views.push(v);
-        self.views.len() - 1
-    }
-
-    fn accessor(
-        &mut self,
-        view: usize,
-        offset: usize,
-        component: u32,
-        count: usize,
-        kind: &str,
-    ) -> usize {
-        self.accessors.push(json!({
-            "bufferView": view, "byteOffset": offset, "componentType": component,
-            "count": count, "type": kind,
-        }));
-        self.accessors.len() - 1
-    }
-
-    /// Position (with bounds), normal and uv accessors over `vertices` of `stride` bytes.
-    fn attributes(&mut self, view: usize, positions: &[[f32; 3]]) -> Value {
-        let mut lo = [f32::INFINITY; 3];
-        let mut hi = [f32::NEG_INFINITY; 3];
-        for p in positions {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let n = positions.len();
-        let position = self.accessor(view, 0, FLOAT, n, "VEC3");
-        self.accessors[position]["min"] = json!(lo);
-        self.accessors[position]["max"] = json!(hi);
-        let normal = self.accessor(view, 12, FLOAT, n, "VEC3");
-        let uv = self.accessor(view, 24, FLOAT, n, "VEC2");
-        json!({"POSITION": position, "NORMAL": normal, "TEXCOORD_0": uv})
-    }
-
-    fn indices(&mut self, indices: &[u32]) -> Option<usize> {
-        (!indices.is_empty()).then(|| {
-            let view = self.view(
-                bytemuck::cast_slice(indices),
-                None,
-                Some(ELEMENT_ARRAY_BUFFER),
-            );
-            self.accessor(view, 0, UNSIGNED_INT, indices.len(), "SCALAR")
-        })
-    }
-
-    /// A tree mesh's primitives: bark and leaves over one vertex buffer with wind data and
-    /// tangents.
-    fn tree(&mut self, mesh: &Mesh, bark: usize, leaves: usize) -> Vec<Value> {
-        if mesh.vertices.is_empty() {
-            return Vec::new();
-        }
-        let stride = size_of::<Vertex>();
-        let view = self.view(
-            bytemuck::cast_slice(&mesh.vertices),
-            Some(stride),
-            Some(ARRAY_BUFFER),
-        );
-        let positions: Vec<[f32; 3]> = mesh.vertices.iter().map(|v| v.position).collect();
-        let mut attributes = self.attributes(view, &positions);
-        let wind = self.accessor(view, 32, FLOAT, mesh.vertices.len(), "VEC4");
-        let t = tangents(&mesh.vertices, &mesh.bark);
-        let tview = self.view(bytemuck::cast_slice(&t), None, Some(ARRAY_BUFFER));
-        let tangent = self.accessor(tview, 0, FLOAT, t.len(), "VEC4");
-        attributes["_WIND"] = json!(wind);
-        attributes["TANGENT"] = json!(tangent);
-        let mut primitives = Vec::new();
-        for (indices, material) in [(&mesh.bark, bark), (&mesh.leaves, leaves)] {
-            if let Some(acc) = self.indices(indices) {
-                primitives
-                    .push(json!({"attributes": attributes, "indices": acc, "material": material}));
-            }
-        }
-        primitives
-    }
-}
 
 /// Writes `stand` (meshed with its `species`' turtle settings) and optionally `terrain` as a
 /// binary glTF at `path`: one node per tree, bark with colour and normal textures, leaf cards
@@ -264,33 +162,5 @@ pub fn write_stand_glb(
             {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497},
         ]);
     }
-    let mut text =
-        serde_json::to_string(&doc).map_err(|e| ForestError::InvalidExport(e.to_string()))?;
-    while !text.len().is_multiple_of(4) {
-        text.push(' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + b.bin.len();
-    let total32 = u32::try_from(total).map_err(|_| {
-        ForestError::InvalidExport(format!("{total} bytes is beyond the 4 GiB a GLB can hold"))
-    })?;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total32.to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(text.as_bytes());
-    out.extend_from_slice(&(b.bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b.bin);
-    let temporary = temporary_path(path)?;
-    std::fs::write(&temporary, &out).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(path, &e)
-    })?;
-    std::fs::rename(&temporary, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(path, &e)
-    })?;
-    Ok(total)
+    write_glb_file(&doc, &b.bin, path)
 }

@@ -1,0 +1,146 @@
+//! Geometry shared by many GLB files: every variant's cache buffers and the textures, in one
+//! binary file that tiles reference as an external glTF buffer, so that a world of tiles
+//! holds its instance geometry once instead of once per tile.
+
+use std::io::Write;
+use std::path::Path;
+
+use super::document::padding;
+use super::tangent::tangents;
+use super::{io_error, temporary_path};
+use crate::error::ForestError;
+use crate::forest::ForestBuilder;
+use crate::texture::{BarkPattern, LeafShape, Texture};
+
+/// Where one variant's buffers sit in the shared file (byte offsets).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct VariantSpans {
+    pub(super) vertices: usize,
+    pub(super) tangents: usize,
+    pub(super) bark: usize,
+    pub(super) leaves: usize,
+}
+
+/// The shared file's layout: a pure function of the builder (its species and caches).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct SharedLayout {
+    pub(super) variants: Vec<VariantSpans>,
+    /// Leaf shapes and bark patterns of all species, in order of first use.
+    pub(super) shapes: Vec<LeafShape>,
+    pub(super) patterns: Vec<BarkPattern>,
+    /// Images (leaf shapes, then bark colours, then bark normal maps): offset and length.
+    pub(super) images: Vec<(usize, usize)>,
+    pub(super) len: usize,
+}
+
+impl SharedLayout {
+    pub(super) fn of(builder: &ForestBuilder) -> SharedLayout {
+        let (shapes, patterns) = looks(builder);
+        let mut at = 0usize;
+        let mut take = |len: usize| {
+            let start = at;
+            at += len + padding(len);
+            start
+        };
+        let variants = builder
+            .variants()
+            .iter()
+            .map(|v| {
+                let c = &v.cache;
+                VariantSpans {
+                    vertices: take(size_of_val(c.vertices.as_slice())),
+                    tangents: take(16 * c.vertices.len()),
+                    bark: take(4 * c.bark.len()),
+                    leaves: take(4 * c.leaves.len()),
+                }
+            })
+            .collect();
+        let images = images(&shapes, &patterns)
+            .iter()
+            .map(|png| (take(png.len()), png.len()))
+            .collect();
+        SharedLayout {
+            variants,
+            shapes,
+            patterns,
+            images,
+            len: at,
+        }
+    }
+}
+
+/// The leaf shapes and bark patterns of the builder's species, in order of first use.
+pub(super) fn looks(builder: &ForestBuilder) -> (Vec<LeafShape>, Vec<BarkPattern>) {
+    let (mut shapes, mut patterns) = (Vec::new(), Vec::new());
+    for s in &builder.config().species {
+        if !shapes.contains(&s.leaf_shape) {
+            shapes.push(s.leaf_shape);
+        }
+        if !patterns.contains(&s.bark_pattern) {
+            patterns.push(s.bark_pattern);
+        }
+    }
+    (shapes, patterns)
+}
+
+/// The PNG images of `shapes` and `patterns`: leaves, bark colours, bark normal maps.
+pub(super) fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Vec<Vec<u8>> {
+    let mut out: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
+    out.extend(patterns.iter().map(|&p| Texture::bark(p).png()));
+    out.extend(patterns.iter().map(|&p| Texture::bark_normal(p).png()));
+    out
+}
+
+/// Writes the geometry every tile of `builder`'s world shares (see
+/// [`GltfOptions::shared_geometry`](super::GltfOptions::shared_geometry)) to `path`, under a
+/// temporary name renamed when complete. Returns its size in bytes.
+///
+/// ```
+/// use sylva_forest::{ForestBuilder, ForestConfig, Species, write_shared_geometry};
+/// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
+/// config.budget = 1 << 20;
+/// let builder = ForestBuilder::new(config)?;
+/// let path = std::env::temp_dir().join("sylva-doctest-shared.bin");
+/// let bytes = write_shared_geometry(&builder, &path)?;
+/// assert_eq!(std::fs::metadata(&path).unwrap().len() as usize, bytes);
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), sylva_forest::ForestError>(())
+/// ```
+pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usize, ForestError> {
+    let layout = SharedLayout::of(builder);
+    let temporary = temporary_path(path)?;
+    let io = |e: std::io::Error| io_error(path, &e);
+    let result = (|| -> Result<(), ForestError> {
+        let file = std::fs::File::create(&temporary).map_err(io)?;
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+        let mut put = |bytes: &[u8]| -> Result<(), ForestError> {
+            w.write_all(bytes).map_err(io)?;
+            w.write_all(&[0; 3][..padding(bytes.len())]).map_err(io)
+        };
+        for v in builder.variants() {
+            let c = &v.cache;
+            put(bytemuck::cast_slice(&c.vertices))?;
+            // Bark triangles give the tangents (the leaves' normals need none).
+            put(bytemuck::cast_slice(&tangents(&c.vertices, &c.bark)))?;
+            put(bytemuck::cast_slice(&c.bark))?;
+            put(bytemuck::cast_slice(&c.leaves))?;
+        }
+        for png in images(&layout.shapes, &layout.patterns) {
+            put(&png)?;
+        }
+        w.flush().map_err(io)?;
+        w.into_inner()
+            .map_err(|e| io(e.into_error()))?
+            .sync_all()
+            .map_err(io)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&temporary);
+        return Err(e);
+    }
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io_error(path, &e)
+    })?;
+    Ok(layout.len)
+}
