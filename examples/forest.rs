@@ -14,6 +14,9 @@
 //! from its `sylva:heights` chunk, or `--height-range` and `--spacing`) or a square RAW of
 //! little-endian 16-bit samples (`.raw`/`.r16`, with both flags).
 //!
+//! `--no-instancing` writes every placement as a node of its own sharing its mesh, for
+//! importers that ignore EXT_mesh_gpu_instancing (small forests: at most 250,000 placements).
+//!
 //! `--tiles DIR` writes the world as an OGC 3D Tiles 1.1 tileset instead of one GLB:
 //! `DIR/tileset.json`, `DIR/shared.bin` and one GLB per tile (coarse tiles of whole-tree
 //! proxies, fine tiles of branch instances). `--tile c_X_Y` or `--tile f_X_Y` writes that tile
@@ -38,7 +41,7 @@ use sylva::terrain::{DiamondSquare, EdgeMode, HeightRange, Heightmap};
 const USAGE: &str = "usage: forest [--area METRES | --trees N | --terrain HEIGHTS.png|.raw [--spacing M] [--height-range LO,HI]] \
                      [--density TREES_PER_HA] [--species FILE]... [--budget-mb MB] [--seed S] [--out forest.glb] \
                      [--heightmap forest_height.png] [--tiles DIR [--tile-size M] [--tile c_X_Y|f_X_Y | --tileset-only] \
-                     [--origin LON,LAT]] [--stats]";
+                     [--origin LON,LAT]] [--no-instancing] [--stats]";
 
 const DEFAULT_SPECIES: [(&str, &str); 5] = [
     (
@@ -81,6 +84,7 @@ struct Args {
     tile: Option<String>,
     tileset_only: bool,
     origin: (f64, f64),
+    no_instancing: bool,
 }
 
 fn parse() -> Result<Args, String> {
@@ -102,6 +106,7 @@ fn parse() -> Result<Args, String> {
         tile: None,
         tileset_only: false,
         origin: (8.54, 47.37),
+        no_instancing: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -129,6 +134,7 @@ fn parse() -> Result<Args, String> {
             "--tile-size" => a.tile_size = common::parse_value("--tile-size", it.next())?,
             "--tile" => a.tile = Some(common::parse_value("--tile", it.next())?),
             "--tileset-only" => a.tileset_only = true,
+            "--no-instancing" => a.no_instancing = true,
             "--origin" => {
                 let v: String = common::parse_value("--origin", it.next())?;
                 let pair = v
@@ -266,12 +272,14 @@ fn run() -> Result<(), String> {
         args.stats,
         "placing trees and writing glTF",
         || -> Result<_, String> {
+            let mut options = GltfOptions::default();
+            options.one_node_per_placement = args.no_instancing;
             let stats = write_glb(
                 &builder,
                 &map,
                 region,
                 Some(&terrain_mesh),
-                &GltfOptions::default(),
+                &options,
                 Path::new(&args.out),
             )
             .map_err(|e| e.to_string())?;

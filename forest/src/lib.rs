@@ -53,7 +53,8 @@ pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
 pub use gltf::{
-    CHUNK_BYTES, GlbStats, GltfOptions, write_glb, write_shared_geometry, write_stand_glb,
+    CHUNK_BYTES, GlbStats, GltfOptions, MAX_NODE_PLACEMENTS, write_glb, write_shared_geometry,
+    write_stand_glb,
 };
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};

@@ -188,3 +188,47 @@ fn bark_textures_tile_and_differ_by_pattern() {
     .unwrap();
     assert_eq!(birch.bark_pattern, BarkPattern::Smooth);
 }
+
+/// The fallback for importers without EXT_mesh_gpu_instancing: a node per placement sharing
+/// its instance's mesh, the same placements as the instanced file.
+#[test]
+fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
+    let (b, map, region) = export_case();
+    let path = scratch("nodes");
+    let mut options = GltfOptions::default();
+    options.one_node_per_placement = true;
+    let stats = write_glb(&b, &map, region, None, &options, &path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    assert!(json.get("extensionsUsed").is_none());
+    let nodes = json["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), stats.placements);
+    let meshes = json["meshes"].as_array().unwrap().len();
+    assert!(
+        meshes < nodes.len(),
+        "meshes are shared: {meshes} for {} nodes",
+        nodes.len()
+    );
+    for n in nodes {
+        assert!(n.get("extensions").is_none());
+        let q: Vec<f64> = n["rotation"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!((q.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-4);
+        assert!(n["mesh"].as_u64().unwrap() < meshes as u64);
+    }
+    // Too many placements for nodes are refused, and nothing is written.
+    let big = common::scratch("nodes-big");
+    let (large, ground) = (common::builder(7), common::plane(2000.0));
+    let world = sylva_forest::Rect::new(
+        sylva_terrain::glam::Vec2::splat(-2000.0),
+        sylva_terrain::glam::Vec2::splat(2000.0),
+    );
+    let e = write_glb(&large, &ground, world, None, &options, &big).unwrap_err();
+    assert!(e.to_string().contains("limit"), "{e}");
+    assert!(!big.exists());
+}

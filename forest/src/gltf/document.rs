@@ -10,6 +10,7 @@ use super::shared::{self, SharedLayout};
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfOptions, Node, UNSIGNED_INT};
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
+use sylva_instancing::Similarity;
 
 /// The JSON chunk and the binary layout, decided before any byte is written.
 #[derive(Debug)]
@@ -178,13 +179,23 @@ impl Document {
         12 + 8 + self.json.len() + 8
     }
 
+    /// The layout for `nodes` holding `placements` in all. With `one_node_each` (the
+    /// fallback for importers without EXT_mesh_gpu_instancing) every placement is a node of
+    /// its own, its transform given here, per node in the order of `nodes`, and the file has
+    /// no placement sections.
     pub(super) fn lay_out(
         builder: &ForestBuilder,
         terrain: Option<&TerrainMesh>,
         options: &GltfOptions,
         nodes: &[Node],
         placements: usize,
+        one_node_each: Option<&[Vec<Similarity>]>,
     ) -> Result<Document, ForestError> {
+        let placements = if one_node_each.is_some() {
+            0
+        } else {
+            placements
+        };
         let variants = builder.variants();
         let species = &builder.config().species;
         let mut a = Arrays::default();
@@ -334,11 +345,25 @@ impl Document {
             }
         }
         let placement_base = section(0).0;
-        let t_view = a.view(section(12 * placements).0, 12 * placements, None, None);
-        let r_view = a.view(section(16 * placements).0, 16 * placements, None, None);
-        let s_view = a.view(section(12 * placements).0, 12 * placements, None, None);
-        let c_view = a.view(section(12 * placements).0, 12 * placements, None, None);
-        let w_view = a.view(section(16 * placements).0, 16 * placements, None, None);
+        // The placement sections (translation, rotation, scale, tint, wind), none when every
+        // placement is a node of its own.
+        let mut placement_view = |a: &mut Arrays, width: usize| {
+            if one_node_each.is_some() {
+                0
+            } else {
+                a.view(
+                    section(width * placements).0,
+                    width * placements,
+                    None,
+                    None,
+                )
+            }
+        };
+        let t_view = placement_view(&mut a, 12);
+        let r_view = placement_view(&mut a, 16);
+        let s_view = placement_view(&mut a, 12);
+        let c_view = placement_view(&mut a, 12);
+        let w_view = placement_view(&mut a, 16);
         let bin_len = section(0).1;
         for node in nodes {
             let variant = &variants[node.variant];
@@ -367,6 +392,29 @@ impl Document {
                     ));
                 }
             }
+            let name = &species[variant.species].name;
+            let tag = if variant.seedling { "seedling" } else { "tree" };
+            if let Some(each) = one_node_each {
+                a.meshes.push(format!(
+                    "{{\"name\":{},\"primitives\":[{}]}}",
+                    quoted(&format!("{name} {tag} branch {} age {}", inst.id, inst.age)),
+                    primitives.join(",")
+                ));
+                let mesh = a.meshes.len() - 1;
+                let k = nodes
+                    .iter()
+                    .position(|n| std::ptr::eq(n, node))
+                    .unwrap_or(0);
+                for x in each.get(k).into_iter().flatten() {
+                    let q = x.rotation.normalize();
+                    a.nodes.push(format!(
+                        "{{\"mesh\":{mesh},\"translation\":[{},{},{}],\"rotation\":[{},{},{},{}],\"scale\":[{s},{s},{s}]}}",
+                        x.translation.x, x.translation.y, x.translation.z, q.x, q.y, q.z, q.w,
+                        s = x.scale
+                    ));
+                }
+                continue;
+            }
             let t = a.accessor(t_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
             let r = a.accessor(r_view, 16 * node.first, FLOAT, node.count, "VEC4", None);
             let s = a.accessor(s_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
@@ -374,8 +422,6 @@ impl Document {
             let c = a.accessor(c_view, 12 * node.first, FLOAT, node.count, "VEC3", None);
             // Each tree's base and phase, for wind shaders (`tree_wind`).
             let w = a.accessor(w_view, 16 * node.first, FLOAT, node.count, "VEC4", None);
-            let name = &species[variant.species].name;
-            let tag = if variant.seedling { "seedling" } else { "tree" };
             a.meshes.push(format!(
                 "{{\"name\":{},\"primitives\":[{}]}}",
                 quoted(&format!(
@@ -451,7 +497,7 @@ impl Document {
             }
             None => {}
         }
-        if !nodes.is_empty() {
+        if !nodes.is_empty() && one_node_each.is_none() {
             json.push_str(",\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
         }
         json.push('}');

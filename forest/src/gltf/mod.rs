@@ -50,7 +50,16 @@ pub struct GltfOptions {
     /// same builder: when set, the GLB refers to that file's cache buffers and textures as an
     /// external buffer instead of embedding them, as the tiles of one world do.
     pub shared_geometry: Option<String>,
+    /// Write each placement as a node of its own that shares its instance's mesh, instead
+    /// of EXT_mesh_gpu_instancing: for importers that ignore the extension (Blender before
+    /// 3.6, some Unity and Godot importers). Forests over [`MAX_NODE_PLACEMENTS`] placements
+    /// are refused in this mode.
+    pub one_node_per_placement: bool,
 }
+
+/// Most placements [`GltfOptions::one_node_per_placement`] writes: a node each is text in the
+/// JSON chunk, gathered in memory, and importers slow down long before this.
+pub const MAX_NODE_PLACEMENTS: usize = 250_000;
 
 impl Default for GltfOptions {
     fn default() -> Self {
@@ -59,6 +68,7 @@ impl Default for GltfOptions {
             roughness: 0.9,
             chunk_bytes: CHUNK_BYTES,
             shared_geometry: None,
+            one_node_per_placement: false,
         }
     }
 }
@@ -216,11 +226,42 @@ pub fn write_glb(
         node_of.push(map);
     }
     drop(counts);
-    let document = Document::lay_out(builder, terrain_mesh, options, &nodes, placements)?;
+    // The fallback: every placement's transform, gathered per node for the JSON.
+    let each = if options.one_node_per_placement {
+        if placements > MAX_NODE_PLACEMENTS {
+            return Err(ForestError::BadParameter(format!(
+                "{placements} placements as nodes of their own is more than the limit of {MAX_NODE_PLACEMENTS}: write this forest with EXT_mesh_gpu_instancing, or a smaller region"
+            )));
+        }
+        let mut each: Vec<Vec<sylva_instancing::Similarity>> = vec![Vec::new(); nodes.len()];
+        builder.stream(terrain, region, &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let node = node_of[p.variant as usize][p.instance as usize];
+                if let Some(list) = each.get_mut(node as usize) {
+                    list.push(p.transform);
+                }
+            }
+            Ok(())
+        })?;
+        Some(each)
+    } else {
+        None
+    };
+    let document = Document::lay_out(
+        builder,
+        terrain_mesh,
+        options,
+        &nodes,
+        placements,
+        each.as_deref(),
+    )?;
 
     let temporary = temporary_path(path)?;
     let written = write_file(&temporary, &document, |file| {
         write_geometry(file, variants, terrain_mesh, &document)?;
+        if each.is_some() {
+            return Ok(1);
+        }
         write_placements(
             file,
             builder,
