@@ -16,6 +16,7 @@ it spent and the peak memory of its tile processes.
 import argparse
 import json
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -32,14 +33,16 @@ def tile_ids(area, tile, group=4):
 
 
 def write_tile(forest, out, flags, tile):
-    """Runs one tile job; returns (tile, seconds, worker, peak child memory in MB)."""
+    """Runs one tile job; returns (tile, seconds, worker, peak child memory in MB, trees)."""
     start = time.monotonic()
-    subprocess.run([forest, *flags, "--tiles", out, "--tile", tile], check=True,
-                   stdout=subprocess.DEVNULL)
+    done = subprocess.run([forest, *flags, "--tiles", out, "--tile", tile], check=True,
+                          stdout=subprocess.PIPE, text=True)
     seconds = time.monotonic() - start
     # ru_maxrss of the children of this worker process: its largest tile job so far (KiB).
     peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
-    return tile, seconds, os.getpid(), peak
+    # The job reports "wrote PATH (N trees, ...)".
+    found = re.search(r"\((\d+) trees", done.stdout)
+    return tile, seconds, os.getpid(), peak, int(found.group(1)) if found else 0
 
 
 def main():
@@ -77,13 +80,15 @@ def main():
                    stdout=subprocess.DEVNULL)
     wall = time.monotonic() - start
     workers = {}
-    for _, seconds, pid, peak in results:
+    trees = sum(n for tile, _, _, _, n in results if tile.startswith("f_"))
+    for _, seconds, pid, peak, _ in results:
         w = workers.setdefault(pid, {"tiles": 0, "seconds": 0.0, "peak_mb": 0.0})
         w["tiles"] += 1
         w["seconds"] += seconds
         w["peak_mb"] = max(w["peak_mb"], peak)
     print(json.dumps({
         "tiles": len(ids),
+        "trees": trees,
         "workers": len(workers),
         "wall_s": round(wall, 2),
         "per_worker": [{k: round(v, 2) if isinstance(v, float) else v for k, v in w.items()}
