@@ -61,18 +61,19 @@ pub fn voxelise_triangles(grid: &mut VoxelGrid, positions: &[Vec3], indices: &[u
 /// `radius` plus half the voxel's diagonal of the segment. Returns how many voxels were newly
 /// occupied.
 pub fn voxelise_capsule(grid: &mut VoxelGrid, a: Vec3, b: Vec3, radius: f32) -> usize {
-    capsule_cells(grid, a, b, radius)
-        .into_iter()
-        .filter(|&cell| grid.occupy(cell))
-        .count()
+    let mut added = 0;
+    let shape = Lattice::of(grid);
+    capsule_cells(shape, a, b, radius, &mut |cell| {
+        added += usize::from(grid.occupy(cell));
+        true
+    });
+    added
 }
 
 /// Whether every voxel [`voxelise_capsule`] would occupy for this capsule is empty. Parts
 /// outside the grid count as free.
 pub fn capsule_is_free(grid: &VoxelGrid, a: Vec3, b: Vec3, radius: f32) -> bool {
-    capsule_cells(grid, a, b, radius)
-        .into_iter()
-        .all(|cell| !grid.is_occupied(cell))
+    capsule_is_free_beyond(grid, a, b, radius, -1.0)
 }
 
 /// As [`capsule_is_free`], leaving out voxels whose centre lies within `clearance` of `a`
@@ -84,9 +85,9 @@ pub(crate) fn capsule_is_free_beyond(
     radius: f32,
     clearance: f32,
 ) -> bool {
-    capsule_cells(grid, a, b, radius)
-        .into_iter()
-        .all(|cell| !grid.is_occupied(cell) || grid.centre(cell).distance(a) <= clearance)
+    capsule_cells(Lattice::of(grid), a, b, radius, &mut |cell| {
+        !grid.is_occupied(cell) || grid.centre(cell).distance(a) <= clearance
+    })
 }
 
 /// Fills every column of voxels from the grid's floor up to the ground of `terrain` (the
@@ -130,28 +131,66 @@ fn cell_range(grid: &VoxelGrid, lo: Vec3, hi: Vec3) -> Option<(UVec3, UVec3)> {
     (l.cmple(h).all()).then(|| (l.as_uvec3(), h.as_uvec3()))
 }
 
-/// The voxels a capsule touches (see [`voxelise_capsule`]).
-fn capsule_cells(grid: &VoxelGrid, a: Vec3, b: Vec3, radius: f32) -> Vec<UVec3> {
-    let mut out = Vec::new();
+/// A grid's shape without its contents, so that visiting its voxels leaves the grid free to
+/// change.
+#[derive(Debug, Clone, Copy)]
+struct Lattice {
+    origin: Vec3,
+    voxel: f32,
+    dims: UVec3,
+}
+
+impl Lattice {
+    fn of(grid: &VoxelGrid) -> Lattice {
+        Lattice {
+            origin: grid.origin(),
+            voxel: grid.voxel_size(),
+            dims: grid.dims(),
+        }
+    }
+
+    fn centre(&self, cell: UVec3) -> Vec3 {
+        self.origin + (cell.as_vec3() + 0.5) * self.voxel
+    }
+
+    /// The voxels a box from `lo` to `hi` overlaps, clamped to the grid; `None` if it misses.
+    fn range(&self, lo: Vec3, hi: Vec3) -> Option<(UVec3, UVec3)> {
+        let coords = |p: Vec3| ((p - self.origin) / self.voxel).floor().as_ivec3();
+        let l = coords(lo).max(glam::IVec3::ZERO);
+        let h = coords(hi).min(self.dims.as_ivec3() - 1);
+        (l.cmple(h).all()).then(|| (l.as_uvec3(), h.as_uvec3()))
+    }
+}
+
+/// Visits the voxels a capsule touches (see [`voxelise_capsule`]) until `visit` returns
+/// false; returns whether every one was visited. Nothing is gathered, so any radius runs in
+/// bounded memory.
+fn capsule_cells(
+    lattice: Lattice,
+    a: Vec3,
+    b: Vec3,
+    radius: f32,
+    visit: &mut dyn FnMut(UVec3) -> bool,
+) -> bool {
     let r = radius.max(0.0);
     if !(a.is_finite() && b.is_finite() && r.is_finite()) {
-        return out;
+        return true;
     }
-    let Some((lo, hi)) = cell_range(grid, a.min(b) - r, a.max(b) + r) else {
-        return out;
+    let Some((lo, hi)) = lattice.range(a.min(b) - r, a.max(b) + r) else {
+        return true;
     };
-    let reach = r + grid.voxel_size() * 0.5 * 3f32.sqrt();
+    let reach = r + lattice.voxel * 0.5 * 3f32.sqrt();
     for z in lo.z..=hi.z {
         for y in lo.y..=hi.y {
             for x in lo.x..=hi.x {
                 let cell = UVec3::new(x, y, z);
-                if distance_to_segment(grid.centre(cell), a, b) <= reach {
-                    out.push(cell);
+                if distance_to_segment(lattice.centre(cell), a, b) <= reach && !visit(cell) {
+                    return false;
                 }
             }
         }
     }
-    out
+    true
 }
 
 /// Distance from `p` to the segment from `a` to `b`.
@@ -243,6 +282,19 @@ mod tests {
             3
         );
         assert_eq!(g.occupied(), 0);
+    }
+
+    #[test]
+    fn a_huge_radius_fills_the_grid_without_gathering_it() {
+        let mut g = VoxelGrid::new(Vec3::ZERO, Vec3::splat(2.0), 0.1).unwrap();
+        assert_eq!(voxelise_capsule(&mut g, Vec3::ONE, Vec3::ONE, 1e6), 8000);
+        assert!(!capsule_is_free(&g, Vec3::ZERO, Vec3::ONE, 1e9));
+        assert!(capsule_is_free(
+            &g,
+            Vec3::splat(50.0),
+            Vec3::splat(60.0),
+            1.0
+        ));
     }
 
     #[test]
