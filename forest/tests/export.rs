@@ -222,7 +222,7 @@ fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
         assert!(n["mesh"].as_u64().unwrap() < meshes as u64);
     }
     // Too many placements for nodes are refused, and nothing is written.
-    let big = common::scratch("nodes-big");
+    let big = scratch("nodes-big");
     let (large, ground) = (common::builder(7), common::plane(2000.0));
     let world = sylva_forest::Rect::new(
         sylva_terrain::glam::Vec2::splat(-2000.0),
