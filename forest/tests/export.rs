@@ -6,7 +6,10 @@ mod common;
 use std::path::Path;
 
 use common::{export_case, scratch};
-use sylva_forest::{BarkPattern, ForestError, GltfOptions, LeafShape, Species, Texture, write_glb};
+use sylva_forest::{
+    BarkPattern, ForestError, GltfOptions, LeafShape, Rect, Species, Texture, write_glb,
+};
+use sylva_terrain::glam::Vec2;
 
 #[test]
 fn exported_glb_is_well_formed_and_counts_match() {
@@ -224,10 +227,7 @@ fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
     // Too many placements for nodes are refused, and nothing is written.
     let big = scratch("nodes-big");
     let (large, ground) = (common::builder(7), common::plane(2000.0));
-    let world = sylva_forest::Rect::new(
-        sylva_terrain::glam::Vec2::splat(-2000.0),
-        sylva_terrain::glam::Vec2::splat(2000.0),
-    );
+    let world = Rect::new(Vec2::splat(-2000.0), Vec2::splat(2000.0));
     let e = write_glb(&large, &ground, world, None, &options, &big).unwrap_err();
     assert!(e.to_string().contains("limit"), "{e}");
     assert!(!big.exists());
