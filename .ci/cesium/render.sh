@@ -9,21 +9,7 @@ world="$(realpath "$1")"; out="$(realpath -m "$2")"; query="${3:-}"
 rm -rf "$here/world"; ln -s "$world" "$here/world"
 port=$((20000 + RANDOM % 10000))
 # A static server on loopback only, stopped when the script ends.
-node -e '
-  const http = require("http"), fs = require("fs"), path = require("path");
-  const root = process.argv[1];
-  const types = { ".html": "text/html", ".js": "text/javascript", ".json": "application/json",
-                  ".glb": "model/gltf-binary", ".bin": "application/octet-stream", ".css": "text/css" };
-  http.createServer((req, res) => {
-    const file = path.join(root, decodeURIComponent(req.url.split("?")[0]));
-    if (!file.startsWith(root)) { res.writeHead(403); return res.end(); }
-    fs.readFile(file, (err, data) => {
-      if (err) { res.writeHead(404); return res.end(); }
-      res.writeHead(200, { "Content-Type": types[path.extname(file)] || "application/octet-stream" });
-      res.end(data);
-    });
-  }).listen(Number(process.argv[2]), "127.0.0.1");
-' "$here" "$port" &
+node "$here/../serve.js" "$here" "$port" &
 server=$!
 trap 'kill $server 2>/dev/null; rm -f "$here/world"' EXIT
 sleep 1

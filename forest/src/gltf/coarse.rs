@@ -9,7 +9,7 @@ use sylva_terrain::TerrainMesh;
 use sylva_turtle::Mesh;
 
 use super::json_glb::{Builder, write_glb_file};
-use super::{ARRAY_BUFFER, FLOAT};
+use super::FLOAT;
 use crate::error::ForestError;
 use crate::species::Species;
 use crate::variety::tree_tint;
@@ -26,19 +26,8 @@ pub(crate) fn write_coarse_glb(
     let mut b = Builder::default();
     let (mut nodes, mut meshes, mut materials) = (Vec::new(), Vec::new(), Vec::<Value>::new());
     if !terrain.indices.is_empty() {
-        let view = b.view(
-            bytemuck::cast_slice(&terrain.vertices),
-            Some(32),
-            Some(ARRAY_BUFFER),
-        );
-        let positions: Vec<[f32; 3]> = terrain.vertices.iter().map(|v| v.position).collect();
-        let mut attributes = b.attributes(view, &positions);
-        let colours = terrain.ground_colours();
-        let cview = b.view(bytemuck::cast_slice(&colours), None, Some(ARRAY_BUFFER));
-        attributes["COLOR_0"] = json!(b.accessor(cview, 0, FLOAT, colours.len(), "VEC3"));
-        let indices = b.indices(&terrain.indices);
         materials.push(json!({"name": "terrain", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.9}}));
-        meshes.push(json!({"name": "terrain", "primitives": [{"attributes": attributes, "indices": indices, "material": 0}]}));
+        meshes.push(b.terrain(terrain, 0));
         nodes.push(json!({"name": "terrain", "mesh": 0}));
     }
     for (variant, (mesh, s)) in proxies.iter().enumerate() {

@@ -8,7 +8,9 @@ use sylva_turtle::{Mesh, Vertex};
 
 use super::document::padding;
 use super::tangent::tangents;
-use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, io_error, temporary_path};
+use super::{
+    ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, io_error, put_in_place, temporary_path,
+};
 use crate::error::ForestError;
 
 /// The binary buffer and the JSON arrays that point into it.
@@ -116,6 +118,29 @@ impl Builder {
     }
 }
 
+impl Builder {
+    /// The terrain as a mesh of one primitive with its ground colours (`COLOR_0`), drawn with
+    /// `material`: the JSON of the mesh.
+    pub(super) fn terrain(
+        &mut self,
+        terrain: &sylva_terrain::TerrainMesh,
+        material: usize,
+    ) -> Value {
+        let view = self.view(
+            bytemuck::cast_slice(&terrain.vertices),
+            Some(32),
+            Some(ARRAY_BUFFER),
+        );
+        let positions: Vec<[f32; 3]> = terrain.vertices.iter().map(|v| v.position).collect();
+        let mut attributes = self.attributes(view, &positions);
+        let colours = terrain.ground_colours();
+        let cview = self.view(bytemuck::cast_slice(&colours), None, Some(ARRAY_BUFFER));
+        attributes["COLOR_0"] = json!(self.accessor(cview, 0, FLOAT, colours.len(), "VEC3"));
+        let indices = self.indices(&terrain.indices);
+        json!({"name": "terrain", "primitives": [{"attributes": attributes, "indices": indices, "material": material}]})
+    }
+}
+
 /// Writes the glTF JSON `doc` and the binary chunk `bin` as a GLB at `path`, under a
 /// temporary name renamed when complete. Returns the file's size.
 pub(super) fn write_glb_file(doc: &Value, bin: &[u8], path: &Path) -> Result<usize, ForestError> {
@@ -139,13 +164,7 @@ pub(super) fn write_glb_file(doc: &Value, bin: &[u8], path: &Path) -> Result<usi
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(bin);
     let temporary = temporary_path(path)?;
-    std::fs::write(&temporary, &out).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(path, &e)
-    })?;
-    std::fs::rename(&temporary, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(path, &e)
-    })?;
+    let written = std::fs::write(&temporary, &out).map_err(|e| io_error(path, &e));
+    put_in_place(written, &temporary, path)?;
     Ok(total)
 }

@@ -274,18 +274,7 @@ pub fn write_glb(
             options.chunk_bytes,
         )
     });
-    let passes = match written {
-        Ok(passes) => passes,
-        Err(e) => {
-            // Nothing half-written stays behind.
-            let _ = std::fs::remove_file(&temporary);
-            return Err(e);
-        }
-    };
-    std::fs::rename(&temporary, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(path, &e)
-    })?;
+    let passes = put_in_place(written, &temporary, path)?;
     let StreamStats {
         trees, seedlings, ..
     } = counted;
@@ -298,6 +287,23 @@ pub fn write_glb(
         empty_placements,
         passes: 1 + passes,
     })
+}
+
+/// Renames a file written under `temporary` to `path` when writing it succeeded; removes it
+/// otherwise (nothing half-written stays behind), or when the rename fails.
+fn put_in_place<T>(
+    written: Result<T, ForestError>,
+    temporary: &Path,
+    path: &Path,
+) -> Result<T, ForestError> {
+    let value = written.inspect_err(|_| {
+        let _ = std::fs::remove_file(temporary);
+    })?;
+    std::fs::rename(temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(temporary);
+        io_error(path, &e)
+    })?;
+    Ok(value)
 }
 
 fn io_error(path: &Path, e: &std::io::Error) -> ForestError {

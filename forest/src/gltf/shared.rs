@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::document::padding;
 use super::tangent::tangents;
-use super::{io_error, temporary_path};
+use super::{io_error, put_in_place, temporary_path};
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
 use crate::texture::{BarkPattern, LeafShape, Texture};
@@ -134,13 +134,6 @@ pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usi
             .sync_all()
             .map_err(io)
     })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&temporary);
-        return Err(e);
-    }
-    std::fs::rename(&temporary, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(path, &e)
-    })?;
+    put_in_place(result, &temporary, path)?;
     Ok(layout.len)
 }

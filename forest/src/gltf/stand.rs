@@ -29,19 +29,8 @@ pub fn write_stand_glb(
     let mut meshes = Vec::new();
     let mut materials = Vec::new();
     if let Some(t) = terrain.filter(|t| !t.indices.is_empty()) {
-        let view = b.view(
-            bytemuck::cast_slice(&t.vertices),
-            Some(32),
-            Some(ARRAY_BUFFER),
-        );
-        let positions: Vec<[f32; 3]> = t.vertices.iter().map(|v| v.position).collect();
-        let mut attributes = b.attributes(view, &positions);
-        let colours = t.ground_colours();
-        let cview = b.view(bytemuck::cast_slice(&colours), None, Some(ARRAY_BUFFER));
-        attributes["COLOR_0"] = json!(b.accessor(cview, 0, FLOAT, colours.len(), "VEC3"));
-        let indices = b.indices(&t.indices);
         materials.push(json!({"name": "terrain", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.9}}));
-        meshes.push(json!({"name": "terrain", "primitives": [{"attributes": attributes, "indices": indices, "material": 0}]}));
+        meshes.push(b.terrain(t, 0));
         nodes.push(json!({"name": "terrain", "mesh": 0}));
     }
     // Obstacles as grey rock, flat-shaded (no normals: clients shade each face flat).
