@@ -64,7 +64,7 @@ pub use stream::{
 };
 pub use texture::{BarkPattern, LeafShape, TEXTURE_SIZE, Texture};
 pub use tiles::{
-    Level, MAX_TILES, TileId, TileScheme, TileStats, TilesetOptions, tile_path, write_tile,
-    write_tileset,
+    Extent, Level, MAX_TILES, TileId, TileScheme, TileStats, TilesetOptions, tile_path, tree_proxy,
+    write_tile, write_tileset,
 };
 pub use variety::{tree_tint, tree_wind};

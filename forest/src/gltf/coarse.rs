@@ -8,8 +8,8 @@ use sylva_instancing::CompactTree;
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Mesh;
 
-use super::json_glb::{Builder, write_glb_file};
 use super::FLOAT;
+use super::json_glb::{Builder, write_glb_file};
 use crate::error::ForestError;
 use crate::species::Species;
 use crate::variety::tree_tint;

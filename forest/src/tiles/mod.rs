@@ -9,7 +9,7 @@
 //! terrain).
 
 mod ground;
-mod proxy;
+pub(crate) mod proxy;
 mod tileset;
 
 use std::fmt;
@@ -25,7 +25,7 @@ use crate::error::ForestError;
 use crate::forest::ForestBuilder;
 use crate::gltf::{GltfOptions, write_coarse_glb, write_glb, write_shared_geometry};
 use ground::{height_range, tile_terrain};
-use proxy::{Extent, proxy};
+pub use proxy::{Extent, tree_proxy};
 use tileset::{bounding_box, east_north_up};
 
 /// Most tiles a world may have (fine tiles).
@@ -273,7 +273,7 @@ pub fn write_tile(
                 .collect();
             let proxies: Vec<_> = variants
                 .iter()
-                .map(|v| (proxy(Extent::of(v)), v.species))
+                .map(|v| (tree_proxy(Extent::of(v)), v.species))
                 .collect();
             let bytes =
                 write_coarse_glb(&trees, &proxies, &builder.config().species, &mesh, &path)?;

@@ -1,5 +1,5 @@
 //! Whole-tree proxies for coarse tiles: per variant a trunk and a crown of a few dozen
-//! triangles, sized from the variant's cached geometry, so that a far tree costs 60
+//! triangles, sized from the variant's cached geometry, so that a far tree costs 76
 //! triangles instead of thousands.
 
 use glam::Vec3;
@@ -9,13 +9,16 @@ use crate::forest::Variant;
 
 /// A variant's size: height of its geometry and the horizontal radius of its crown.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Extent {
-    pub(crate) height: f32,
-    pub(crate) crown: f32,
+pub struct Extent {
+    /// Height of the variant's geometry above its root, metres (unscaled).
+    pub height: f32,
+    /// Horizontal radius of its crown, metres (unscaled).
+    pub crown: f32,
 }
 
 impl Extent {
-    pub(crate) fn of(variant: &Variant) -> Extent {
+    /// The extent of a variant's cached geometry (its largest hero).
+    pub fn of(variant: &Variant) -> Extent {
         let (mut height, mut crown) = (0.0f32, 0.0f32);
         for v in &variant.cache.vertices {
             let [x, y, z] = v.position;
@@ -29,10 +32,17 @@ impl Extent {
     }
 }
 
-/// The proxy of a tree of `extent`: a six-sided trunk to 40% of its height (bark, in the
-/// mesh's bark triangles) and an ellipsoid crown of 48 triangles from 30% to the top (in its
-/// leaf triangles).
-pub(crate) fn proxy(extent: Extent) -> Mesh {
+/// The whole-tree proxy of a tree of `extent`, as coarse tiles and the viewer's far trees
+/// draw it: a six-sided trunk to 40% of its height (bark, in the mesh's bark triangles) and an
+/// ellipsoid crown of 64 triangles from 30% to the top (in its leaf triangles), 76 triangles
+/// in all.
+///
+/// ```
+/// use sylva_forest::{Extent, tree_proxy};
+/// let m = tree_proxy(Extent { height: 12.0, crown: 4.0 });
+/// assert_eq!(m.triangle_count(), 76);
+/// ```
+pub fn tree_proxy(extent: Extent) -> Mesh {
     let h = extent.height;
     let mut options = TurtleOptions::default();
     options.radial_segments = 6;
