@@ -86,7 +86,7 @@ fn default_scene_renders_terrain_and_trees() {
     let Some(offscreen) = offscreen(&scene, SIZE) else {
         return;
     };
-    let (ids, _) = offscreen
+    let (ids, all) = offscreen
         .frame(&scene, &camera, Mode::Ids)
         .expect("id render");
     let Coverage {
@@ -113,6 +113,12 @@ fn default_scene_renders_terrain_and_trees() {
         .expect("shaded render");
     let adapter = &offscreen.adapter;
     assert!(stats.draws > 100 && stats.instances > 1000, "{stats:?}");
+    // Shaded frames draw far trees as proxies; the id frame measures every real branch.
+    eprintln!(
+        "triangles: {} shaded with proxies beyond the level-of-detail distance, {} without",
+        stats.triangles, all.triangles
+    );
+    assert!(stats.triangles * 4 < all.triangles, "{stats:?} against {all:?}");
     if std::env::var_os("SYLVA_BLESS").is_some() {
         write_png(GOLDEN, &shaded);
         eprintln!("wrote {GOLDEN} on {adapter}");

@@ -18,6 +18,9 @@ const MATERIAL_STRIDE: u64 = 256;
 /// Placements smaller on screen than this many pixels across are not drawn: far twigs and
 /// seedlings that fog would hide anyway.
 const MIN_PIXELS: f32 = 2.0;
+/// Trees farther than this from the camera are drawn whole as proxies (76 triangles) in
+/// shaded frames, the distance coarse tiles take over at.
+const LOD_DISTANCE: f32 = 250.0;
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
 const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
@@ -325,6 +328,13 @@ impl Renderer {
                 1.0 + leaf_layer(v.leaf_shape) as f32,
             ));
         }
+        // Then the far trees' proxies, untextured: the crown darker than the leaf colour, as
+        // the leaf cards' texture and the gaps between them darken a real crown.
+        let proxy_materials = materials.len() as u32;
+        for v in &scene.variants {
+            materials.push((v.bark_colour, ID_BARK, 0.0));
+            materials.push((v.leaf_colour.map(|c| c * 0.6), ID_LEAF, 0.0));
+        }
         let mut bytes = vec![0u8; materials.len() * MATERIAL_STRIDE as usize];
         for (i, (colour, id, layer)) in materials.iter().enumerate() {
             let m: [f32; 8] = [
@@ -353,22 +363,46 @@ impl Renderer {
                 }),
             }],
         });
-        let variants = scene
+        // The variants' caches, then their proxies.
+        let variant_buffers = |vertices: &[Vertex], bark: &[u32], leaves: &[u32]| VariantBuffers {
+            vertices: buffer(
+                device,
+                "variant vertices",
+                bytemuck::cast_slice(vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            bark: index_buffer(device, "bark indices", bark),
+            leaves: index_buffer(device, "leaf indices", leaves),
+        };
+        let variants: Vec<VariantBuffers> = scene
             .variants
             .iter()
-            .map(|v| VariantBuffers {
-                vertices: buffer(
-                    device,
-                    "variant vertices",
-                    bytemuck::cast_slice(&v.vertices),
-                    wgpu::BufferUsages::VERTEX,
-                ),
-                bark: index_buffer(device, "bark indices", &v.bark),
-                leaves: index_buffer(device, "leaf indices", &v.leaves),
-            })
+            .map(|v| variant_buffers(&v.vertices, &v.bark, &v.leaves))
+            .chain(
+                scene
+                    .proxies
+                    .iter()
+                    .map(|p| variant_buffers(&p.vertices, &p.bark, &p.leaves)),
+            )
             .collect();
         let mut placements = 0u64;
         let mut draws = Vec::new();
+        // Proxies are drawn like groups numbered after the real ones.
+        let (groups, kinds) = (scene.groups.len(), scene.variants.len());
+        for (v, p) in scene.proxies.iter().enumerate() {
+            placements += p.trees.len() as u64;
+            for (bark, count) in [(true, p.bark.len()), (false, p.leaves.len())] {
+                if count > 0 {
+                    draws.push(Draw {
+                        variant: kinds + v,
+                        group: groups + v,
+                        material: proxy_materials + 2 * v as u32 + u32::from(!bark),
+                        indices: (0, count as u32),
+                        bark,
+                    });
+                }
+            }
+        }
         for (group, g) in scene.groups.iter().enumerate() {
             placements += g.instances.len() as u64;
             for (bark, span) in [(true, g.bark), (false, g.leaves)] {
@@ -485,10 +519,14 @@ impl Renderer {
         // The placements each pass can see, gathered into the instance buffer: the camera's
         // first, then the sun's.
         let mut visible = Vec::new();
+        // Far trees are drawn whole as proxies when shading (the id mode measures the real
+        // trees).
+        let lod = shaded.then_some((view.eye, LOD_DISTANCE));
         let in_view = cull(
             scene,
             &Volume::of(&view.view_proj),
             (view.eye, view.pixels_per_radian),
+            lod,
             &mut visible,
         );
         let in_sun = if shaded {
@@ -498,6 +536,7 @@ impl Renderer {
                 scene,
                 &Volume::of(&light_view_proj),
                 (from_sun, 1e4 / SHADOW_TEXEL),
+                lod,
                 &mut visible,
             )
         } else {
@@ -620,32 +659,45 @@ impl Renderer {
 }
 
 /// Appends to `visible` the placements of every group whose bounding sphere touches
-/// `volume` and, seen from `eye` with `pixels_per_radian`, spans at least
-/// [`MIN_PIXELS`]; returns each group's (first, count) in `visible`.
+/// `volume` and, seen from `eye` with `pixels_per_radian`, spans at least [`MIN_PIXELS`];
+/// with `lod` (a point and a distance), only the placements of trees within that distance of
+/// the point, and every farther tree as one proxy. Returns (first, count) in `visible` for
+/// each group, then for each variant's proxies.
 fn cull(
     scene: &Scene,
     volume: &Volume,
     (eye, pixels_per_radian): (Vec3, f32),
+    lod: Option<(Vec3, f32)>,
     visible: &mut Vec<InstanceRaw>,
 ) -> Vec<(u64, u32)> {
     // A sphere of radius r at distance d spans about 2 r / d radians.
     let min_ratio = 0.5 * MIN_PIXELS / pixels_per_radian.max(1e-6);
-    scene
-        .groups
-        .iter()
-        .map(|g| {
-            let first = visible.len();
-            let (centre, radius) = g.sphere;
-            visible.extend(g.instances.iter().filter(|i| {
-                let [x, y, z, scale] = i.translation_scale;
-                let rotation = Quat::from_array(i.rotation);
-                let world = Vec3::new(x, y, z) + rotation * (centre * scale);
-                let r = radius * scale;
-                volume.touches(world, r) && r >= min_ratio * world.distance(eye)
-            }));
-            (first as u64, (visible.len() - first) as u32)
+    let near = |i: &InstanceRaw| {
+        lod.is_none_or(|(from, far)| {
+            Vec3::new(i.tree[0], i.tree[1], i.tree[2]).distance(from) <= far
         })
-        .collect()
+    };
+    let seen = |i: &InstanceRaw, (centre, radius): (Vec3, f32)| {
+        let [x, y, z, scale] = i.translation_scale;
+        let rotation = Quat::from_array(i.rotation);
+        let world = Vec3::new(x, y, z) + rotation * (centre * scale);
+        let r = radius * scale;
+        volume.touches(world, r) && r >= min_ratio * world.distance(eye)
+    };
+    let mut ranges = Vec::with_capacity(scene.groups.len() + scene.proxies.len());
+    for g in &scene.groups {
+        let first = visible.len();
+        visible.extend(g.instances.iter().filter(|i| near(i) && seen(i, g.sphere)));
+        ranges.push((first as u64, (visible.len() - first) as u32));
+    }
+    for p in &scene.proxies {
+        let first = visible.len();
+        if lod.is_some() {
+            visible.extend(p.trees.iter().filter(|i| !near(i) && seen(i, p.sphere)));
+        }
+        ranges.push((first as u64, (visible.len() - first) as u32));
+    }
+    ranges
 }
 
 /// A colour and depth target of the given size.

@@ -2,8 +2,8 @@
 
 use bytemuck::{Pod, Zeroable};
 use sylva::forest::{
-    BarkPattern, ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species, tree_tint,
-    tree_wind,
+    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species,
+    tree_proxy, tree_tint, tree_wind,
 };
 use sylva::instancing::Span;
 
@@ -46,12 +46,26 @@ pub(crate) struct Group {
     pub(crate) instances: Vec<InstanceRaw>,
 }
 
+/// Every tree of one variant drawn whole, as a proxy, where it is far from the camera.
+pub(crate) struct Proxies {
+    /// The proxy (`sylva_forest::tree_proxy`): trunk in `bark`, crown in `leaves`.
+    pub(crate) vertices: Vec<Vertex>,
+    pub(crate) bark: Vec<u32>,
+    pub(crate) leaves: Vec<u32>,
+    /// A sphere around it in the tree's own space (centre, radius).
+    pub(crate) sphere: (Vec3, f32),
+    /// One per tree: its root transform, tint and wind data.
+    pub(crate) trees: Vec<InstanceRaw>,
+}
+
 pub(crate) struct Scene {
     pub(crate) heightmap: Heightmap,
     pub(crate) terrain_vertices: Vec<TerrainVertex>,
     pub(crate) terrain_indices: Vec<u32>,
     pub(crate) variants: Vec<VariantGeometry>,
     pub(crate) groups: Vec<Group>,
+    /// Per variant, its proxy and its trees.
+    pub(crate) proxies: Vec<Proxies>,
     pub(crate) side: f32,
     pub(crate) trees: usize,
 }
@@ -120,8 +134,40 @@ impl Scene {
             .map(|v| vec![Vec::new(); v.cache.instances.len()])
             .collect();
         let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+        let mut proxies: Vec<Proxies> = variants
+            .iter()
+            .map(|v| {
+                let mesh = tree_proxy(Extent::of(v));
+                let (centre, radius) =
+                    bounding_sphere(mesh.vertices.iter().map(|v| Vec3::from(v.position)));
+                Proxies {
+                    vertices: mesh.vertices,
+                    bark: mesh.bark,
+                    leaves: mesh.leaves,
+                    sphere: (centre, radius * 1.1 + 0.5),
+                    trees: Vec::new(),
+                }
+            })
+            .collect();
         let streamed = builder
             .stream(&map, region, &mut |block: &PlacementBlock| {
+                for tree in &block.trees {
+                    let root = tree.root();
+                    let tint = tree_tint(tree);
+                    if let Some(p) = proxies.get_mut(usize::from(tree.variant)) {
+                        p.trees.push(InstanceRaw {
+                            rotation: root.rotation.normalize().to_array(),
+                            translation_scale: [
+                                root.translation.x,
+                                root.translation.y,
+                                root.translation.z,
+                                root.scale,
+                            ],
+                            tint: [tint[0], tint[1], tint[2], 1.0],
+                            tree: tree_wind(tree),
+                        });
+                    }
+                }
                 for p in &block.placements {
                     let t = &p.transform;
                     let tree = block.trees.get(p.tree as usize);
@@ -185,6 +231,7 @@ impl Scene {
             terrain_indices: terrain.indices,
             variants,
             groups,
+            proxies,
             side,
             trees: streamed.trees,
         })
