@@ -118,7 +118,10 @@ fn default_scene_renders_terrain_and_trees() {
         "triangles: {} shaded with proxies beyond the level-of-detail distance, {} without",
         stats.triangles, all.triangles
     );
-    assert!(stats.triangles * 4 < all.triangles, "{stats:?} against {all:?}");
+    assert!(
+        stats.triangles * 4 < all.triangles,
+        "{stats:?} against {all:?}"
+    );
     if std::env::var_os("SYLVA_BLESS").is_some() {
         write_png(GOLDEN, &shaded);
         eprintln!("wrote {GOLDEN} on {adapter}");
