@@ -71,17 +71,7 @@ pub(crate) fn write_coarse_glb(
             "extensions": {"EXT_mesh_gpu_instancing": {"attributes": attributes}},
         }));
     }
-    let mut doc = json!({
-        "asset": {"version": "2.0", "generator": "sylva"},
-        "scene": 0,
-        "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
-        "nodes": nodes,
-        "meshes": meshes,
-        "materials": materials,
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": b.bin.len()}],
-    });
+    let mut doc = b.document(nodes, meshes, materials);
     let instanced = doc["nodes"]
         .as_array()
         .is_some_and(|n| n.iter().any(|n| n.get("extensions").is_some()));

@@ -119,6 +119,27 @@ impl Builder {
 }
 
 impl Builder {
+    /// The glTF JSON of one scene holding every node, with the arrays built so far; the
+    /// binary chunk is `self.bin`.
+    pub(super) fn document(
+        &self,
+        nodes: Vec<Value>,
+        meshes: Vec<Value>,
+        materials: Vec<Value>,
+    ) -> Value {
+        json!({
+            "asset": {"version": "2.0", "generator": "sylva"},
+            "scene": 0,
+            "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
+            "nodes": nodes,
+            "meshes": meshes,
+            "materials": materials,
+            "accessors": self.accessors,
+            "bufferViews": self.views,
+            "buffers": [{"byteLength": self.bin.len()}],
+        })
+    }
+
     /// The terrain as a mesh of one primitive with its ground colours (`COLOR_0`), drawn with
     /// `material`: the JSON of the mesh.
     pub(super) fn terrain(

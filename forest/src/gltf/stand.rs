@@ -132,17 +132,7 @@ pub fn write_stand_glb(
         .iter()
         .map(|png| json!({"bufferView": b.view(png, None, None), "mimeType": "image/png"}))
         .collect();
-    let mut doc = json!({
-        "asset": {"version": "2.0", "generator": "sylva"},
-        "scene": 0,
-        "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
-        "nodes": nodes,
-        "meshes": meshes,
-        "materials": materials,
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": b.bin.len()}],
-    });
+    let mut doc = b.document(nodes, meshes, materials);
     if !image_views.is_empty() {
         doc["images"] = json!(image_views);
         doc["textures"] = json!(textures);
