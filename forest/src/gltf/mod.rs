@@ -92,6 +92,8 @@ pub struct GlbStats {
     pub empty_placements: usize,
     /// Times the forest was streamed: one count, then one per chunk of placements.
     pub passes: usize,
+    /// Branch triangles drawn by the placements (the terrain not included).
+    pub triangles: u64,
 }
 
 /// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, 1.6 million placements of 40 bytes.
@@ -203,6 +205,7 @@ pub fn write_glb(
     let mut node_of: Vec<Vec<u32>> = Vec::with_capacity(variants.len());
     let mut placements = 0usize;
     let mut empty_placements = 0usize;
+    let mut triangles = 0u64;
     for (v, variant) in variants.iter().enumerate() {
         let mut map = vec![u32::MAX; variant.cache.instances.len()];
         for (i, inst) in variant.cache.instances.iter().enumerate() {
@@ -222,6 +225,7 @@ pub fn write_glb(
                 count,
             });
             placements += count;
+            triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);
         }
         node_of.push(map);
     }
@@ -286,6 +290,7 @@ pub fn write_glb(
         placements,
         empty_placements,
         passes: 1 + passes,
+        triangles,
     })
 }
 

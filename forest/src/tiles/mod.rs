@@ -237,20 +237,7 @@ pub fn write_tile(
                 ..GltfOptions::default()
             };
             let written = write_glb(builder, terrain, rect, Some(&mesh), &options, &path)?;
-            let mut triangles = (mesh.indices.len() / 3) as u64;
-            // Count the branch triangles the tile places.
-            builder.stream(
-                terrain,
-                rect,
-                &mut |block: &crate::stream::PlacementBlock| {
-                    for p in &block.placements {
-                        let v = &builder.variants()[p.variant as usize];
-                        let inst = &v.cache.instances[p.instance as usize];
-                        triangles += u64::from((inst.bark.count + inst.leaves.count) / 3);
-                    }
-                    Ok(())
-                },
-            )?;
+            let triangles = (mesh.indices.len() / 3) as u64 + written.triangles;
             let mut stats = TileStats {
                 tiles: 1,
                 trees: written.trees,
