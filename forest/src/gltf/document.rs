@@ -271,7 +271,7 @@ impl Document {
         let first_normal = first_bark + patterns.len();
         let images: Vec<Vec<u8>> = match &shared_layout {
             Some(_) => Vec::new(),
-            None => shared::images(&shapes, &patterns),
+            None => shared::images(&shapes, &patterns).to_vec(),
         };
         for &v in &used_variants {
             let variant = &variants[v];

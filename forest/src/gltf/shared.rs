@@ -2,8 +2,10 @@
 //! binary file that tiles reference as an external glTF buffer, so that a world of tiles
 //! holds its instance geometry once instead of once per tile.
 
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use super::document::padding;
 use super::tangent::tangents;
@@ -84,10 +86,24 @@ pub(super) fn looks(builder: &ForestBuilder) -> (Vec<LeafShape>, Vec<BarkPattern
 }
 
 /// The PNG images of `shapes` and `patterns`: leaves, bark colours, bark normal maps.
-pub(super) fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Vec<Vec<u8>> {
+/// Encoded once per set and kept: every tile of a world lays out the same images, and
+/// encoding them again for each tile cost more than placing a small tile's trees.
+pub(super) fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Arc<Vec<Vec<u8>>> {
+    type Key = (Vec<LeafShape>, Vec<BarkPattern>);
+    type Encoded = Mutex<HashMap<Key, Arc<Vec<Vec<u8>>>>>;
+    static ENCODED: OnceLock<Encoded> = OnceLock::new();
+    let key = (shapes.to_vec(), patterns.to_vec());
+    let cache = ENCODED.get_or_init(Default::default);
+    if let Some(found) = cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return found;
+    }
     let mut out: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
     out.extend(patterns.iter().map(|&p| Texture::bark(p).png()));
     out.extend(patterns.iter().map(|&p| Texture::bark_normal(p).png()));
+    let out = Arc::new(out);
+    if let Ok(mut c) = cache.lock() {
+        c.insert(key, out.clone());
+    }
     out
 }
 
@@ -125,8 +141,8 @@ pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usi
             put(bytemuck::cast_slice(&c.bark))?;
             put(bytemuck::cast_slice(&c.leaves))?;
         }
-        for png in images(&layout.shapes, &layout.patterns) {
-            put(&png)?;
+        for png in images(&layout.shapes, &layout.patterns).iter() {
+            put(png)?;
         }
         w.flush().map_err(io)?;
         w.into_inner()
