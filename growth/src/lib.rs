@@ -47,6 +47,7 @@ mod grid;
 mod grown;
 mod light;
 mod obj;
+mod options;
 mod ray;
 mod stand;
 mod voxelise;
@@ -57,8 +58,9 @@ pub use grid::{BRICK, MAX_VOXELS, VoxelGrid};
 pub use grown::{GrownSegment, GrownTree};
 pub use light::{Light, Sky, SunPath};
 pub use obj::{MAX_OBJ_BYTES, read_obj};
+pub use options::{GrowthOptions, GrowthStats, Response, TreeSpec};
 pub use ray::{March, march};
-pub use stand::{GrowthOptions, GrowthStats, Response, Stand, TreeSpec};
+pub use stand::Stand;
 pub use voxelise::{
     capsule_is_free, distance_to_segment, voxelise_capsule, voxelise_ground, voxelise_triangles,
 };
