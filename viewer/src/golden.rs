@@ -64,14 +64,14 @@ fn offscreen(scene: &Scene, size: (u32, u32)) -> Option<Offscreen> {
 /// the default forest, foliage covers at least 70% of the picture.
 #[test]
 fn canopy_closes_seen_from_above() {
-    let scene = default_scene();
+    let mut scene = default_scene();
     let size = (256, 256);
-    let Some(offscreen) = offscreen(&scene, size) else {
+    let Some(mut offscreen) = offscreen(&scene, size) else {
         return;
     };
     let above = Camera::parse("400,400,0,-89.9,200").expect("camera");
     let (ids, _) = offscreen
-        .frame(&scene, &above, Mode::Ids)
+        .frame(&mut scene, &above, Mode::Ids)
         .expect("id render");
     let coverage = Coverage::of_ids(&ids);
     eprintln!("from above: {coverage}");
@@ -81,13 +81,13 @@ fn canopy_closes_seen_from_above() {
 
 #[test]
 fn default_scene_renders_terrain_and_trees() {
-    let scene = default_scene();
-    let camera = Camera::overview(scene.side, 40.0);
-    let Some(offscreen) = offscreen(&scene, SIZE) else {
+    let mut scene = default_scene();
+    let camera = Camera::overview(scene.side(), 40.0);
+    let Some(mut offscreen) = offscreen(&scene, SIZE) else {
         return;
     };
     let (ids, all) = offscreen
-        .frame(&scene, &camera, Mode::Ids)
+        .frame(&mut scene, &camera, Mode::Ids)
         .expect("id render");
     let Coverage {
         terrain,
@@ -109,7 +109,7 @@ fn default_scene_renders_terrain_and_trees() {
     assert!(other < 0.01, "unexpected colours cover {other:.4}");
 
     let (shaded, stats) = offscreen
-        .frame(&scene, &camera, Mode::Shaded)
+        .frame(&mut scene, &camera, Mode::Shaded)
         .expect("shaded render");
     let adapter = &offscreen.adapter;
     assert!(stats.draws > 100 && stats.instances > 1000, "{stats:?}");
@@ -156,7 +156,7 @@ fn default_scene_renders_terrain_and_trees() {
 #[test]
 fn wind_sways_trees_and_still_air_does_not() {
     let birch = scene::default_species().expect("bundled species")[1].clone();
-    let scene = Scene::build(SceneOptions {
+    let mut scene = Scene::build(SceneOptions {
         seed: 3,
         side: 60.0,
         species: vec![birch],
@@ -172,7 +172,7 @@ fn wind_sways_trees_and_still_air_does_not() {
         offscreen.wind = wind;
         offscreen.time = time;
         offscreen
-            .frame(&scene, &camera, Mode::Ids)
+            .frame(&mut scene, &camera, Mode::Ids)
             .expect("id render")
             .0
     };
@@ -191,4 +191,47 @@ fn wind_sways_trees_and_still_air_does_not() {
     );
     assert!(moved > 0.005, "{moved}");
     assert_eq!(changed(&frame_at(0.0, 0.0), &frame_at(0.0, 0.7)), 0.0);
+}
+
+/// Streaming changes nothing a frame shows: a view rendered, left for the far corner of a
+/// world larger than the view distance (its cells dropped) and rendered again on coming back
+/// is the same picture, pixel for pixel.
+#[test]
+fn a_view_streamed_again_is_the_same_picture() {
+    let species = scene::default_species().expect("bundled species");
+    let mut scene = Scene::build(SceneOptions {
+        seed: 4,
+        side: 2400.0,
+        species: vec![species[1].clone(), species[2].clone()],
+        budget: 12 << 20,
+    })
+    .expect("world builds");
+    let size = (160, 90);
+    let Some(mut offscreen) = offscreen(&scene, size) else {
+        return;
+    };
+    let here = Camera::parse("150,150,40,-5,30").expect("camera");
+    let there = Camera::parse("2300,2300,40,-5,30").expect("camera");
+    let (first, stats) = offscreen
+        .frame(&mut scene, &here, Mode::Shaded)
+        .expect("render");
+    assert!(
+        stats.streamed.generated > 0 && stats.streamed.coarse > 0,
+        "{stats:?}"
+    );
+    let (_, away) = offscreen
+        .frame(&mut scene, &there, Mode::Shaded)
+        .expect("render");
+    assert!(away.streamed.generated > 0, "{away:?}");
+    let (back, again) = offscreen
+        .frame(&mut scene, &here, Mode::Shaded)
+        .expect("render");
+    assert!(
+        again.streamed.generated > 0,
+        "the first view's cells were dropped"
+    );
+    assert!(
+        first == back,
+        "the view differs after streaming its cells again"
+    );
 }

@@ -3,8 +3,12 @@
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
-//!     [--screenshot PATH [--size WxH] [--ids] [--frames N] [--wind S] [--time T]]
+//!     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M]] [--wind S] [--time T]]
 //! ```
+//!
+//! The world is streamed: only the cells of it near the camera are generated and kept, fine
+//! (every branch) within 250 m and as whole-tree proxies to 1,500 m, so a world of millions
+//! of trees (`--area 3500`: about a million) is walked like a small one.
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
 //! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run; the
@@ -13,15 +17,19 @@
 //!
 //! Headless (`--screenshot`): renders one frame offscreen and writes a PNG, in a wind of
 //! strength `--wind` (1, a breeze, by default; 0 for still air) at `--time` seconds into its
-//! cycle. With `--ids` the picture shows flat material colours and the viewer prints what
+//! cycle; `--frames N` renders N more frames and prints the median frame time, and with
+//! `--walk M` the camera walks M metres along its heading between them, streaming as it
+//! goes. With `--ids` the picture shows flat material colours and the viewer prints what
 //! share of it terrain, bark, leaves and sky cover. Without a GPU it runs on Mesa's software
 //! drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
+mod cells;
 mod cli;
 mod coverage;
 mod cull;
 #[cfg(test)]
 mod golden;
+mod loader;
 mod offscreen;
 mod render;
 mod scene;
@@ -41,12 +49,13 @@ struct Args {
     size: (u32, u32),
     ids: bool,
     frames: u32,
+    walk: f32,
     wind: f32,
     time: f32,
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES] [--budget-mb MB] \
-                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N] [--wind S] [--time T]]";
+                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M]] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -59,6 +68,7 @@ fn parse() -> Result<Args, String> {
     let mut size = (1280u32, 720u32);
     let mut ids = false;
     let mut frames = 0u32;
+    let mut walk = 0.0f32;
     let mut wind = 1.0f32;
     let mut time = 0.0f32;
     let mut flags = cli::Flags::from_env();
@@ -86,6 +96,7 @@ fn parse() -> Result<Args, String> {
             }
             "--ids" => ids = true,
             "--frames" => frames = flags.value("--frames")?,
+            "--walk" => walk = flags.value("--walk")?,
             "--wind" => wind = flags.value("--wind")?,
             "--time" => time = flags.value("--time")?,
             "--help" | "-h" => cli::print_help(USAGE),
@@ -94,6 +105,11 @@ fn parse() -> Result<Args, String> {
     }
     if !(0.0..=10.0).contains(&wind) {
         return Err(format!("--wind {wind}: expected a strength from 0 to 10"));
+    }
+    if !(-1000.0..=1000.0).contains(&walk) {
+        return Err(format!(
+            "--walk {walk}: expected metres per frame, -1000 to 1000"
+        ));
     }
     if !time.is_finite() {
         return Err(format!("--time {time}: expected a number of seconds"));
@@ -129,6 +145,7 @@ fn parse() -> Result<Args, String> {
         size,
         ids,
         frames,
+        walk,
         wind,
         time,
     })
@@ -137,18 +154,22 @@ fn parse() -> Result<Args, String> {
 fn run() -> Result<(), String> {
     let args = parse()?;
     let start = Instant::now();
-    let scene = Scene::build(args.scene)?;
+    let mut scene = Scene::build(args.scene)?;
     eprintln!(
-        "scene: {} trees, {} instance groups, built in {:.0} ms",
-        scene.trees,
-        scene.groups.len(),
-        start.elapsed().as_secs_f64() * 1e3
+        "world: {0} x {0} m, {1} instance groups, built in {2:.0} ms; trees are streamed in \
+         {3} m cells, fine within {4} m of the camera, proxies to {5} m",
+        scene.side(),
+        scene.world.groups.len(),
+        start.elapsed().as_secs_f64() * 1e3,
+        cells::CELL,
+        cells::LOD_DISTANCE,
+        cells::VIEW_DISTANCE,
     );
     match args.screenshot {
         Some(path) => {
             let camera = args
                 .camera
-                .unwrap_or_else(|| Camera::overview(scene.side, 40.0));
+                .unwrap_or_else(|| Camera::overview(scene.side(), 40.0));
             let mode = if args.ids {
                 render::Mode::Ids
             } else {
@@ -159,16 +180,42 @@ fn run() -> Result<(), String> {
                 pollster::block_on(offscreen::Offscreen::new(&scene, args.size.0, args.size.1))?;
             offscreen.wind = args.wind;
             offscreen.time = args.time;
-            let (pixels, stats) = offscreen.frame(&scene, &camera, mode)?;
+            let (pixels, stats) = offscreen.frame(&mut scene, &camera, mode)?;
             let first_ms = t.elapsed().as_secs_f64() * 1e3;
-            // Steady frame time: the median of further frames, read back like the first.
+            let s = stats.streamed;
+            println!(
+                "streamed {} cells in {:.0} ms: {} trees in the cells drawn ({} in coarse cells), {} cells and {:.0} MB of instances held",
+                s.generated,
+                s.milliseconds,
+                s.trees,
+                s.coarse,
+                s.resident,
+                s.bytes as f64 / 1e6
+            );
+            // Steady frame time: the median of further frames, read back like the first;
+            // with --walk the camera moves between them and cells stream in and out.
             let mut times = Vec::new();
+            let mut streaming = Vec::new();
+            let mut walker = camera;
             for _ in 0..args.frames {
+                walker.step(args.walk, scene.side());
                 let t = Instant::now();
-                offscreen.frame(&scene, &camera, mode)?;
+                let (_, stats) = offscreen.frame(&mut scene, &walker, mode)?;
                 times.push(t.elapsed().as_secs_f64() * 1e3);
+                streaming.push((stats.streamed.milliseconds, stats.streamed.generated));
             }
             times.sort_by(f64::total_cmp);
+            if args.walk != 0.0 && !streaming.is_empty() {
+                let generated: usize = streaming.iter().map(|s| s.1).sum();
+                let most = streaming.iter().map(|s| s.0).fold(0.0, f64::max);
+                streaming.sort_by(|a, b| a.0.total_cmp(&b.0));
+                println!(
+                    "walked {:.0} m in {} frames: {generated} cells streamed in, streaming {:.0} ms per frame (median), {most:.0} ms at most",
+                    args.walk * streaming.len() as f32,
+                    streaming.len(),
+                    streaming[streaming.len() / 2].0
+                );
+            }
             let adapter = &offscreen.adapter;
             let file = std::fs::File::create(&path).map_err(|e| format!("{path}: {e}"))?;
             let mut encoder =

@@ -79,17 +79,21 @@ impl Offscreen {
         })
     }
 
-    /// Renders one frame and returns it as tightly packed RGBA8 (sRGB) rows.
+    /// Streams in the cells `camera` needs (waiting for all of them; in id mode every cell
+    /// in view is fine, so the picture measures the real trees), renders one frame and
+    /// returns it as tightly packed RGBA8 (sRGB) rows.
     pub(crate) fn frame(
-        &self,
-        scene: &Scene,
+        &mut self,
+        scene: &mut Scene,
         camera: &Camera,
         mode: Mode,
     ) -> Result<(Vec<u8>, FrameStats), String> {
         let (width, height) = self.size;
-        let mut encoder = self.device.create_command_encoder(&Default::default());
         let (view_proj, eye) = camera.view_proj(scene, width as f32 / height as f32);
-        let stats = self.renderer.render(
+        let streamed = scene.stream(eye, mode == Mode::Ids, true)?;
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let mut stats = self.renderer.render(
+            &self.device,
             &self.queue,
             &mut encoder,
             (&self.view, &self.depth),
@@ -149,6 +153,7 @@ impl Offscreen {
             }
         }
         self.readback.unmap();
+        stats.streamed = streamed;
         Ok((pixels, stats))
     }
 }

@@ -4,10 +4,11 @@
 use std::num::NonZeroU64;
 
 use bytemuck::{Pod, Zeroable};
-use sylva::terrain::glam::{Mat4, Quat, Vec3};
+use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::turtle::Vertex;
 use wgpu::util::DeviceExt;
 
+use crate::cells::{LOD_DISTANCE, Level, Streamed, VIEW_DISTANCE, world_sphere};
 use crate::cull::Volume;
 use crate::scene::{InstanceRaw, Scene};
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
@@ -18,9 +19,6 @@ const MATERIAL_STRIDE: u64 = 256;
 /// Placements smaller on screen than this many pixels across are not drawn: far twigs and
 /// seedlings that fog would hide anyway.
 const MIN_PIXELS: f32 = 2.0;
-/// Trees farther than this from the camera are drawn whole as proxies (76 triangles) in
-/// shaded frames, the distance coarse tiles take over at.
-const LOD_DISTANCE: f32 = 250.0;
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
 const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
@@ -48,11 +46,13 @@ struct Globals {
 }
 
 /// What one frame drew.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct FrameStats {
     pub(crate) draws: u32,
     pub(crate) instances: u64,
     pub(crate) triangles: u64,
+    /// What streaming the cells for it did.
+    pub(crate) streamed: Streamed,
 }
 
 /// Where the frame is seen from, how it is shaded and how the wind blows.
@@ -109,8 +109,8 @@ pub(crate) struct Renderer {
     terrain_count: u32,
     identity: wgpu::Buffer,
     variants: Vec<VariantBuffers>,
-    /// The placements in view this frame, then those in the sun's box (room for every
-    /// placement twice).
+    /// The placements in view this frame, then those in the sun's box; grown when a frame
+    /// needs more room.
     instances: Option<wgpu::Buffer>,
     draws: Vec<Draw>,
     fog_density: f32,
@@ -214,6 +214,7 @@ impl Renderer {
         format: wgpu::TextureFormat,
         scene: &Scene,
     ) -> Renderer {
+        let world = &scene.world;
         let shader = device.create_shader_module(wgpu::include_wgsl!("shader.wgsl"));
         let (texture_layout, texture_group) = textures(device, queue);
         let uniform_layout = |dynamic: bool, size: u64| {
@@ -316,7 +317,7 @@ impl Renderer {
         // colour's fourth component is the leaf texture layer plus one (0: no texture).
         // The terrain's fourth component is -1: the shader paints it by slope and altitude.
         let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, -1.0)];
-        for v in &scene.variants {
+        for v in &world.variants {
             materials.push((
                 v.bark_colour,
                 ID_BARK,
@@ -331,7 +332,7 @@ impl Renderer {
         // Then the far trees' proxies, untextured: the crown darker than the leaf colour, as
         // the leaf cards' texture and the gaps between them darken a real crown.
         let proxy_materials = materials.len() as u32;
-        for v in &scene.variants {
+        for v in &world.variants {
             materials.push((v.bark_colour, ID_BARK, 0.0));
             materials.push((v.leaf_colour.map(|c| c * 0.6), ID_LEAF, 0.0));
         }
@@ -374,23 +375,21 @@ impl Renderer {
             bark: index_buffer(device, "bark indices", bark),
             leaves: index_buffer(device, "leaf indices", leaves),
         };
-        let variants: Vec<VariantBuffers> = scene
+        let variants: Vec<VariantBuffers> = world
             .variants
             .iter()
             .map(|v| variant_buffers(&v.vertices, &v.bark, &v.leaves))
             .chain(
-                scene
+                world
                     .proxies
                     .iter()
                     .map(|p| variant_buffers(&p.vertices, &p.bark, &p.leaves)),
             )
             .collect();
-        let mut placements = 0u64;
         let mut draws = Vec::new();
         // Proxies are drawn like groups numbered after the real ones.
-        let (groups, kinds) = (scene.groups.len(), scene.variants.len());
-        for (v, p) in scene.proxies.iter().enumerate() {
-            placements += p.trees.len() as u64;
+        let (groups, kinds) = (world.groups.len(), world.variants.len());
+        for (v, p) in world.proxies.iter().enumerate() {
             for (bark, count) in [(true, p.bark.len()), (false, p.leaves.len())] {
                 if count > 0 {
                     draws.push(Draw {
@@ -403,8 +402,7 @@ impl Renderer {
                 }
             }
         }
-        for (group, g) in scene.groups.iter().enumerate() {
-            placements += g.instances.len() as u64;
+        for (group, g) in world.groups.iter().enumerate() {
             for (bark, span) in [(true, g.bark), (false, g.leaves)] {
                 if !span.is_empty() {
                     draws.push(Draw {
@@ -465,16 +463,10 @@ impl Renderer {
                 wgpu::BufferUsages::VERTEX,
             ),
             variants,
-            instances: (placements > 0).then(|| {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("instances in view"),
-                    size: 2 * placements * size_of::<InstanceRaw>() as u64,
-                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                })
-            }),
+            instances: None,
             draws,
-            fog_density: 1.2 / scene.side,
+            // Thick enough that what lies at the view distance is mostly haze.
+            fog_density: (1.2 / world.side).max(2.3 / VIEW_DISTANCE),
             terrain_heights: scene
                 .terrain_vertices
                 .iter()
@@ -487,7 +479,8 @@ impl Renderer {
     /// Records one frame into `encoder`: the shadow map (shaded mode), then the sky, the
     /// terrain and the forest.
     pub(crate) fn render(
-        &self,
+        &mut self,
+        device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (target, depth): (&wgpu::TextureView, &wgpu::TextureView),
@@ -520,7 +513,7 @@ impl Renderer {
         // first, then the sun's.
         let mut visible = Vec::new();
         // Far trees are drawn whole as proxies when shading (the id mode measures the real
-        // trees).
+        // trees, and its cells are all fine).
         let lod = shaded.then_some((view.eye, LOD_DISTANCE));
         let in_view = cull(
             scene,
@@ -542,7 +535,20 @@ impl Renderer {
         } else {
             Vec::new()
         };
-        if let Some(instances) = &self.instances {
+        let bytes = (visible.len() * size_of::<InstanceRaw>()) as u64;
+        if bytes > self.instances.as_ref().map_or(0, wgpu::Buffer::size) {
+            // Room for the most a frame has needed, rounded up, so walking does not
+            // reallocate it frame after frame.
+            self.instances = Some(device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("instances in view"),
+                size: bytes.next_power_of_two(),
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }));
+        }
+        if let Some(instances) = &self.instances
+            && bytes > 0
+        {
             queue.write_buffer(instances, 0, bytemuck::cast_slice(&visible));
         }
         if shaded {
@@ -658,11 +664,11 @@ impl Renderer {
     }
 }
 
-/// Appends to `visible` the placements of every group whose bounding sphere touches
-/// `volume` and, seen from `eye` with `pixels_per_radian`, spans at least [`MIN_PIXELS`];
-/// with `lod` (a point and a distance), only the placements of trees within that distance of
-/// the point, and every farther tree as one proxy. Returns (first, count) in `visible` for
-/// each group, then for each variant's proxies.
+/// Appends to `visible` the placements of every group in the fine cells drawn, then the
+/// proxies of every variant, whose bounding spheres touch `volume` and, seen from `eye` with
+/// `pixels_per_radian`, span at least [`MIN_PIXELS`]. With `lod` (a point and a distance), a
+/// fine cell's trees farther than that from the point are drawn as proxies too. Returns (first, count) in
+/// `visible` for each group, then for each variant's proxies.
 fn cull(
     scene: &Scene,
     volume: &Volume,
@@ -672,28 +678,46 @@ fn cull(
 ) -> Vec<(u64, u32)> {
     // A sphere of radius r at distance d spans about 2 r / d radians.
     let min_ratio = 0.5 * MIN_PIXELS / pixels_per_radian.max(1e-6);
+    let seen = |i: &InstanceRaw, sphere: (Vec3, f32)| {
+        let (world, r) = world_sphere(i, sphere);
+        volume.touches(world, r) && r >= min_ratio * world.distance(eye)
+    };
     let near = |i: &InstanceRaw| {
         lod.is_none_or(|(from, far)| {
             Vec3::new(i.tree[0], i.tree[1], i.tree[2]).distance(from) <= far
         })
     };
-    let seen = |i: &InstanceRaw, (centre, radius): (Vec3, f32)| {
-        let [x, y, z, scale] = i.translation_scale;
-        let rotation = Quat::from_array(i.rotation);
-        let world = Vec3::new(x, y, z) + rotation * (centre * scale);
-        let r = radius * scale;
-        volume.touches(world, r) && r >= min_ratio * world.distance(eye)
-    };
-    let mut ranges = Vec::with_capacity(scene.groups.len() + scene.proxies.len());
-    for g in &scene.groups {
+    // Whole cells out of view are skipped before their placements are looked at.
+    let (mut fine, mut coarse) = (Vec::new(), Vec::new());
+    for (key, cell) in scene.cells.drawn() {
+        let (centre, radius) = cell.sphere;
+        if radius >= 0.0 && volume.touches(centre, radius) {
+            match key.level {
+                Level::Fine => fine.push(cell),
+                Level::Coarse => coarse.push(cell),
+            }
+        }
+    }
+    let world = &scene.world;
+    let mut ranges = Vec::with_capacity(world.groups.len() + world.proxies.len());
+    for (k, g) in world.groups.iter().enumerate() {
         let first = visible.len();
-        visible.extend(g.instances.iter().filter(|i| near(i) && seen(i, g.sphere)));
+        for cell in &fine {
+            let run = cell.placements.run(k).iter();
+            visible.extend(run.filter(|i| near(i) && seen(i, g.sphere)));
+        }
         ranges.push((first as u64, (visible.len() - first) as u32));
     }
-    for p in &scene.proxies {
+    for (k, p) in world.proxies.iter().enumerate() {
         let first = visible.len();
         if lod.is_some() {
-            visible.extend(p.trees.iter().filter(|i| !near(i) && seen(i, p.sphere)));
+            for cell in &fine {
+                let run = cell.proxies.run(k).iter();
+                visible.extend(run.filter(|i| !near(i) && seen(i, p.sphere)));
+            }
+        }
+        for cell in &coarse {
+            visible.extend(cell.proxies.run(k).iter().filter(|i| seen(i, p.sphere)));
         }
         ranges.push((first as u64, (visible.len() - first) as u32));
     }

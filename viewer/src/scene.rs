@@ -1,14 +1,17 @@
-//! The CPU side of the viewer: the forest and terrain as flat buffers, and the camera.
+//! The CPU side of the viewer: the world (forest recipe, terrain and the geometry placements
+//! refer to), the cells streamed in around the camera, and the camera.
 
 use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
+
 use sylva::forest::{
-    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, PlacementBlock, Rect, Species,
-    tree_proxy, tree_tint, tree_wind,
+    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, Species, tree_proxy,
 };
 use sylva::instancing::Span;
 
+use crate::cells::{Cells, Streamed, VIEW_DISTANCE};
 use crate::cull::bounding_sphere;
-use sylva::terrain::glam::{Mat4, Vec2, Vec3};
+use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
 use sylva::turtle::Vertex;
 
@@ -35,7 +38,8 @@ pub(crate) struct VariantGeometry {
     pub(crate) bark_pattern: BarkPattern,
 }
 
-/// One cached instance with its placements: one instanced draw per non-empty index range.
+/// One cached instance drawn with its placements: one instanced draw per non-empty index
+/// range. Its placements live in the streamed cells.
 pub(crate) struct Group {
     pub(crate) variant: usize,
     pub(crate) bark: Span,
@@ -43,31 +47,41 @@ pub(crate) struct Group {
     /// A sphere around the instance's triangles in its own space (centre, radius), with room
     /// for the wind's sway.
     pub(crate) sphere: (Vec3, f32),
-    pub(crate) instances: Vec<InstanceRaw>,
 }
 
-/// Every tree of one variant drawn whole, as a proxy, where it is far from the camera.
-pub(crate) struct Proxies {
-    /// The proxy (`sylva_forest::tree_proxy`): trunk in `bark`, crown in `leaves`.
+/// A variant's whole-tree proxy (`sylva_forest::tree_proxy`), drawn for trees far from the
+/// camera: trunk in `bark`, crown in `leaves`.
+pub(crate) struct Proxy {
     pub(crate) vertices: Vec<Vertex>,
     pub(crate) bark: Vec<u32>,
     pub(crate) leaves: Vec<u32>,
     /// A sphere around it in the tree's own space (centre, radius).
     pub(crate) sphere: (Vec3, f32),
-    /// One per tree: its root transform, tint and wind data.
-    pub(crate) trees: Vec<InstanceRaw>,
 }
 
-pub(crate) struct Scene {
+/// What never changes while the camera moves: the forest's recipe, the terrain, and the
+/// geometry every placement refers to. Shared with the thread that generates cells.
+pub(crate) struct World {
+    pub(crate) builder: ForestBuilder,
     pub(crate) heightmap: Heightmap,
-    pub(crate) terrain_vertices: Vec<TerrainVertex>,
-    pub(crate) terrain_indices: Vec<u32>,
+    pub(crate) side: f32,
     pub(crate) variants: Vec<VariantGeometry>,
     pub(crate) groups: Vec<Group>,
-    /// Per variant, its proxy and its trees.
-    pub(crate) proxies: Vec<Proxies>,
-    pub(crate) side: f32,
-    pub(crate) trees: usize,
+    /// Per variant and cache instance, its index in `groups` (`None`: nothing to draw).
+    pub(crate) group_of: Vec<Vec<Option<u32>>>,
+    /// Per variant.
+    pub(crate) proxies: Vec<Proxy>,
+    /// Per variant: whether it is a seedling form (left out of coarse cells, as coarse tiles
+    /// leave it out).
+    pub(crate) seedling: Vec<bool>,
+}
+
+/// The world and the cells of it streamed in around the camera.
+pub(crate) struct Scene {
+    pub(crate) world: Arc<World>,
+    pub(crate) terrain_vertices: Vec<TerrainVertex>,
+    pub(crate) terrain_indices: Vec<u32>,
+    pub(crate) cells: Cells,
 }
 
 pub(crate) struct SceneOptions {
@@ -109,108 +123,69 @@ pub(crate) fn default_species() -> Result<Vec<Species>, String> {
         .collect()
 }
 
-impl Scene {
-    pub(crate) fn build(options: SceneOptions) -> Result<Scene, String> {
+impl World {
+    /// The forest's caches and the terrain (the forest example's: smoothed diamond-square,
+    /// 257 samples a side); no trees are placed until cells are streamed.
+    pub(crate) fn build(options: SceneOptions) -> Result<World, String> {
         let mut config = ForestConfig::new(options.species);
         config.seed = options.seed;
         config.budget = options.budget;
         let builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
         let side = options.side;
-        let mut map = DiamondSquare::new(257)
+        let mut heightmap = DiamondSquare::new(257)
             .with_seed(options.seed)
             .with_spacing(side / 256.0)
             .with_roughness(0.75)
             .with_amplitude(side * 0.06)
             .generate()
             .map_err(|e| e.to_string())?;
-        map.smooth(2.0, EdgeMode::Mirror)
-            .map_err(|e| e.to_string())?;
-        let terrain = map.mesh(1).map_err(|e| e.to_string())?;
-        // The forest streamed block by block, as the exporter reads it; placements are
-        // gathered per (variant, instance) for one instanced draw each.
-        let variants = builder.variants();
-        let mut placed: Vec<Vec<Vec<InstanceRaw>>> = variants
-            .iter()
-            .map(|v| vec![Vec::new(); v.cache.instances.len()])
-            .collect();
-        let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
-        let mut proxies: Vec<Proxies> = variants
-            .iter()
-            .map(|v| {
-                let mesh = tree_proxy(Extent::of(v));
-                let (centre, radius) =
-                    bounding_sphere(mesh.vertices.iter().map(|v| Vec3::from(v.position)));
-                Proxies {
-                    vertices: mesh.vertices,
-                    bark: mesh.bark,
-                    leaves: mesh.leaves,
-                    sphere: (centre, radius * 1.1 + 0.5),
-                    trees: Vec::new(),
-                }
-            })
-            .collect();
-        let streamed = builder
-            .stream(&map, region, &mut |block: &PlacementBlock| {
-                for tree in &block.trees {
-                    let root = tree.root();
-                    let tint = tree_tint(tree);
-                    if let Some(p) = proxies.get_mut(usize::from(tree.variant)) {
-                        p.trees.push(InstanceRaw {
-                            rotation: root.rotation.normalize().to_array(),
-                            translation_scale: [
-                                root.translation.x,
-                                root.translation.y,
-                                root.translation.z,
-                                root.scale,
-                            ],
-                            tint: [tint[0], tint[1], tint[2], 1.0],
-                            tree: tree_wind(tree),
-                        });
-                    }
-                }
-                for p in &block.placements {
-                    let t = &p.transform;
-                    let tree = block.trees.get(p.tree as usize);
-                    let tint = tree.map_or([1.0; 3], tree_tint);
-                    placed[p.variant as usize][p.instance as usize].push(InstanceRaw {
-                        tint: [tint[0], tint[1], tint[2], 1.0],
-                        tree: tree.map_or([0.0; 4], tree_wind),
-                        rotation: t.rotation.to_array(),
-                        translation_scale: [
-                            t.translation.x,
-                            t.translation.y,
-                            t.translation.z,
-                            t.scale,
-                        ],
-                    });
-                }
-                Ok(())
-            })
+        heightmap
+            .smooth(2.0, EdgeMode::Mirror)
             .map_err(|e| e.to_string())?;
         let species = &builder.config().species;
         let mut groups = Vec::new();
-        for (variant, (v, per_instance)) in variants.iter().zip(placed).enumerate() {
-            for (inst, instances) in v.cache.instances.iter().zip(per_instance) {
-                if instances.is_empty() || (inst.bark.is_empty() && inst.leaves.is_empty()) {
+        let mut group_of = Vec::new();
+        for (variant, v) in builder.variants().iter().enumerate() {
+            let cache = &v.cache;
+            let mut of = Vec::with_capacity(cache.instances.len());
+            for inst in &cache.instances {
+                if inst.bark.is_empty() && inst.leaves.is_empty() {
+                    of.push(None);
                     continue;
                 }
-                let cache = &v.cache;
                 let corners = cache.bark[inst.bark.range()]
                     .iter()
                     .chain(&cache.leaves[inst.leaves.range()])
                     .filter_map(|&i| cache.vertices.get(i as usize))
                     .map(|v| Vec3::from(v.position));
                 let (centre, radius) = bounding_sphere(corners);
+                of.push(Some(groups.len() as u32));
                 groups.push(Group {
                     variant,
                     bark: inst.bark,
                     leaves: inst.leaves,
                     sphere: (centre, radius * 1.1 + 0.5),
-                    instances,
                 });
             }
+            group_of.push(of);
         }
-        let variants = variants
+        let proxies = builder
+            .variants()
+            .iter()
+            .map(|v| {
+                let mesh = tree_proxy(Extent::of(v));
+                let (centre, radius) =
+                    bounding_sphere(mesh.vertices.iter().map(|v| Vec3::from(v.position)));
+                Proxy {
+                    vertices: mesh.vertices,
+                    bark: mesh.bark,
+                    leaves: mesh.leaves,
+                    sphere: (centre, radius * 1.1 + 0.5),
+                }
+            })
+            .collect();
+        let variants = builder
+            .variants()
             .iter()
             .map(|v| {
                 let s = &species[v.species];
@@ -225,21 +200,51 @@ impl Scene {
                 }
             })
             .collect();
-        Ok(Scene {
-            heightmap: map,
-            terrain_vertices: terrain.vertices,
-            terrain_indices: terrain.indices,
+        let seedling = builder.variants().iter().map(|v| v.seedling).collect();
+        Ok(World {
+            builder,
+            heightmap,
+            side,
             variants,
             groups,
+            group_of,
             proxies,
-            side,
-            trees: streamed.trees,
+            seedling,
         })
+    }
+}
+
+impl Scene {
+    /// The world with no cells streamed in yet.
+    pub(crate) fn build(options: SceneOptions) -> Result<Scene, String> {
+        let world = World::build(options)?;
+        let terrain = world.heightmap.mesh(1).map_err(|e| e.to_string())?;
+        Ok(Scene {
+            world: Arc::new(world),
+            terrain_vertices: terrain.vertices,
+            terrain_indices: terrain.indices,
+            cells: Cells::default(),
+        })
+    }
+
+    /// The world's side in metres.
+    pub(crate) fn side(&self) -> f32 {
+        self.world.side
+    }
+
+    /// Brings the cells around `eye` in (see [`Cells::update`]).
+    pub(crate) fn stream(
+        &mut self,
+        eye: Vec3,
+        fine_everywhere: bool,
+        wait: bool,
+    ) -> Result<Streamed, String> {
+        self.cells.update(&self.world, eye, fine_everywhere, wait)
     }
 
     /// Ground height under (x, z).
     pub(crate) fn ground(&self, x: f32, z: f32) -> f32 {
-        self.heightmap.height(x, z)
+        self.world.heightmap.height(x, z)
     }
 }
 
@@ -301,6 +306,13 @@ impl Camera {
         }
     }
 
+    /// Walks `metres` along the heading, staying inside a world of side `side`.
+    pub(crate) fn step(&mut self, metres: f32, side: f32) {
+        let (s, c) = self.yaw.sin_cos();
+        self.x = (self.x + c * metres).clamp(0.0, side);
+        self.z = (self.z + s * metres).clamp(0.0, side);
+    }
+
     pub(crate) fn forward(&self) -> Vec3 {
         Vec3::new(
             self.yaw.cos() * self.pitch.cos(),
@@ -322,7 +334,7 @@ impl Camera {
             FIELD_OF_VIEW_DEGREES.to_radians(),
             aspect.max(1e-3),
             0.2,
-            scene.side * 2.0,
+            VIEW_DISTANCE * 1.2,
         );
         (proj * view, eye)
     }

@@ -47,7 +47,7 @@ pub(crate) fn run(scene: Scene, camera: Option<Camera>, max_frames: u32) -> Resu
     let event_loop = EventLoop::new().map_err(|e| {
         format!("cannot open a window ({e}); on a machine without a display, render headless with --screenshot PATH")
     })?;
-    let camera = camera.unwrap_or_else(|| Camera::overview(scene.side, 1.7));
+    let camera = camera.unwrap_or_else(|| Camera::overview(scene.side(), 1.7));
     let mut app = App {
         scene,
         camera,
@@ -132,7 +132,7 @@ impl App {
                 step[1] += dz;
             }
         }
-        let side = self.scene.side;
+        let side = self.scene.side();
         self.camera.x = (self.camera.x + step[0] * speed * dt).clamp(0.0, side);
         self.camera.z = (self.camera.z + step[1] * speed * dt).clamp(0.0, side);
     }
@@ -145,6 +145,15 @@ impl App {
         let dt = (now - self.last).as_secs_f32().min(0.1);
         self.last = now;
         self.walk(dt);
+        // Cells arrive from the loader thread; until a fine cell comes its coarse one stands
+        // in.
+        let streamed = match self
+            .scene
+            .stream(self.camera.eye(&self.scene), false, false)
+        {
+            Ok(s) => s,
+            Err(e) => return self.fail(event_loop, e),
+        };
         let Some(gpu) = &mut self.gpu else { return };
         if gpu.config.width == 0 || gpu.config.height == 0 {
             return;
@@ -166,6 +175,7 @@ impl App {
         let (view_proj, eye) = self.camera.view_proj(&self.scene, aspect);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let stats = gpu.renderer.render(
+            &gpu.device,
             &gpu.queue,
             &mut encoder,
             (&view, &gpu.depth),
@@ -200,11 +210,18 @@ impl App {
             }
         }
         gpu.window.set_title(&format!(
-            "sylva: {} draw calls, {} instances, {:.1} M triangles, {:.1} ms",
+            "sylva: {} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
             stats.draws,
             stats.instances,
             stats.triangles as f64 / 1e6,
-            self.frame_ms
+            self.frame_ms,
+            streamed.trees,
+            streamed.resident,
+            if streamed.pending > 0 {
+                format!(", {} cells coming", streamed.pending)
+            } else {
+                String::new()
+            }
         ));
     }
 

@@ -1,0 +1,529 @@
+//! Streaming: the world cut into square cells, and only the cells near the camera kept.
+//!
+//! Cells within [`LOD_DISTANCE`] of the camera are *fine*: every placement of every tree in
+//! them, generated from the compact forest (`ForestBuilder::stream` over the cell), and a
+//! proxy per canopy tree for those of its trees a frame finds beyond that distance. Cells
+//! within [`VIEW_DISTANCE`] are *coarse*: only the proxies (`ForestBuilder::trees`), as the
+//! coarse tiles of a 3D Tiles world carry. Farther cells are dropped. A cell's content
+//! is a pure function of the world and the cell, so a cell dropped and streamed in again is
+//! the same, and a frame is the same whatever order its cells arrived in.
+//!
+//! Headless frames wait for every cell they need ([`Cells::update`] with `wait`); the window
+//! asks a [`Loader`] thread for them, nearest first, and draws what has arrived, a coarse cell
+//! standing in for a fine one until the fine one comes.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use sylva::forest::{PlacementBlock, Rect, tree_tint, tree_wind};
+use sylva::instancing::CompactTree;
+use sylva::terrain::glam::{Quat, Vec2, Vec3};
+
+use crate::loader::Loader;
+use crate::scene::{InstanceRaw, World};
+
+/// Side of a cell in metres.
+pub(crate) const CELL: f32 = 100.0;
+/// Cells nearer than this (horizontally, from the camera to the cell's nearest point) are
+/// fine; trees beyond it are drawn as proxies, as a 3D Tiles client switches to coarse tiles.
+pub(crate) const LOD_DISTANCE: f32 = 250.0;
+/// Cells farther than this are not kept; fog hides what lies beyond.
+pub(crate) const VIEW_DISTANCE: f32 = 1500.0;
+/// A resident cell is dropped only this much beyond the distance that wanted it, so walking
+/// to and fro across a boundary does not generate the same cell again and again.
+const KEEP_MARGIN: f32 = 60.0;
+
+/// A cell's level of detail.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub(crate) enum Level {
+    /// Every placement of every tree.
+    Fine,
+    /// One proxy per canopy tree.
+    Coarse,
+}
+
+/// A cell of the world at one level: column `x`, row `z` of the grid of [`CELL`]-metre squares
+/// from the world's origin.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub(crate) struct CellKey {
+    pub(crate) x: u32,
+    pub(crate) z: u32,
+    pub(crate) level: Level,
+}
+
+impl CellKey {
+    /// The ground the cell covers, clipped to the world.
+    pub(crate) fn rect(&self, side: f32) -> Rect {
+        let min = Vec2::new(self.x as f32 * CELL, self.z as f32 * CELL);
+        Rect::new(min, (min + Vec2::splat(CELL)).min(Vec2::splat(side)))
+    }
+
+    /// Horizontal distance from `eye` to the cell's nearest point.
+    fn distance(&self, eye: Vec3, side: f32) -> f32 {
+        let r = self.rect(side);
+        let p = Vec2::new(eye.x, eye.z);
+        p.distance(p.clamp(r.min, r.max))
+    }
+
+    fn other_level(self) -> CellKey {
+        CellKey {
+            level: match self.level {
+                Level::Fine => Level::Coarse,
+                Level::Coarse => Level::Fine,
+            },
+            ..self
+        }
+    }
+}
+
+/// Instances gathered by what draws them: run `k` is group `k`'s placements, or variant
+/// `k`'s proxies.
+#[derive(Default)]
+pub(crate) struct Runs {
+    instances: Vec<InstanceRaw>,
+    /// Where each run starts in `instances`, and one more entry for the end.
+    starts: Vec<u32>,
+}
+
+impl Runs {
+    /// Gathers `(run, instance)` pairs into `runs` runs, keeping their order within a run.
+    fn gather(mut tagged: Vec<(u32, InstanceRaw)>, runs: usize) -> Runs {
+        tagged.sort_by_key(|(run, _)| *run);
+        let mut starts = vec![0u32; runs + 1];
+        for (run, _) in &tagged {
+            starts[*run as usize + 1] += 1;
+        }
+        for k in 0..runs {
+            starts[k + 1] += starts[k];
+        }
+        Runs {
+            instances: tagged.into_iter().map(|(_, i)| i).collect(),
+            starts,
+        }
+    }
+
+    /// The instances of run `k`.
+    pub(crate) fn run(&self, k: usize) -> &[InstanceRaw] {
+        match (self.starts.get(k), self.starts.get(k + 1)) {
+            (Some(&a), Some(&b)) => &self.instances[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.instances.len()
+    }
+}
+
+/// One streamed cell.
+pub(crate) struct Cell {
+    /// Fine cells: the placements of every tree, by group (empty in coarse cells).
+    pub(crate) placements: Runs,
+    /// A proxy per canopy tree, by variant: a coarse cell draws them all, a fine one those of
+    /// its trees beyond the level-of-detail distance.
+    pub(crate) proxies: Runs,
+    /// A sphere around everything in the cell, for culling it whole (radius below zero:
+    /// nothing in it).
+    pub(crate) sphere: (Vec3, f32),
+    /// Trees in the cell.
+    pub(crate) trees: usize,
+}
+
+impl Cell {
+    fn new(world: &World, placements: Runs, proxies: Runs, trees: usize) -> Cell {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        let mut bound = |runs: &Runs, spheres: &mut dyn Iterator<Item = (Vec3, f32)>| {
+            for (k, sphere) in spheres.enumerate() {
+                for i in runs.run(k) {
+                    let (centre, radius) = world_sphere(i, sphere);
+                    lo = lo.min(centre - radius);
+                    hi = hi.max(centre + radius);
+                }
+            }
+        };
+        bound(&placements, &mut world.groups.iter().map(|g| g.sphere));
+        bound(&proxies, &mut world.proxies.iter().map(|p| p.sphere));
+        let sphere = if lo.x <= hi.x {
+            ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
+        } else {
+            (Vec3::ZERO, -1.0)
+        };
+        Cell {
+            placements,
+            proxies,
+            sphere,
+            trees,
+        }
+    }
+
+    /// Bytes of instances held.
+    pub(crate) fn bytes(&self) -> usize {
+        (self.placements.len() + self.proxies.len()) * size_of::<InstanceRaw>()
+    }
+}
+
+/// A sphere given in an instance's own space, placed in the world by the instance.
+pub(crate) fn world_sphere(i: &InstanceRaw, (centre, radius): (Vec3, f32)) -> (Vec3, f32) {
+    let [x, y, z, scale] = i.translation_scale;
+    let rotation = Quat::from_array(i.rotation);
+    (
+        Vec3::new(x, y, z) + rotation * (centre * scale),
+        radius * scale,
+    )
+}
+
+fn tree_instance(tree: &CompactTree) -> InstanceRaw {
+    let root = tree.root();
+    let tint = tree_tint(tree);
+    InstanceRaw {
+        rotation: root.rotation.normalize().to_array(),
+        translation_scale: [
+            root.translation.x,
+            root.translation.y,
+            root.translation.z,
+            root.scale,
+        ],
+        tint: [tint[0], tint[1], tint[2], 1.0],
+        tree: tree_wind(tree),
+    }
+}
+
+impl World {
+    /// Generates one cell: a pure function of the world and the key.
+    pub(crate) fn cell(&self, key: CellKey) -> Result<Cell, String> {
+        let rect = key.rect(self.side);
+        let variants = self.proxies.len();
+        let proxies = |trees: &[CompactTree]| {
+            Runs::gather(
+                trees
+                    .iter()
+                    .filter(|t| !self.seedling[usize::from(t.variant)])
+                    .map(|t| (u32::from(t.variant), tree_instance(t)))
+                    .collect(),
+                variants,
+            )
+        };
+        if key.level == Level::Coarse {
+            let trees = self.builder.trees(&self.heightmap, rect);
+            return Ok(Cell::new(
+                self,
+                Runs::default(),
+                proxies(&trees),
+                trees.len(),
+            ));
+        }
+        let (mut tagged, mut trees) = (Vec::new(), Vec::new());
+        self.builder
+            .stream(&self.heightmap, rect, &mut |block: &PlacementBlock| {
+                for p in &block.placements {
+                    let Some(group) = self
+                        .group_of
+                        .get(p.variant as usize)
+                        .and_then(|g| g.get(p.instance as usize))
+                        .copied()
+                        .flatten()
+                    else {
+                        continue;
+                    };
+                    let tree = block.trees.get(p.tree as usize);
+                    let tint = tree.map_or([1.0; 3], tree_tint);
+                    let t = &p.transform;
+                    tagged.push((
+                        group,
+                        InstanceRaw {
+                            rotation: t.rotation.to_array(),
+                            translation_scale: [
+                                t.translation.x,
+                                t.translation.y,
+                                t.translation.z,
+                                t.scale,
+                            ],
+                            tint: [tint[0], tint[1], tint[2], 1.0],
+                            tree: tree.map_or([0.0; 4], tree_wind),
+                        },
+                    ));
+                }
+                trees.extend_from_slice(&block.trees);
+                Ok(())
+            })
+            .map_err(|e| e.to_string())?;
+        let placements = Runs::gather(tagged, self.groups.len());
+        Ok(Cell::new(self, placements, proxies(&trees), trees.len()))
+    }
+
+    /// The cells a camera at `eye` wants, nearest first: fine within [`LOD_DISTANCE`] (or
+    /// everywhere in view with `fine_everywhere`), coarse to [`VIEW_DISTANCE`].
+    fn wanted(&self, eye: Vec3, fine_everywhere: bool) -> Vec<(f32, CellKey)> {
+        let count = (self.side / CELL).ceil().max(1.0) as u32;
+        let span = |at: f32| {
+            let lo = ((at - VIEW_DISTANCE) / CELL).floor().max(0.0) as u32;
+            let hi = (((at + VIEW_DISTANCE) / CELL).floor().max(0.0) as u32).min(count - 1);
+            lo..=hi
+        };
+        let mut out = Vec::new();
+        for z in span(eye.z) {
+            for x in span(eye.x) {
+                let fine = CellKey {
+                    x,
+                    z,
+                    level: Level::Fine,
+                };
+                let d = fine.distance(eye, self.side);
+                if d > VIEW_DISTANCE {
+                    continue;
+                }
+                let level = if fine_everywhere || d <= LOD_DISTANCE {
+                    Level::Fine
+                } else {
+                    Level::Coarse
+                };
+                out.push((d, CellKey { level, ..fine }));
+            }
+        }
+        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        out
+    }
+}
+
+/// What one update did.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Streamed {
+    /// Cells generated during the update (headless) or received from the loader (window).
+    pub(crate) generated: usize,
+    /// Milliseconds spent generating or receiving them.
+    pub(crate) milliseconds: f64,
+    /// Cells wanted but not here yet (always 0 after a waiting update).
+    pub(crate) pending: usize,
+    /// Cells kept, drawn or not.
+    pub(crate) resident: usize,
+    /// Trees in the cells drawn, and how many of those are in coarse cells.
+    pub(crate) trees: usize,
+    pub(crate) coarse: usize,
+    /// Bytes of placements held.
+    pub(crate) bytes: usize,
+}
+
+/// The cells kept around the camera, and which of them a frame draws.
+#[derive(Default)]
+pub(crate) struct Cells {
+    resident: BTreeMap<CellKey, Cell>,
+    /// The cells a frame draws, in key order (a frame's instance order does not depend on
+    /// the order cells arrived in).
+    drawn: Vec<CellKey>,
+    loader: Option<Loader>,
+}
+
+impl Cells {
+    /// Streams the cells around `eye`: generates those missing (waiting for them all with
+    /// `wait`; otherwise asking the loader thread and taking what it has finished), drops
+    /// those left far behind, and chooses what to draw.
+    pub(crate) fn update(
+        &mut self,
+        world: &Arc<World>,
+        eye: Vec3,
+        fine_everywhere: bool,
+        wait: bool,
+    ) -> Result<Streamed, String> {
+        let start = Instant::now();
+        let wanted = world.wanted(eye, fine_everywhere);
+        let missing: Vec<CellKey> = wanted
+            .iter()
+            .map(|&(_, k)| k)
+            .filter(|k| !self.resident.contains_key(k))
+            .collect();
+        let mut generated = 0;
+        if wait {
+            let made: Vec<(CellKey, Result<Cell, String>)> =
+                missing.par_iter().map(|&k| (k, world.cell(k))).collect();
+            for (k, cell) in made {
+                self.resident.insert(k, cell?);
+                generated += 1;
+            }
+        } else {
+            let loader = self
+                .loader
+                .get_or_insert_with(|| Loader::new(world.clone()));
+            for (k, cell) in loader.ask(missing) {
+                self.resident.insert(k, cell?);
+                generated += 1;
+            }
+        }
+        // Keep what is wanted, what stands in for a wanted cell not here yet, and what is
+        // within reach of its level plus a margin.
+        let wanted_keys: BTreeMap<CellKey, f32> = wanted.iter().map(|&(d, k)| (k, d)).collect();
+        let standing_in: Vec<CellKey> = wanted
+            .iter()
+            .filter(|(_, k)| !self.resident.contains_key(k))
+            .map(|(_, k)| k.other_level())
+            .collect();
+        self.resident.retain(|k, _| {
+            let reach = match k.level {
+                Level::Fine if !fine_everywhere => LOD_DISTANCE,
+                _ => VIEW_DISTANCE,
+            };
+            wanted_keys.contains_key(k)
+                || standing_in.contains(k)
+                || k.distance(eye, world.side) <= reach + KEEP_MARGIN
+        });
+        self.drawn = wanted
+            .iter()
+            .filter_map(|&(_, k)| {
+                [k, k.other_level()]
+                    .into_iter()
+                    .find(|k| self.resident.contains_key(k))
+            })
+            .collect();
+        self.drawn.sort();
+        let mut streamed = Streamed {
+            generated,
+            milliseconds: start.elapsed().as_secs_f64() * 1e3,
+            pending: wanted
+                .iter()
+                .filter(|(_, k)| !self.resident.contains_key(k))
+                .count(),
+            resident: self.resident.len(),
+            ..Streamed::default()
+        };
+        for (k, cell) in self.drawn() {
+            streamed.trees += cell.trees;
+            if k.level == Level::Coarse {
+                streamed.coarse += cell.trees;
+            }
+        }
+        streamed.bytes = self.resident.values().map(Cell::bytes).sum();
+        Ok(streamed)
+    }
+
+    /// The cells a frame draws, in key order.
+    pub(crate) fn drawn(&self) -> impl Iterator<Item = (CellKey, &Cell)> {
+        self.drawn
+            .iter()
+            .filter_map(|k| self.resident.get(k).map(|c| (*k, c)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{SceneOptions, default_species};
+
+    fn world(side: f32) -> Arc<World> {
+        Arc::new(
+            World::build(SceneOptions {
+                seed: 5,
+                side,
+                species: default_species().expect("bundled species")[..2].to_vec(),
+                budget: 4 << 20,
+            })
+            .expect("world builds"),
+        )
+    }
+
+    /// Every tree of the world is in exactly one cell: the fine cells together hold the
+    /// trees of the whole world streamed at once, placement for placement.
+    #[test]
+    fn fine_cells_tile_the_forest() {
+        let world = world(250.0);
+        let mut whole = 0usize;
+        let mut placements = 0usize;
+        world
+            .builder
+            .stream(
+                &world.heightmap,
+                Rect::new(Vec2::ZERO, Vec2::splat(250.0)),
+                &mut |b: &PlacementBlock| {
+                    whole += b.trees.len();
+                    placements += b
+                        .placements
+                        .iter()
+                        .filter(|p| {
+                            world.group_of[p.variant as usize][p.instance as usize].is_some()
+                        })
+                        .count();
+                    Ok(())
+                },
+            )
+            .expect("whole world streams");
+        let (mut trees, mut instances) = (0, 0);
+        for z in 0..3 {
+            for x in 0..3 {
+                let cell = world
+                    .cell(CellKey {
+                        x,
+                        z,
+                        level: Level::Fine,
+                    })
+                    .expect("cell");
+                trees += cell.trees;
+                instances += cell.placements.len();
+            }
+        }
+        assert!(whole > 100, "{whole}");
+        assert_eq!((trees, instances), (whole, placements));
+    }
+
+    /// The camera keeps fine cells near it, coarse ones farther out, none beyond the view
+    /// distance; walking away drops what is left behind, and coming back streams the same
+    /// cells again.
+    #[test]
+    fn cells_follow_the_camera() {
+        let world = world(2000.0);
+        let mut cells = Cells::default();
+        let at = |x: f32, z: f32| Vec3::new(x, 0.0, z);
+        let first = cells
+            .update(&world, at(100.0, 100.0), false, true)
+            .expect("update");
+        assert_eq!(first.pending, 0);
+        assert!(first.generated > 0 && first.coarse > 0 && first.trees > first.coarse);
+        for (k, _) in cells.drawn() {
+            let d = k.distance(at(100.0, 100.0), world.side);
+            assert!(d <= VIEW_DISTANCE);
+            assert_eq!(k.level == Level::Fine, d <= LOD_DISTANCE, "{k:?} at {d}");
+        }
+        let snapshot: Vec<(CellKey, Vec<[f32; 4]>)> = cells
+            .drawn()
+            .map(|(k, c)| {
+                (
+                    k,
+                    c.placements
+                        .instances
+                        .iter()
+                        .chain(&c.proxies.instances)
+                        .map(|i| i.translation_scale)
+                        .collect(),
+                )
+            })
+            .collect();
+        let far = cells
+            .update(&world, at(1900.0, 1900.0), false, true)
+            .expect("update");
+        assert!(far.generated > 0);
+        assert!(
+            cells
+                .resident
+                .keys()
+                .all(|k| k.distance(at(1900.0, 1900.0), world.side) <= VIEW_DISTANCE + KEEP_MARGIN),
+            "cells far behind are dropped"
+        );
+        cells
+            .update(&world, at(100.0, 100.0), false, true)
+            .expect("update");
+        let again: Vec<(CellKey, Vec<[f32; 4]>)> = cells
+            .drawn()
+            .map(|(k, c)| {
+                (
+                    k,
+                    c.placements
+                        .instances
+                        .iter()
+                        .chain(&c.proxies.instances)
+                        .map(|i| i.translation_scale)
+                        .collect(),
+                )
+            })
+            .collect();
+        assert!(again == snapshot, "a cell streamed again is the same cell");
+    }
+}
