@@ -414,6 +414,7 @@ mod tests {
             World::build(SceneOptions {
                 seed: 5,
                 side,
+                trees: None,
                 species: default_species().expect("bundled species")[..2].to_vec(),
                 budget: 4 << 20,
             })
@@ -525,5 +526,36 @@ mod tests {
             })
             .collect();
         assert!(again == snapshot, "a cell streamed again is the same cell");
+    }
+
+    /// The window's way: cells asked of the loader thread arrive over a few updates, a
+    /// coarse cell standing in for a fine one meanwhile, and end as the waiting way's cells.
+    #[test]
+    fn the_loader_delivers_what_waiting_would() {
+        let world = world(1200.0);
+        let eye = Vec3::new(600.0, 0.0, 600.0);
+        let mut waited = Cells::default();
+        waited.update(&world, eye, false, true).expect("update");
+        let mut asked = Cells::default();
+        let first = asked.update(&world, eye, false, false).expect("update");
+        assert!(first.pending > 0, "{first:?}");
+        let mut updates = 1;
+        while asked
+            .update(&world, eye, false, false)
+            .expect("update")
+            .pending
+            > 0
+        {
+            updates += 1;
+            assert!(updates < 6000, "the loader stalled");
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        let content = |cells: &Cells| -> Vec<(CellKey, usize, usize)> {
+            cells
+                .drawn()
+                .map(|(k, c)| (k, c.placements.len(), c.proxies.len()))
+                .collect()
+        };
+        assert_eq!(content(&asked), content(&waited));
     }
 }

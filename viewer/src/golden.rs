@@ -41,6 +41,7 @@ fn default_scene() -> Scene {
     Scene::build(SceneOptions {
         seed: 1,
         side: 800.0,
+        trees: None,
         species: scene::default_species().expect("bundled species"),
         budget: 32 << 20,
     })
@@ -159,6 +160,7 @@ fn wind_sways_trees_and_still_air_does_not() {
     let mut scene = Scene::build(SceneOptions {
         seed: 3,
         side: 60.0,
+        trees: None,
         species: vec![birch],
         budget: 4 << 20,
     })
@@ -202,6 +204,7 @@ fn a_view_streamed_again_is_the_same_picture() {
     let mut scene = Scene::build(SceneOptions {
         seed: 4,
         side: 2400.0,
+        trees: None,
         species: vec![species[1].clone(), species[2].clone()],
         budget: 12 << 20,
     })

@@ -2,13 +2,15 @@
 //!
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
-//!     [--area METRES] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
+//!     [--area METRES | --trees N] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
 //!     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M]] [--wind S] [--time T]]
 //! ```
 //!
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
 //! (every branch) within 250 m and as whole-tree proxies to 1,500 m, so a world of millions
-//! of trees (`--area 3500`: about a million) is walked like a small one.
+//! of trees is walked like a small one. `--trees N` sizes the world as the forest example
+//! does, for N canopy trees (`--trees 1000000`: 6.2 km a side, 3.2 million trees with the
+//! seedlings).
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
 //! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run; the
@@ -54,12 +56,13 @@ struct Args {
     time: f32,
 }
 
-const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES] [--budget-mb MB] \
+const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
                      [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M]] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
     let mut side = 800.0f32;
+    let mut trees: Option<u32> = None;
     let mut budget_mb = 32usize;
     let mut grammar: Option<String> = None;
     let mut files: Vec<String> = Vec::new();
@@ -76,6 +79,7 @@ fn parse() -> Result<Args, String> {
         match a.as_str() {
             "--seed" => seed = flags.value("--seed")?,
             "--area" => side = flags.value("--area")?,
+            "--trees" => trees = Some(flags.value("--trees")?),
             "--budget-mb" => budget_mb = flags.value("--budget-mb")?,
             "--grammar" => grammar = Some(flags.value("--grammar")?),
             "--species" => files.push(flags.value("--species")?),
@@ -114,6 +118,12 @@ fn parse() -> Result<Args, String> {
     if !time.is_finite() {
         return Err(format!("--time {time}: expected a number of seconds"));
     }
+    if trees.is_some_and(|n| n == 0 || n > 10_000_000) {
+        return Err(format!(
+            "--trees {}: expected 1 to 10000000",
+            trees.unwrap_or(0)
+        ));
+    }
     if !(side > 10.0 && side <= 20_000.0) {
         return Err(format!("--area {side}: expected 10 to 20000 metres"));
     }
@@ -137,6 +147,7 @@ fn parse() -> Result<Args, String> {
         scene: SceneOptions {
             seed,
             side,
+            trees,
             species,
             budget: budget_mb.max(1) << 20,
         },
@@ -156,7 +167,7 @@ fn run() -> Result<(), String> {
     let start = Instant::now();
     let mut scene = Scene::build(args.scene)?;
     eprintln!(
-        "world: {0} x {0} m, {1} instance groups, built in {2:.0} ms; trees are streamed in \
+        "world: {0:.0} x {0:.0} m, {1} instance groups, built in {2:.0} ms; trees are streamed in \
          {3} m cells, fine within {4} m of the camera, proxies to {5} m",
         scene.side(),
         scene.world.groups.len(),

@@ -86,7 +86,11 @@ pub(crate) struct Scene {
 
 pub(crate) struct SceneOptions {
     pub(crate) seed: u64,
+    /// The world's side in metres, unless `trees` is given.
     pub(crate) side: f32,
+    /// Size the world for this many canopy trees, one per density patch, as the forest
+    /// example's `--trees` does.
+    pub(crate) trees: Option<u32>,
     pub(crate) species: Vec<Species>,
     pub(crate) budget: usize,
 }
@@ -131,7 +135,15 @@ impl World {
         config.seed = options.seed;
         config.budget = options.budget;
         let builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
-        let side = options.side;
+        let side = match options.trees {
+            Some(n) => (n as f32).sqrt() * builder.density().patch,
+            None => options.side,
+        };
+        if !(side > 10.0 && side <= 20_000.0) {
+            return Err(format!(
+                "a world of {side} m: expected 10 to 20000 metres a side"
+            ));
+        }
         let mut heightmap = DiamondSquare::new(257)
             .with_seed(options.seed)
             .with_spacing(side / 256.0)
