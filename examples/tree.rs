@@ -77,6 +77,7 @@ fn run() -> Result<(), String> {
         .with_caps(caps);
     let word = grammar
         .derive(generations.unwrap_or(default_generations), seed)
+        .and_then(|w| grammar.interpretation(&w, seed))
         .map_err(|e| e.to_string())?;
     let mut builder = MeshBuilder::new(&options);
     let stats = interpret(&word, &options, &mut builder).map_err(|e| e.to_string())?;

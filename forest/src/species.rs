@@ -97,6 +97,7 @@ impl Species {
             let word = self
                 .grammar
                 .derive(self.generations, seed)
+                .and_then(|w| self.grammar.interpretation(&w, seed))
                 .map_err(|e| ForestError::BadParameter(format!("{}: {e}", self.name)))?;
             let mut skeleton = Skeleton::default();
             interpret(&word, &self.turtle, &mut skeleton)

@@ -159,11 +159,12 @@ impl HeroGrammar {
                 (step, known, g)
             }
         };
-        let word = grammar.2.derive_with(
-            options.generations,
-            mix(options.seed ^ mix(u64::from(k))),
-            &options.limits,
-        )?;
+        let seed = mix(options.seed ^ mix(u64::from(k)));
+        let word = grammar
+            .2
+            .derive_with(options.generations, seed, &options.limits)?;
+        // What the turtle draws: the homomorphism's word (the same word without one).
+        let word = grammar.2.interpretation(&word, seed)?;
         self.current = Some(grammar);
         let mut recorder = HeroRecorder::new(&self.turtle, self.markers);
         interpret(&word, &self.turtle, &mut recorder)?;

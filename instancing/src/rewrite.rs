@@ -220,6 +220,8 @@ impl InstancingGrammar {
         v
     }
 
+    /// The instancing grammar with `productions`, keeping the base grammar's decomposition
+    /// and homomorphism (they rewrite the same modules).
     fn build(&self, productions: Vec<Production>) -> Result<LSystem, InstancingError> {
         Ok(LSystem::from_parts(
             self.alphabet.clone(),
@@ -227,6 +229,10 @@ impl InstancingGrammar {
             self.base.ignore().to_vec(),
             self.axiom(),
             productions,
+        )?
+        .with_rule_sets(
+            self.base.decomposition().clone(),
+            self.base.homomorphism().clone(),
         )?)
     }
 

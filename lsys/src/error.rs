@@ -81,6 +81,19 @@ pub enum GrammarError {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DeriveError {
+    /// A decomposition or homomorphism still rewrote modules after its maximum depth of
+    /// passes: its productions recurse without end, or the depth is set too low.
+    #[error(
+        "the {section} still rewrites modules after its maximum depth of {depth} passes (generation {generation}): a production recurses without end, or raise 'maximum depth'"
+    )]
+    TooDeep {
+        /// `decomposition` or `homomorphism`.
+        section: &'static str,
+        /// The maximum depth in force.
+        depth: u32,
+        /// The generation being decomposed (0 for the axiom) or interpreted.
+        generation: u32,
+    },
     /// The word grew past [`Limits::max_modules`](crate::Limits::max_modules).
     /// Derive fewer generations or raise the limit if the memory is really there.
     #[error("generation {generation} would exceed the limit of {limit} modules")]

@@ -49,6 +49,14 @@
 //! **Cut.** The symbol `%` removes itself and the rest of its branch at the end of the step
 //! that produced it (ABOP section 3.3.1 / cpfg).
 //!
+//! **Decomposition and homomorphism** (cpfg): a line `#decomposition [depth N]` or
+//! `#homomorphism [depth N]` starts a section; the productions after it belong to it. The
+//! decomposition rewrites the axiom and every step's word until none of its productions fires
+//! (splitting a module into its parts); the homomorphism is applied the same way by
+//! [`LSystem::interpretation`] to the word the turtle draws, and never changes development.
+//! Each pass rewrites all modules in parallel; more than `N` passes that still fire (default
+//! 1, at most [`MAX_RULE_DEPTH`]) is a [`DeriveError::TooDeep`].
+//!
 //! **Choices** (a sylva extension): `?(p)<then><otherwise>` in a successor emits `then` with
 //! probability `p` and `otherwise` else, drawn independently each time the production fires.
 //!
@@ -92,10 +100,10 @@ pub use engine::lsystem::LSystem;
 pub use error::{DeriveError, GrammarError, GrammarFileError, Location, ParseError};
 pub use model::alphabet::{Alphabet, CUT, POP, PUSH, RESERVED, SymbolId};
 pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
-pub use model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
+pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 pub use model::word::{Module, Word};
 pub use presets::{PRESETS, Preset, preset};
-pub use syntax::parser::MAX_GRAMMAR_BYTES;
+pub use syntax::parser::{MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};
 
 impl LSystem {
     /// Parses grammar text. Errors name the line and column and say what was expected.

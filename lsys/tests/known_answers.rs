@@ -296,3 +296,100 @@ fn slashes_in_ignore_sets_and_contexts_print_back() {
     let printed = g.to_string();
     assert_eq!(LSystem::parse(&printed).unwrap(), g, "{printed}");
 }
+
+/// cpfg's decomposition (Prusinkiewicz, Hanan and Mech, "An L-system-based plant modeling
+/// language", 1999, section 3): a module standing for a structure is split into its parts
+/// after every step, recursively, before the next step sees the word. Worked by hand: the
+/// apex lays down a metamer `M(n)`, which decomposes into an internode and a node `N`, which
+/// decomposes into a leaf and a bud.
+#[test]
+fn decomposition_splits_modules_after_every_step() {
+    let src = "axiom: A(1)
+        A(n) -> M(n) A(n+1)
+        #decomposition depth 2
+        M(n) -> I(n) N
+        N -> [L][B]";
+    assert_eq!(derive(src, 0), "A(1)");
+    assert_eq!(derive(src, 1), "I(1)[L][B]A(2)");
+    assert_eq!(derive(src, 2), "I(1)[L][B]I(2)[L][B]A(3)");
+    // The axiom is decomposed too.
+    let axiom = "axiom: M(0)\nA -> A\n#decomposition depth 2\nM(n) -> I(n) N\nN -> [L]";
+    assert_eq!(derive(axiom, 0), "I(0)[L]");
+}
+
+/// A decomposition that would need more passes than its maximum depth is an error, not a
+/// silent truncation and never a hang.
+#[test]
+fn decomposition_beyond_its_depth_is_an_error() {
+    let g =
+        LSystem::parse("axiom: A\nA -> A\n#decomposition depth 3\nA -> B\nB -> C\nC -> D\nD -> E")
+            .unwrap();
+    let err = g.derive(1, 0).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DeriveError::TooDeep {
+                section: "decomposition",
+                depth: 3,
+                generation: 0
+            }
+        ),
+        "{err}"
+    );
+    // Endless recursion ends at the depth too.
+    let endless = LSystem::parse("axiom: A\n#decomposition depth 100\nA -> AA").unwrap();
+    assert!(matches!(
+        endless.derive(0, 0),
+        Err(DeriveError::TooDeep { depth: 100, .. }) | Err(DeriveError::TooManyModules { .. })
+    ));
+}
+
+/// The homomorphism changes what is drawn, never what develops: derived words keep their
+/// modules, and `interpretation` maps them recursively (ABOP's interpretation rules; cpfg's
+/// `homomorphism` with `maximum depth`).
+#[test]
+fn homomorphism_rewrites_for_interpretation_only() {
+    let src = "axiom: A(2)
+        A(n) -> I(n) A(n+1)
+        #homomorphism depth 4
+        I(n) -> C(n, 2)
+        C(l, k) : k > 0 -> F(l) C(l, k - 1)
+        C(l, k) : k <= 0 ->";
+    let g = LSystem::parse(src).unwrap();
+    let word = g.derive(2, 0).unwrap();
+    assert_eq!(word.to_string(), "I(2)I(3)A(4)");
+    assert_eq!(
+        g.interpretation(&word, 0).unwrap().to_string(),
+        "F(2)F(2)F(3)F(3)A(4)"
+    );
+    // I -> C(n,2) -> F C(n,1) -> F F C(n,0) -> F F: four passes; three are too few.
+    let shallow = LSystem::parse(&src.replace("depth 4", "depth 3")).unwrap();
+    assert!(matches!(
+        shallow.interpretation(&word, 0),
+        Err(DeriveError::TooDeep { depth: 3, .. })
+    ));
+    // A grammar without a homomorphism draws its word as it is.
+    let plain = LSystem::parse("axiom: F+F").unwrap();
+    let w = plain.derive(0, 0).unwrap();
+    assert_eq!(plain.interpretation(&w, 0).unwrap(), w);
+}
+
+/// Sections print and parse back to the same system.
+#[test]
+fn rule_sets_round_trip_through_text() {
+    let src = "#define D 4
+        axiom: A(1)
+        A(n) -> M(n) A(n+1)
+        #decomposition depth D
+        M(n) : n > 1 -> I(n) [L]
+        #homomorphism depth 2
+        I(n) -> F(n)
+        L -> +F";
+    let g = LSystem::parse(src).unwrap();
+    assert_eq!(g.decomposition().max_depth, 4);
+    assert_eq!(g.homomorphism().productions.len(), 2);
+    let printed = g.to_string();
+    assert!(printed.contains("#decomposition depth 4"), "{printed}");
+    let again = LSystem::parse(&printed).unwrap();
+    assert_eq!(again, g);
+}

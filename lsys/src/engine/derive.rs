@@ -1,6 +1,6 @@
 //! The rewriting engine: one derivation step streams the current word into the next.
 
-use crate::engine::compile::{CItem, CPattern, CProduction, Span};
+use crate::engine::compile::{CItem, CPattern, CProduction, Compiled, Span};
 use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
 use crate::engine::random::Random;
@@ -79,8 +79,34 @@ impl LSystem {
         limits: &Limits,
     ) -> Result<Word, DeriveError> {
         let mut d = Deriver::new(self, seed, *limits);
-        d.derive_from(self.axiom_word(), 0, generations)
+        let axiom = d.decompose(self.axiom_word(), 0)?;
+        d.derive_from(axiom, 0, generations)
     }
+
+    /// The word the turtle draws for `word`: `word` rewritten by the homomorphism until no
+    /// homomorphism production fires (at most its maximum depth of passes), or `word` itself
+    /// when the grammar has no homomorphism. Random draws in homomorphism productions come
+    /// from `seed`.
+    ///
+    /// ```
+    /// let plant: sylva_lsys::LSystem = "axiom: A(3)\nA(n) -> A(n+1)\n#homomorphism depth 1\nA(n) -> F(n)+".parse()?;
+    /// let word = plant.derive(1, 0)?;
+    /// assert_eq!(word.to_string(), "A(4)");
+    /// assert_eq!(plant.interpretation(&word, 0)?.to_string(), "F(4)+");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn interpretation(&self, word: &Word, seed: u64) -> Result<Word, DeriveError> {
+        let mut d = Deriver::new(self, seed, Limits::DEFAULT);
+        d.apply_rule_set(word.clone(), Table::Homomorphism, 0)
+    }
+}
+
+/// Which of a grammar's production tables a rewrite uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Table {
+    Main,
+    Decomposition,
+    Homomorphism,
 }
 
 /// Rewrites words generation by generation, reusing its buffers; [`LSystem::derive`] wraps it.
@@ -95,6 +121,10 @@ pub struct Deriver<'g> {
     candidates: Vec<(u32, f64)>,
     /// For `]`: index of its `[`; for `[`: index of its `]`. `u32::MAX` when unmatched.
     partner: Vec<u32>,
+    /// The productions rewrites use.
+    table: Table,
+    /// Productions applied by the last rewrite.
+    fired: usize,
 }
 
 impl<'g> Deriver<'g> {
@@ -109,7 +139,67 @@ impl<'g> Deriver<'g> {
             matched: Vec::new(),
             candidates: Vec::new(),
             partner: Vec::new(),
+            table: Table::Main,
+            fired: 0,
         }
+    }
+
+    /// The compiled productions of the table in use.
+    fn compiled(&self) -> &'g Compiled {
+        let grammar: &'g LSystem = self.grammar;
+        match self.table {
+            Table::Main => &grammar.compiled,
+            Table::Decomposition => &grammar.compiled_decomposition,
+            Table::Homomorphism => &grammar.compiled_homomorphism,
+        }
+    }
+
+    /// `word` (of generation `generation`) decomposed: the grammar's decomposition applied
+    /// until no production fires. The word itself when there is no decomposition.
+    pub fn decompose(&mut self, word: Word, generation: u32) -> Result<Word, DeriveError> {
+        self.apply_rule_set(word, Table::Decomposition, generation)
+    }
+
+    fn apply_rule_set(
+        &mut self,
+        word: Word,
+        table: Table,
+        generation: u32,
+    ) -> Result<Word, DeriveError> {
+        let grammar: &'g LSystem = self.grammar;
+        let (set, section) = match table {
+            Table::Decomposition => (&grammar.decomposition, "decomposition"),
+            Table::Homomorphism => (&grammar.homomorphism, "homomorphism"),
+            Table::Main => return Ok(word),
+        };
+        if set.is_empty() {
+            return Ok(word);
+        }
+        let saved = self.table;
+        self.table = table;
+        let mut current = word;
+        let mut next = Word::empty(current.alphabet.clone());
+        let mut passes = 0u32;
+        let result = loop {
+            // A pass rewrites with `#` still the generation being decomposed.
+            if let Err(e) = self.rewrite_pass(&current, &mut next, generation) {
+                break Err(e);
+            }
+            if self.fired == 0 {
+                break Ok(current);
+            }
+            if passes == set.max_depth {
+                break Err(DeriveError::TooDeep {
+                    section,
+                    depth: set.max_depth,
+                    generation,
+                });
+            }
+            passes += 1;
+            std::mem::swap(&mut current, &mut next);
+        };
+        self.table = saved;
+        result
     }
 
     /// Derives `generations` more generations from `word`, which is taken to be generation
@@ -128,9 +218,14 @@ impl<'g> Deriver<'g> {
         }
         let mut current = word;
         let mut next = Word::empty(current.alphabet.clone());
+        let decomposed = !self.grammar.decomposition.is_empty();
         for k in 1..=generations {
-            self.rewrite(&current, &mut next, generation.saturating_add(k))?;
+            let produced = generation.saturating_add(k);
+            self.rewrite(&current, &mut next, produced)?;
             std::mem::swap(&mut current, &mut next);
+            if decomposed {
+                current = self.decompose(current, produced)?;
+            }
         }
         Ok(current)
     }
@@ -143,14 +238,28 @@ impl<'g> Deriver<'g> {
         out: &mut Word,
         generation: u32,
     ) -> Result<(), DeriveError> {
+        let saved = self.table;
+        self.table = Table::Main;
+        let result = self.rewrite_pass(cur, out, generation);
+        self.table = saved;
+        result
+    }
+
+    /// One parallel rewrite with the table in use.
+    fn rewrite_pass(
+        &mut self,
+        cur: &Word,
+        out: &mut Word,
+        generation: u32,
+    ) -> Result<(), DeriveError> {
+        self.fired = 0;
         out.clear();
         out.alphabet = cur.alphabet.clone();
         // Most grammars grow: reserving the current size saves the first reallocations.
         out.symbols.reserve(cur.len());
         out.offsets.reserve(cur.len());
         out.params.reserve(cur.params.len());
-        let grammar: &'g LSystem = self.grammar;
-        let c = &grammar.compiled;
+        let c = self.compiled();
         if c.has_context {
             self.link_brackets(cur);
         }
@@ -184,6 +293,7 @@ impl<'g> Deriver<'g> {
             };
             match chosen {
                 Some((p, matched)) => {
+                    self.fired += 1;
                     let prod = &c.productions[p as usize];
                     self.check_room(out, prod, generation)?;
                     if let Some(((s0, s1), (p0, p1))) = prod.constant {
@@ -259,8 +369,7 @@ impl<'g> Deriver<'g> {
         order: &[u32],
         generation: f64,
     ) -> Option<(u32, bool)> {
-        let grammar: &'g LSystem = self.grammar;
-        let c = &grammar.compiled;
+        let c = self.compiled();
         self.candidates.clear();
         let mut total = 0.0;
         for &p in order {
@@ -343,8 +452,7 @@ impl<'g> Deriver<'g> {
 
     /// ABOP 1.8: walking left, a whole branch `[...]` is skipped and a `[` leads to the parent.
     fn match_left(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
-        let grammar: &'g LSystem = self.grammar;
-        let ignored = &grammar.compiled.ignored;
+        let ignored = &self.compiled().ignored;
         let mut j = i;
         let start = self.matched.len();
         for p in pattern.iter().rev() {
@@ -378,8 +486,7 @@ impl<'g> Deriver<'g> {
     /// ABOP 1.8: walking right, branches not named by the pattern are skipped; `[` in the
     /// pattern enters a branch and `]` skips to the end of the current one.
     fn match_right(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
-        let grammar: &'g LSystem = self.grammar;
-        let ignored = &grammar.compiled.ignored;
+        let ignored = &self.compiled().ignored;
         let n = cur.len();
         let mut j = i + 1;
         for p in pattern {
@@ -466,8 +573,7 @@ impl<'g> Deriver<'g> {
         generation: f64,
         step: u32,
     ) -> Result<bool, DeriveError> {
-        let grammar: &'g LSystem = self.grammar;
-        let c = &grammar.compiled;
+        let c = self.compiled();
         let mut cut = false;
         for k in span.0..span.1 {
             match c.items[k as usize] {

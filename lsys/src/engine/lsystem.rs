@@ -6,7 +6,7 @@ use crate::engine::compile::Compiled;
 use crate::error::GrammarError;
 use crate::model::alphabet::{Alphabet, SymbolId};
 use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
-use crate::model::grammar::{ModuleTemplate, Production, SuccessorItem};
+use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
 use crate::model::word::Word;
 
 /// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
@@ -21,6 +21,12 @@ pub struct LSystem {
     pub(crate) axiom: Vec<ModuleTemplate>,
     pub(crate) productions: Vec<Production>,
     pub(crate) compiled: Compiled,
+    /// Applied to the axiom and after every step.
+    pub(crate) decomposition: RuleSet,
+    pub(crate) compiled_decomposition: Compiled,
+    /// Applied for interpretation only.
+    pub(crate) homomorphism: RuleSet,
+    pub(crate) compiled_homomorphism: Compiled,
     /// The axiom evaluated once, since its parameters are constants.
     pub(crate) axiom_word: Word,
 }
@@ -32,6 +38,8 @@ impl PartialEq for LSystem {
             && self.ignore == other.ignore
             && self.axiom == other.axiom
             && self.productions == other.productions
+            && self.decomposition == other.decomposition
+            && self.homomorphism == other.homomorphism
     }
 }
 
@@ -79,39 +87,7 @@ impl LSystem {
         if ignore.iter().any(|&s| !known(s)) {
             return Err(GrammarError::InvalidIgnore);
         }
-        for (index, p) in productions.iter().enumerate() {
-            let bad = |message: &str| GrammarError::InvalidProduction {
-                index,
-                message: message.to_string(),
-            };
-            if !expressions_within_depth(p) {
-                return Err(bad(&format!(
-                    "an expression is deeper than {MAX_EXPR_DEPTH} levels or choices nest deeper than {MAX_NESTING}"
-                )));
-            }
-            let patterns = p.left.iter().chain([&p.predecessor]).chain(&p.right);
-            if patterns.clone().any(|pat| !known(pat.symbol)) {
-                return Err(bad("unknown symbol"));
-            }
-            if patterns
-                .clone()
-                .any(|pat| pat.params.len() > u8::MAX as usize)
-            {
-                return Err(bad("more than 255 parameters on one module"));
-            }
-            let slots = p.binding_count();
-            if p.condition.as_ref().is_some_and(|c| c.slots_used() > slots) {
-                return Err(bad("condition uses an unbound parameter"));
-            }
-            if !items_valid(&p.successor, slots, &known, 0) {
-                return Err(bad(
-                    "successor uses an unknown symbol or unbound parameter, or nests too deep",
-                ));
-            }
-            if p.weight.is_some_and(|w| !(w.is_finite() && w >= 0.0)) {
-                return Err(bad("weight must be finite and not negative"));
-            }
-        }
+        check_productions(&productions, 0, &known)?;
         let compiled = Compiled::new(&alphabet, &ignore, &productions);
         let alphabet = Arc::new(alphabet);
         let mut axiom_word = Word::empty(alphabet.clone());
@@ -135,7 +111,56 @@ impl LSystem {
             axiom,
             productions,
             compiled,
+            decomposition: RuleSet::default(),
+            compiled_decomposition: Compiled::default(),
+            homomorphism: RuleSet::default(),
+            compiled_homomorphism: Compiled::default(),
         })
+    }
+
+    /// This system with a decomposition (applied to the axiom and after every step) and a
+    /// homomorphism (applied by [`LSystem::interpretation`]). Their productions are checked
+    /// like the main ones; an invalid one is reported with its index counted after the main
+    /// productions (decomposition first).
+    ///
+    /// ```
+    /// use sylva_lsys::LSystem;
+    /// // The apex A lays down a metamer B, which is decomposed into an internode and a leaf
+    /// // after the step that made it.
+    /// let plant: LSystem = "axiom: A\nA -> B A\n#decomposition\nB -> I[L]".parse()?;
+    /// assert_eq!(plant.derive(2, 0)?.to_string(), "I[L]I[L]A");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_rule_sets(
+        mut self,
+        decomposition: RuleSet,
+        homomorphism: RuleSet,
+    ) -> Result<LSystem, GrammarError> {
+        let alphabet = self.alphabet.clone();
+        let known = |s: SymbolId| s.index() < alphabet.len();
+        check_productions(&decomposition.productions, self.productions.len(), &known)?;
+        check_productions(
+            &homomorphism.productions,
+            self.productions.len() + decomposition.productions.len(),
+            &known,
+        )?;
+        self.compiled_decomposition =
+            Compiled::new(&alphabet, &self.ignore, &decomposition.productions);
+        self.compiled_homomorphism =
+            Compiled::new(&alphabet, &self.ignore, &homomorphism.productions);
+        self.decomposition = decomposition;
+        self.homomorphism = homomorphism;
+        Ok(self)
+    }
+
+    /// The decomposition (empty when the grammar has none).
+    pub fn decomposition(&self) -> &RuleSet {
+        &self.decomposition
+    }
+
+    /// The homomorphism (empty when the grammar has none).
+    pub fn homomorphism(&self) -> &RuleSet {
+        &self.homomorphism
     }
 
     /// The symbols of this system.
@@ -170,6 +195,49 @@ impl LSystem {
     pub fn productions(&self) -> &[Production] {
         &self.productions
     }
+}
+
+/// Checks each production's symbols, parameters, expressions and weight; `first` is the index
+/// the first one is reported as.
+fn check_productions(
+    productions: &[Production],
+    first: usize,
+    known: &dyn Fn(SymbolId) -> bool,
+) -> Result<(), GrammarError> {
+    for (k, p) in productions.iter().enumerate() {
+        let bad = |message: &str| GrammarError::InvalidProduction {
+            index: first + k,
+            message: message.to_string(),
+        };
+        if !expressions_within_depth(p) {
+            return Err(bad(&format!(
+                "an expression is deeper than {MAX_EXPR_DEPTH} levels or choices nest deeper than {MAX_NESTING}"
+            )));
+        }
+        let patterns = p.left.iter().chain([&p.predecessor]).chain(&p.right);
+        if patterns.clone().any(|pat| !known(pat.symbol)) {
+            return Err(bad("unknown symbol"));
+        }
+        if patterns
+            .clone()
+            .any(|pat| pat.params.len() > u8::MAX as usize)
+        {
+            return Err(bad("more than 255 parameters on one module"));
+        }
+        let slots = p.binding_count();
+        if p.condition.as_ref().is_some_and(|c| c.slots_used() > slots) {
+            return Err(bad("condition uses an unbound parameter"));
+        }
+        if !items_valid(&p.successor, slots, known, 0) {
+            return Err(bad(
+                "successor uses an unknown symbol or unbound parameter, or nests too deep",
+            ));
+        }
+        if p.weight.is_some_and(|w| !(w.is_finite() && w >= 0.0)) {
+            return Err(bad("weight must be finite and not negative"));
+        }
+    }
+    Ok(())
 }
 
 fn items_valid(

@@ -68,3 +68,23 @@ impl Production {
             .sum()
     }
 }
+
+/// Productions applied outside the derivation steps, recursively: a decomposition (after
+/// every step and to the axiom, splitting modules into their parts) or a homomorphism (only
+/// for interpretation: what the turtle draws for each module). Each pass rewrites every
+/// module in parallel, as a step does; passes repeat until none fires, and a pass beyond
+/// `max_depth` that would still fire is an error.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RuleSet {
+    /// The productions, tried in order as in a step.
+    pub productions: Vec<Production>,
+    /// Most passes that may fire (cpfg's `maximum depth`).
+    pub max_depth: u32,
+}
+
+impl RuleSet {
+    /// Whether the set has no productions (then it changes nothing).
+    pub fn is_empty(&self) -> bool {
+        self.productions.is_empty()
+    }
+}

@@ -6,7 +6,7 @@ use crate::engine::lsystem::LSystem;
 use crate::error::{GrammarError, Location, ParseError};
 use crate::model::alphabet::{Alphabet, POP, PUSH, SymbolId};
 use crate::model::expr::{Expr, MAX_NESTING};
-use crate::model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
+use crate::model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 use crate::model::word::Word;
 use crate::syntax::comments::strip_block_comments;
 use crate::syntax::cursor::Cursor;
@@ -54,6 +54,8 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
     let src: Vec<char> = text.chars().collect();
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser {
+        section: Section::Main,
+        rule_sets: [RuleSet::default(), RuleSet::default()],
         alphabet: Alphabet::new(),
         constants: Vec::new(),
         values: HashMap::new(),
@@ -73,23 +75,40 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
             "the grammar has no axiom: add a line 'axiom: ...'",
         ));
     };
-    let (productions, production_at): (Vec<_>, Vec<_>) = p.productions.into_iter().unzip();
+    // Productions by section, main first, as `from_parts` and `with_rule_sets` number them.
+    let mut sections: [Vec<(Production, Location)>; 3] = Default::default();
+    for (production, at, section) in p.productions {
+        sections[section as usize].push((production, at));
+    }
+    let [main, decomposition, homomorphism] = sections;
+    let production_at: Vec<Location> = main
+        .iter()
+        .chain(&decomposition)
+        .chain(&homomorphism)
+        .map(|(_, at)| *at)
+        .collect();
+    let [mut decomposition_set, mut homomorphism_set] = p.rule_sets;
+    decomposition_set.productions = decomposition.into_iter().map(|(p, _)| p).collect();
+    homomorphism_set.productions = homomorphism.into_iter().map(|(p, _)| p).collect();
+    let productions = main.into_iter().map(|(p, _)| p).collect();
     // The parser checks everything `from_parts` checks, at the place it happens; should a
     // check only `from_parts` makes ever fail, the error still points at the right line.
-    LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions).map_err(|e| {
-        let at = match &e {
-            GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
-            GrammarError::InvalidProduction { index, .. } => production_at.get(*index).copied(),
-            GrammarError::InvalidConstant { name, .. } => p
-                .constant_at
-                .iter()
-                .find(|(n, _)| n == name)
-                .map(|&(_, at)| at),
-            _ => None,
-        };
-        let at = at.unwrap_or(Location { line: 1, column: 1 });
-        ParseError::new(at.line, at.column, e.to_string())
-    })
+    LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
+        .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
+        .map_err(|e| {
+            let at = match &e {
+                GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
+                GrammarError::InvalidProduction { index, .. } => production_at.get(*index).copied(),
+                GrammarError::InvalidConstant { name, .. } => p
+                    .constant_at
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map(|&(_, at)| at),
+                _ => None,
+            };
+            let at = at.unwrap_or(Location { line: 1, column: 1 });
+            ParseError::new(at.line, at.column, e.to_string())
+        })
 }
 
 /// Parses a word (modules with constant arguments) onto `word`; `symbol` gives each
@@ -136,7 +155,25 @@ pub(crate) fn parse_modules(
     Ok(())
 }
 
+/// Which productions the lines being read add to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Section {
+    Main = 0,
+    Decomposition = 1,
+    Homomorphism = 2,
+}
+
+/// A rule set's maximum depth when the grammar does not give one (cpfg's default).
+const DEFAULT_MAX_DEPTH: u32 = 1;
+
+/// Deepest `maximum depth` accepted: passes beyond this are surely a mistake.
+pub const MAX_RULE_DEPTH: u32 = 10_000;
+
 struct GrammarParser {
+    section: Section,
+    /// The decomposition's and the homomorphism's depths (their productions are gathered
+    /// at the end).
+    rule_sets: [RuleSet; 2],
     alphabet: Alphabet,
     constants: Vec<(String, Expr)>,
     /// Each constant's value, computed once when it is defined.
@@ -146,8 +183,8 @@ struct GrammarParser {
     ignore: Vec<SymbolId>,
     /// The axiom and where each of its modules starts.
     axiom: Option<(Vec<ModuleTemplate>, Vec<Location>)>,
-    /// The productions and where each starts.
-    productions: Vec<(Production, Location)>,
+    /// The productions, where each starts and its section.
+    productions: Vec<(Production, Location, Section)>,
 }
 
 impl GrammarParser {
@@ -167,7 +204,7 @@ impl GrammarParser {
         }
         let at = cur.location();
         let production = self.production(cur)?;
-        self.productions.push((production, at));
+        self.productions.push((production, at, self.section));
         Ok(())
     }
 
@@ -219,11 +256,61 @@ impl GrammarParser {
                 }
                 Ok(())
             }
+            Some(name @ ("decomposition" | "homomorphism")) => {
+                let (section, set) = if name == "decomposition" {
+                    (Section::Decomposition, 0)
+                } else {
+                    (Section::Homomorphism, 1)
+                };
+                self.section = section;
+                cur.skip_ws();
+                let depth = if cur.at_end() {
+                    DEFAULT_MAX_DEPTH
+                } else {
+                    if cur.ident().as_deref() != Some("depth") {
+                        return Err(cur.error(format!(
+                            "expected 'depth N' or end of line after #{name}"
+                        )));
+                    }
+                    self.depth(cur)?
+                };
+                self.rule_sets[set].max_depth = depth;
+                Ok(())
+            }
             _ => Err(cur.error_at(
                 at,
-                "unknown directive: expected '#define NAME value' or '#ignore: symbols'",
+                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#decomposition [depth N]' or '#homomorphism [depth N]'",
             )),
         }
+    }
+
+    /// A maximum depth: a constant expression with a whole value from 0 to [`MAX_RULE_DEPTH`],
+    /// then the end of the line.
+    fn depth(&mut self, cur: &mut Cursor<'_>) -> Result<u32, ParseError> {
+        cur.skip_ws();
+        let at = cur.pos();
+        let scope = Names {
+            constants: &self.values,
+            vars: no_vars(),
+        };
+        let value = parse_expr(cur, &scope)?;
+        if !cur.at_end() {
+            return Err(cur.error(format!(
+                "expected end of line after the depth, found {}",
+                cur.describe_next()
+            )));
+        }
+        let depth = value.eval_constant(0.0, 0);
+        if !(value.is_constant()
+            && depth.fract() == 0.0
+            && (0.0..=f64::from(MAX_RULE_DEPTH)).contains(&depth))
+        {
+            return Err(cur.error_at(
+                at,
+                format!("a maximum depth must be a whole number from 0 to {MAX_RULE_DEPTH}"),
+            ));
+        }
+        Ok(depth as u32)
     }
 
     fn intern(&mut self, cur: &Cursor<'_>, c: char, pos: usize) -> Result<SymbolId, ParseError> {

@@ -5,7 +5,7 @@ use std::fmt;
 use crate::engine::lsystem::LSystem;
 use crate::model::alphabet::Alphabet;
 use crate::model::expr::{BinaryOp, Expr, UnaryOp};
-use crate::model::grammar::{ModuleTemplate, Pattern, SuccessorItem};
+use crate::model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
 use crate::model::word::Word;
 
 impl BinaryOp {
@@ -227,29 +227,47 @@ impl fmt::Display for LSystem {
             previous = Some(m);
         }
         writeln!(f)?;
-        for p in &self.productions {
-            if !p.left.is_empty() {
-                write!(f, "{} < ", PatternsDisplay(&p.left, a))?;
+        write_productions(f, &self.productions, a)?;
+        for (name, set) in [
+            ("decomposition", &self.decomposition),
+            ("homomorphism", &self.homomorphism),
+        ] {
+            if !set.is_empty() {
+                writeln!(f, "#{name} depth {}", set.max_depth)?;
+                write_productions(f, &set.productions, a)?;
             }
-            write!(
-                f,
-                "{}",
-                PatternsDisplay(std::slice::from_ref(&p.predecessor), a)
-            )?;
-            if !p.right.is_empty() {
-                write!(f, " > {}", PatternsDisplay(&p.right, a))?;
-            }
-            if let Some(c) = &p.condition {
-                write!(f, " : {c}")?;
-            }
-            write!(f, " -> {}", ItemsDisplay(&p.successor, a))?;
-            if let Some(w) = p.weight {
-                write!(f, " : {w}")?;
-            }
-            writeln!(f)?;
         }
         Ok(())
     }
+}
+
+fn write_productions(
+    f: &mut fmt::Formatter<'_>,
+    productions: &[Production],
+    a: &Alphabet,
+) -> fmt::Result {
+    for p in productions {
+        if !p.left.is_empty() {
+            write!(f, "{} < ", PatternsDisplay(&p.left, a))?;
+        }
+        write!(
+            f,
+            "{}",
+            PatternsDisplay(std::slice::from_ref(&p.predecessor), a)
+        )?;
+        if !p.right.is_empty() {
+            write!(f, " > {}", PatternsDisplay(&p.right, a))?;
+        }
+        if let Some(c) = &p.condition {
+            write!(f, " : {c}")?;
+        }
+        write!(f, " -> {}", ItemsDisplay(&p.successor, a))?;
+        if let Some(w) = p.weight {
+            write!(f, " : {w}")?;
+        }
+        writeln!(f)?;
+    }
+    Ok(())
 }
 
 impl fmt::Display for Word {
