@@ -66,7 +66,7 @@ pub(crate) fn branches(
             out[current].steps.push(Step::Query(index as u32));
             continue;
         }
-        let Some(command) = options.symbols.get(module.symbol) else {
+        let Some(command) = options.symbols.get(module.name) else {
             continue;
         };
         let turn = |sign: Sign| {

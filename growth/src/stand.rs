@@ -95,7 +95,7 @@ impl Stand {
         let uses_queries = self.options.query.is_some_and(|q| {
             self.trees
                 .iter()
-                .any(|t| t.grammar.alphabet().chars().contains(&q))
+                .any(|t| t.grammar.alphabet().id(q).is_some())
         });
         let mut stats = GrowthStats::default();
         // Without queries: derive each tree once and grow once. With them: one generation

@@ -130,7 +130,7 @@ pub enum DeriveError {
         /// The generation (1-based) in which it happened.
         generation: u32,
         /// The module's symbol.
-        symbol: char,
+        symbol: String,
         /// Which parameter (0-based).
         index: usize,
         /// The offending value.

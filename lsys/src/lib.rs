@@ -20,13 +20,16 @@
 //!
 //! - `#define NAME expression`: a named constant, usable in every later expression.
 //! - `#ignore: + - F`: symbols skipped when matching contexts.
+//! - `#module Apex Internode`: module names of several characters.
 //! - `axiom: modules` (or `ω: modules`): the initial word; parameters are constant expressions.
 //! - Productions: `label: lc < pred(params) > rc : condition -> successor : weight`. Only the
 //!   predecessor, the arrow (`->` or `→`) and the successor are required. The label (two or
 //!   more letters or digits, as ABOP prints `p1:`) is ignored. A condition of `*` means none.
 //!
 //! A module is one character (anything but whitespace and `( ) , < > : ? #`) followed by an
-//! optional parameter list. In predecessors and contexts the parameters are names; in
+//! optional parameter list, or a name of several characters declared with `#module Apex
+//! Internode` (L-Py's `module`): the text is read by the longest declared name it continues
+//! with, and words of such grammars print with spaces between modules. In predecessors and contexts the parameters are names; in
 //! successors they are expressions.
 //!
 //! **Choosing a production.** The productions of a predecessor are tried in order. Those whose
@@ -98,7 +101,7 @@ mod syntax;
 pub use engine::derive::{Deriver, Limits};
 pub use engine::lsystem::LSystem;
 pub use error::{DeriveError, GrammarError, GrammarFileError, Location, ParseError};
-pub use model::alphabet::{Alphabet, CUT, POP, PUSH, RESERVED, SymbolId};
+pub use model::alphabet::{Alphabet, CUT, MAX_NAME_CHARS, POP, PUSH, RESERVED, SymbolId};
 pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 pub use model::word::{Module, Word};

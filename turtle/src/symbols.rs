@@ -62,18 +62,21 @@ impl Sign {
     }
 }
 
-/// Maps symbols to [`Command`]s. Symbols not in the table are skipped by the turtle.
+/// Maps symbols (one character, or a module name of several) to [`Command`]s. Symbols not in
+/// the table are skipped by the turtle.
 ///
 /// ```
 /// use sylva_turtle::{Command, SymbolTable};
 /// let mut table = SymbolTable::abop();
 /// table.set('G', Command::Move); // make G a move too
 /// table.set('S', Command::Marker);
-/// assert_eq!(table.get('F'), Some(Command::Draw));
+/// table.set("Internode", Command::Draw);
+/// assert_eq!(table.get("F"), Some(Command::Draw));
+/// assert_eq!(table.get("Internode"), Some(Command::Draw));
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SymbolTable {
-    commands: HashMap<char, Command>,
+    commands: HashMap<String, Command>,
 }
 
 impl Default for SymbolTable {
@@ -117,29 +120,32 @@ impl SymbolTable {
             ('J', Leaf),
         ];
         SymbolTable {
-            commands: entries.into_iter().collect(),
+            commands: entries
+                .into_iter()
+                .map(|(c, command)| (c.to_string(), command))
+                .collect(),
         }
     }
 
-    /// Sets what `symbol` means.
-    pub fn set(&mut self, symbol: char, command: Command) -> &mut Self {
-        self.commands.insert(symbol, command);
+    /// Sets what `symbol` (a character or a name) means.
+    pub fn set(&mut self, symbol: impl Into<String>, command: Command) -> &mut Self {
+        self.commands.insert(symbol.into(), command);
         self
     }
 
     /// Makes the turtle skip `symbol`.
-    pub fn remove(&mut self, symbol: char) -> &mut Self {
-        self.commands.remove(&symbol);
+    pub fn remove(&mut self, symbol: impl Into<String>) -> &mut Self {
+        self.commands.remove(&symbol.into());
         self
     }
 
-    /// What `symbol` means, if anything.
-    pub fn get(&self, symbol: char) -> Option<Command> {
-        self.commands.get(&symbol).copied()
+    /// What the symbol named `name` means, if anything.
+    pub fn get(&self, name: &str) -> Option<Command> {
+        self.commands.get(name).copied()
     }
 
     /// The table as a dense array indexed by the alphabet's symbol ids.
     pub(crate) fn resolve(&self, alphabet: &Alphabet) -> Vec<Option<Command>> {
-        alphabet.chars().iter().map(|&c| self.get(c)).collect()
+        alphabet.names().map(|n| self.get(n)).collect()
     }
 }

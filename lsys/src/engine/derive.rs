@@ -590,7 +590,7 @@ impl<'g> Deriver<'g> {
                         if !v.is_finite() {
                             return Err(DeriveError::NonFiniteParameter {
                                 generation: step,
-                                symbol: self.grammar.alphabet.char(symbol),
+                                symbol: self.grammar.alphabet.name(symbol).to_string(),
                                 index: (a - args.0) as usize,
                                 value: v,
                             });

@@ -33,7 +33,7 @@ pub struct LSystem {
 
 impl PartialEq for LSystem {
     fn eq(&self, other: &Self) -> bool {
-        self.alphabet.chars() == other.alphabet.chars()
+        self.alphabet.names().eq(other.alphabet.names())
             && self.constants == other.constants
             && self.ignore == other.ignore
             && self.axiom == other.axiom

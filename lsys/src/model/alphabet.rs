@@ -14,14 +14,15 @@ impl SymbolId {
     }
 }
 
-/// The symbols of a grammar, each a single character, numbered in order of first appearance.
+/// The symbols of a grammar, numbered in order of first appearance. A symbol is one
+/// character (`F`, `+`) or a name of several (`Apex`, `@Gs`, `?P`) that a dialect declares.
 ///
-/// Words store [`SymbolId`]s rather than characters so that per-symbol lookups are array
+/// Words store [`SymbolId`]s rather than names so that per-symbol lookups are array
 /// indexing. The brackets `[` and `]` and the cut symbol `%` are always present, with fixed ids.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Alphabet {
-    chars: Vec<char>,
-    ids: HashMap<char, SymbolId>,
+    names: Vec<Box<str>>,
+    ids: HashMap<Box<str>, SymbolId>,
 }
 
 /// Id of `[` in every alphabet.
@@ -34,6 +35,9 @@ pub const CUT: SymbolId = SymbolId(2);
 /// Characters that can never be module symbols because the notation uses them.
 pub const RESERVED: &[char] = &['(', ')', ',', '<', '>', ':', '?', '#'];
 
+/// Longest symbol name, in characters.
+pub const MAX_NAME_CHARS: usize = 64;
+
 impl Default for Alphabet {
     fn default() -> Self {
         Self::new()
@@ -44,7 +48,7 @@ impl Alphabet {
     /// An alphabet holding only `[`, `]` and `%`.
     pub fn new() -> Self {
         let mut a = Alphabet {
-            chars: Vec::new(),
+            names: Vec::new(),
             ids: HashMap::new(),
         };
         for c in ['[', ']', '%'] {
@@ -53,48 +57,92 @@ impl Alphabet {
         a
     }
 
-    /// Whether `c` can be a module symbol (not whitespace, not a control character, not reserved).
+    /// Whether `c` can be a one-character module symbol (not whitespace, not a control
+    /// character, not reserved).
     pub fn is_symbol_char(c: char) -> bool {
         !c.is_whitespace() && !c.is_control() && !RESERVED.contains(&c)
     }
 
+    /// Whether `name` can be a symbol of several characters: at most [`MAX_NAME_CHARS`], no
+    /// whitespace, control characters, parentheses or commas (the notation around modules),
+    /// and not a bracket.
+    pub fn is_symbol_name(name: &str) -> bool {
+        let n = name.chars().count();
+        n == 1 && name.chars().all(Self::is_symbol_char)
+            || (2..=MAX_NAME_CHARS).contains(&n)
+                && name
+                    .chars()
+                    .all(|c| !c.is_whitespace() && !c.is_control() && !"(),[]".contains(c))
+    }
+
     /// The id of `c`, adding it if new. `None` when `c` cannot be a symbol or the alphabet is full.
     pub fn intern(&mut self, c: char) -> Option<SymbolId> {
-        if let Some(&id) = self.ids.get(&c) {
-            return Some(id);
-        }
-        if !Self::is_symbol_char(c) || self.chars.len() >= u16::MAX as usize {
+        if !Self::is_symbol_char(c) {
             return None;
         }
-        let id = SymbolId(self.chars.len() as u16);
-        self.chars.push(c);
-        self.ids.insert(c, id);
+        self.intern_name(c.encode_utf8(&mut [0; 4]))
+    }
+
+    /// The id of the symbol `name`, adding it if new. `None` when `name` cannot be a symbol
+    /// ([`Alphabet::is_symbol_name`]) or the alphabet is full.
+    pub fn intern_name(&mut self, name: &str) -> Option<SymbolId> {
+        if let Some(&id) = self.ids.get(name) {
+            return Some(id);
+        }
+        if !Self::is_symbol_name(name) || self.names.len() >= u16::MAX as usize {
+            return None;
+        }
+        let id = SymbolId(self.names.len() as u16);
+        self.names.push(name.into());
+        self.ids.insert(name.into(), id);
         Some(id)
     }
 
     /// The id of `c` if it is in the alphabet.
     pub fn id(&self, c: char) -> Option<SymbolId> {
-        self.ids.get(&c).copied()
+        self.ids.get(c.encode_utf8(&mut [0; 4]) as &str).copied()
     }
 
-    /// The character of `id`. Ids from another alphabet give `'\u{FFFD}'`.
+    /// The id of the symbol `name` if it is in the alphabet.
+    pub fn id_of(&self, name: &str) -> Option<SymbolId> {
+        self.ids.get(name).copied()
+    }
+
+    /// The character of a one-character symbol; `'\u{FFFD}'` for a longer name or an id
+    /// from another alphabet.
     pub fn char(&self, id: SymbolId) -> char {
-        self.chars.get(id.index()).copied().unwrap_or('\u{FFFD}')
+        let name = self.name(id);
+        let mut chars = name.chars();
+        match (chars.next(), chars.next()) {
+            (Some(c), None) => c,
+            _ => '\u{FFFD}',
+        }
+    }
+
+    /// The symbol's name; `"\u{FFFD}"` for an id from another alphabet.
+    pub fn name(&self, id: SymbolId) -> &str {
+        self.names.get(id.index()).map_or("\u{FFFD}", |n| n)
     }
 
     /// Number of symbols.
     pub fn len(&self) -> usize {
-        self.chars.len()
+        self.names.len()
     }
 
     /// Always false: the brackets and the cut symbol are always present.
     pub fn is_empty(&self) -> bool {
-        self.chars.is_empty()
+        self.names.is_empty()
     }
 
-    /// The symbols in id order.
-    pub fn chars(&self) -> &[char] {
-        &self.chars
+    /// The symbols' names in id order.
+    pub fn names(&self) -> impl ExactSizeIterator<Item = &str> + '_ {
+        self.names.iter().map(|n| &**n)
+    }
+
+    /// Whether any symbol is a name of several characters (then words print with spaces
+    /// between modules).
+    pub fn has_long_names(&self) -> bool {
+        self.names.iter().any(|n| n.chars().nth(1).is_some())
     }
 }
 
@@ -120,5 +168,20 @@ mod tests {
         assert_eq!(a.intern('F'), Some(SymbolId(3)));
         assert_eq!(a.intern('F'), Some(SymbolId(3)));
         assert_eq!(a.char(SymbolId(3)), 'F');
+    }
+
+    #[test]
+    fn names_of_several_characters_are_symbols_too() {
+        let mut a = Alphabet::new();
+        let apex = a.intern_name("Apex").unwrap();
+        assert_eq!(a.intern_name("Apex"), Some(apex));
+        assert_eq!(a.id_of("Apex"), Some(apex));
+        assert_eq!(a.name(apex), "Apex");
+        assert_eq!(a.char(apex), '\u{FFFD}');
+        assert!(a.intern_name("@Gs").is_some());
+        assert!(a.has_long_names());
+        for bad in ["", "a b", "F(", "x,y", &"A".repeat(65)] {
+            assert_eq!(a.intern_name(bad), None, "{bad}");
+        }
     }
 }

@@ -34,7 +34,7 @@ impl PartialEq for Word {
                 .symbols
                 .iter()
                 .zip(&other.symbols)
-                .all(|(&a, &b)| self.alphabet.char(a) == other.alphabet.char(b))
+                .all(|(&a, &b)| self.alphabet.name(a) == other.alphabet.name(b))
     }
 }
 
@@ -43,8 +43,10 @@ impl PartialEq for Word {
 pub struct Module<'a> {
     /// The symbol's id in the word's alphabet.
     pub id: SymbolId,
-    /// The symbol's character.
+    /// The symbol's character (`'\u{FFFD}'` for a name of several characters).
     pub symbol: char,
+    /// The symbol's name (the character for one-character symbols).
+    pub name: &'a str,
     /// The actual parameters.
     pub params: &'a [f64],
 }
@@ -96,6 +98,7 @@ impl Word {
         Some(Module {
             id,
             symbol: self.alphabet.char(id),
+            name: self.alphabet.name(id),
             params: self.params(i),
         })
     }
@@ -105,6 +108,7 @@ impl Word {
         (0..self.len()).map(|i| Module {
             id: self.symbols[i],
             symbol: self.alphabet.char(self.symbols[i]),
+            name: self.alphabet.name(self.symbols[i]),
             params: self.params(i),
         })
     }

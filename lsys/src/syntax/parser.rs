@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use crate::engine::lsystem::LSystem;
 use crate::error::{GrammarError, Location, ParseError};
-use crate::model::alphabet::{Alphabet, POP, PUSH, SymbolId};
+use crate::model::alphabet::{Alphabet, MAX_NAME_CHARS, POP, PUSH, SymbolId};
 use crate::model::expr::{Expr, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 use crate::model::word::Word;
@@ -54,6 +54,7 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
     let src: Vec<char> = text.chars().collect();
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser {
+        long_names: Vec::new(),
         section: Section::Main,
         rule_sets: [RuleSet::default(), RuleSet::default()],
         alphabet: Alphabet::new(),
@@ -111,10 +112,12 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
         })
 }
 
-/// Parses a word (modules with constant arguments) onto `word`; `symbol` gives each
-/// character's id, or `None` when it is not allowed.
+/// Parses a word (modules with constant arguments) onto `word`; a module is the longest of
+/// `long_names` (longest first) the text continues with, else one character whose id
+/// `symbol` gives (`None` when it is not allowed).
 pub(crate) fn parse_modules(
     text: &str,
+    long_names: &[(Vec<char>, SymbolId)],
     symbol: &mut dyn FnMut(char) -> Option<SymbolId>,
     word: &mut Word,
 ) -> Result<(), ParseError> {
@@ -128,9 +131,17 @@ pub(crate) fn parse_modules(
         let mut cur = Cursor::new(line, n + 1);
         while !cur.at_end() {
             let pos = cur.pos();
-            let c = cur.bump().unwrap_or(' ');
-            let Some(id) = symbol(c) else {
-                return Err(cur.error_at(pos, format!("'{c}' is not a symbol of this alphabet")));
+            let id = if let Some((id, n)) = long_name_at(&cur, long_names) {
+                cur.set_pos(pos + n);
+                id
+            } else {
+                let c = cur.bump().unwrap_or(' ');
+                let Some(id) = symbol(c) else {
+                    return Err(
+                        cur.error_at(pos, format!("'{c}' is not a symbol of this alphabet"))
+                    );
+                };
+                id
             };
             params.clear();
             if cur.eat('(') {
@@ -169,7 +180,24 @@ const DEFAULT_MAX_DEPTH: u32 = 1;
 /// Deepest `maximum depth` accepted: passes beyond this are surely a mistake.
 pub const MAX_RULE_DEPTH: u32 = 10_000;
 
+/// The declared names of several characters at the cursor, longest first: the id and length
+/// of the first that the text continues with.
+pub(crate) fn long_name_at(
+    cur: &Cursor<'_>,
+    names: &[(Vec<char>, SymbolId)],
+) -> Option<(SymbolId, usize)> {
+    names.iter().find_map(|(name, id)| {
+        name.iter()
+            .enumerate()
+            .all(|(k, &c)| cur.peek_at(k) == Some(c))
+            .then_some((*id, name.len()))
+    })
+}
+
 struct GrammarParser {
+    /// Symbols of several characters declared with `#module`, longest first: modules are
+    /// read by the longest declared name the text continues with, else by one character.
+    long_names: Vec<(Vec<char>, SymbolId)>,
     section: Section,
     /// The decomposition's and the homomorphism's depths (their productions are gathered
     /// at the end).
@@ -247,12 +275,43 @@ impl GrammarParser {
             Some("ignore") => {
                 cur.eat(':');
                 while !cur.at_end() {
-                    let pos = cur.pos();
-                    let c = cur.bump().unwrap_or(' ');
-                    let id = self.intern(cur, c, pos)?;
+                    let id = self.symbol(cur)?;
                     if !self.ignore.contains(&id) {
                         self.ignore.push(id);
                     }
+                }
+                Ok(())
+            }
+            Some("module") => {
+                cur.eat(':');
+                cur.skip_ws();
+                if cur.at_end() {
+                    return Err(cur.error("expected the names of modules after #module"));
+                }
+                while !cur.at_end() {
+                    let at = cur.pos();
+                    let mut name = String::new();
+                    while let Some(c) = cur.peek().filter(|c| !c.is_whitespace() && *c != ',') {
+                        name.push(c);
+                        cur.bump();
+                    }
+                    if name.is_empty() {
+                        cur.bump();
+                        cur.skip_ws();
+                        continue;
+                    }
+                    let Some(id) = self.alphabet.intern_name(&name) else {
+                        return Err(cur.error_at(
+                            at,
+                            format!("'{name}' cannot be a module name: 1 to {MAX_NAME_CHARS} characters without spaces, parentheses, commas or brackets"),
+                        ));
+                    };
+                    let chars: Vec<char> = name.chars().collect();
+                    if chars.len() > 1 && !self.long_names.iter().any(|(n, _)| *n == chars) {
+                        self.long_names.push((chars, id));
+                        self.long_names.sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
+                    }
+                    cur.skip_ws();
                 }
                 Ok(())
             }
@@ -279,7 +338,7 @@ impl GrammarParser {
             }
             _ => Err(cur.error_at(
                 at,
-                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#decomposition [depth N]' or '#homomorphism [depth N]'",
+                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#decomposition [depth N]' or '#homomorphism [depth N]'",
             )),
         }
     }
@@ -311,6 +370,18 @@ impl GrammarParser {
             ));
         }
         Ok(depth as u32)
+    }
+
+    /// The module symbol at the cursor, read past: the longest declared name it continues
+    /// with, else one character.
+    fn symbol(&mut self, cur: &mut Cursor<'_>) -> Result<SymbolId, ParseError> {
+        let pos = cur.pos();
+        if let Some((id, n)) = long_name_at(cur, &self.long_names) {
+            cur.set_pos(pos + n);
+            return Ok(id);
+        }
+        let c = cur.bump().unwrap_or(' ');
+        self.intern(cur, c, pos)
     }
 
     fn intern(&mut self, cur: &Cursor<'_>, c: char, pos: usize) -> Result<SymbolId, ParseError> {
@@ -367,11 +438,13 @@ impl GrammarParser {
             cur.skip_ws();
             let pos = cur.pos();
             let Some(c) = cur.peek() else { break };
-            if matches!(c, '<' | '>' | ':' | '→') || (c == '-' && cur.peek_at(1) == Some('>')) {
+            let long = long_name_at(cur, &self.long_names).is_some();
+            if !long
+                && (matches!(c, '<' | '>' | ':' | '→') || (c == '-' && cur.peek_at(1) == Some('>')))
+            {
                 break;
             }
-            cur.bump();
-            let symbol = self.intern(cur, c, pos)?;
+            let symbol = self.symbol(cur)?;
             let mut params = Vec::new();
             if cur.eat('(') && !cur.eat(')') {
                 loop {
@@ -512,12 +585,13 @@ impl GrammarParser {
             cur.skip_ws();
             let pos = cur.pos();
             let Some(c) = cur.peek() else { break };
-            if c == ':' || c == '>' {
+            let long = long_name_at(cur, &self.long_names).is_some();
+            if !long && (c == ':' || c == '>') {
                 break;
             }
-            cur.bump();
             starts.push(pos);
-            if c == '?' {
+            if !long && c == '?' {
+                cur.bump();
                 cur.expect('(', "'(' after '?'")?;
                 let scope = Names {
                     constants: &self.values,
@@ -540,7 +614,7 @@ impl GrammarParser {
                 });
                 continue;
             }
-            let symbol = self.intern(cur, c, pos)?;
+            let symbol = self.symbol(cur)?;
             let scope = Names {
                 constants: &self.values,
                 vars: names,

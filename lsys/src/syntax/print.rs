@@ -131,7 +131,7 @@ impl fmt::Display for PatternsDisplay<'_> {
             if i > 0 {
                 f.write_str(" ")?;
             }
-            write!(f, "{}", self.1.char(p.symbol))?;
+            write!(f, "{}", self.1.name(p.symbol))?;
             if !p.params.is_empty() {
                 write!(f, "({})", p.params.join(","))?;
             }
@@ -145,10 +145,11 @@ struct ItemsDisplay<'a>(&'a [SuccessorItem], &'a Alphabet);
 impl fmt::Display for ItemsDisplay<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut previous: Option<&ModuleTemplate> = None;
+        let spaced = self.1.has_long_names();
         for item in self.0 {
             match item {
                 SuccessorItem::Module(m) => {
-                    separate(f, previous, m, self.1)?;
+                    separate(f, previous, m, self.1, spaced)?;
                     write_template(f, m, self.1)?;
                     previous = Some(m);
                     continue;
@@ -170,14 +171,18 @@ impl fmt::Display for ItemsDisplay<'_> {
     }
 }
 
-/// Writes a space where two modules would otherwise print as the comment opener `/*`.
+/// Writes a space where two modules would otherwise print as the comment opener `/*`, and
+/// between all modules when the alphabet has names of several characters (`spaced`), so
+/// that `A B` is not read back as a module `AB`.
 fn separate(
     f: &mut fmt::Formatter<'_>,
     previous: Option<&ModuleTemplate>,
     next: &ModuleTemplate,
     alphabet: &Alphabet,
+    spaced: bool,
 ) -> fmt::Result {
     match previous {
+        Some(_) if spaced => f.write_str(" "),
         Some(p)
             if p.args.is_empty()
                 && alphabet.char(p.symbol) == '/'
@@ -194,7 +199,7 @@ fn write_template(
     m: &ModuleTemplate,
     alphabet: &Alphabet,
 ) -> fmt::Result {
-    write!(f, "{}", alphabet.char(m.symbol))?;
+    write!(f, "{}", alphabet.name(m.symbol))?;
     if !m.args.is_empty() {
         f.write_str("(")?;
         for (i, a) in m.args.iter().enumerate() {
@@ -215,14 +220,19 @@ impl fmt::Display for LSystem {
         for (name, e) in &self.constants {
             writeln!(f, "#define {name} {e}")?;
         }
+        let long: Vec<&str> = a.names().filter(|n| n.chars().nth(1).is_some()).collect();
+        if !long.is_empty() {
+            writeln!(f, "#module {}", long.join(" "))?;
+        }
         if !self.ignore.is_empty() {
-            let s: Vec<String> = self.ignore.iter().map(|&s| a.char(s).to_string()).collect();
+            let s: Vec<&str> = self.ignore.iter().map(|&s| a.name(s)).collect();
             writeln!(f, "#ignore: {}", s.join(" "))?;
         }
         f.write_str("axiom: ")?;
         let mut previous = None;
+        let spaced = !long.is_empty();
         for m in &self.axiom {
-            separate(f, previous, m, a)?;
+            separate(f, previous, m, a, spaced)?;
             write_template(f, m, a)?;
             previous = Some(m);
         }
@@ -275,8 +285,12 @@ impl fmt::Display for Word {
     /// form, so parsing the text gives back the same bits.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use fmt::Write;
-        for m in self.iter() {
-            f.write_char(m.symbol)?;
+        let spaced = self.alphabet.has_long_names();
+        for (i, m) in self.iter().enumerate() {
+            if spaced && i > 0 {
+                f.write_char(' ')?;
+            }
+            f.write_str(m.name)?;
             if !m.params.is_empty() {
                 f.write_char('(')?;
                 for (k, v) in m.params.iter().enumerate() {

@@ -4,7 +4,7 @@ use std::str::FromStr;
 use std::sync::Arc;
 
 use crate::error::ParseError;
-use crate::model::alphabet::Alphabet;
+use crate::model::alphabet::{Alphabet, SymbolId};
 use crate::model::word::Word;
 use crate::syntax::parser::parse_modules;
 
@@ -20,7 +20,14 @@ impl Word {
     /// ```
     pub fn parse(text: &str, alphabet: Arc<Alphabet>) -> Result<Word, ParseError> {
         let mut word = Word::empty(alphabet.clone());
-        parse_modules(text, &mut |c| alphabet.id(c), &mut word)?;
+        let mut long_names: Vec<(Vec<char>, SymbolId)> = alphabet
+            .names()
+            .enumerate()
+            .filter(|(_, n)| n.chars().nth(1).is_some())
+            .map(|(k, n)| (n.chars().collect(), SymbolId(k as u16)))
+            .collect();
+        long_names.sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
+        parse_modules(text, &long_names, &mut |c| alphabet.id(c), &mut word)?;
         Ok(word)
     }
 }
@@ -32,7 +39,7 @@ impl FromStr for Word {
     fn from_str(text: &str) -> Result<Word, ParseError> {
         let mut alphabet = Alphabet::new();
         let mut scratch = Word::empty(Arc::new(Alphabet::new()));
-        parse_modules(text, &mut |c| alphabet.intern(c), &mut scratch)?;
+        parse_modules(text, &[], &mut |c| alphabet.intern(c), &mut scratch)?;
         scratch.alphabet = Arc::new(alphabet);
         Ok(scratch)
     }
