@@ -106,7 +106,7 @@ pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 pub use model::word::{Module, Word};
 pub use presets::{PRESETS, Preset, preset};
-pub use syntax::parser::{MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};
+pub use syntax::parser::{Dialect, MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};
 
 impl LSystem {
     /// Parses grammar text. Errors name the line and column and say what was expected.
@@ -115,14 +115,40 @@ impl LSystem {
     /// let err = sylva_lsys::LSystem::parse("axiom: A\nA -> B(1,").unwrap_err();
     /// assert_eq!((err.location.line, err.location.column), (2, 10));
     /// ```
+    ///
+    /// The dialect is the one the text declares ([`Dialect::declared_in`]): cpfg when a line
+    /// starts with `Lsystem:`, else sylva's notation.
     pub fn parse(text: &str) -> Result<LSystem, ParseError> {
         syntax::parser::parse(text)
+    }
+
+    /// Parses grammar text written in `dialect`.
+    ///
+    /// ```
+    /// use sylva_lsys::{Dialect, LSystem};
+    /// let cpfg = "
+    ///     #define STEPS 3
+    ///     Lsystem: 1
+    ///     derivation length: STEPS
+    ///     Axiom: A(0)
+    ///     A(n) : n < 2 --> F(sin(90)) [+A(n+1)] A(n+1)
+    ///     A(n) : n >= 2 --> *
+    ///     endlsystem";
+    /// let plant = LSystem::parse_dialect(cpfg, Dialect::Cpfg)?;
+    /// assert_eq!(plant.derivation_length(), Some(3));
+    /// // Angles in cpfg's trigonometry are degrees: sin(90) = 1.
+    /// assert_eq!(plant.derive(3, 0)?.to_string(), "F(1)[+F(1)[+]]F(1)[+]");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
+        syntax::parser::parse_dialect(text, dialect)
     }
 }
 
 impl LSystem {
-    /// Reads and parses a grammar file of at most [`MAX_GRAMMAR_BYTES`]. Errors name the file,
-    /// line and column.
+    /// Reads and parses a grammar file of at most [`MAX_GRAMMAR_BYTES`], in the dialect its
+    /// extension names (`.l`: cpfg) or its text declares. Errors name the file, line and
+    /// column.
     ///
     /// ```
     /// let path = std::env::temp_dir().join("sylva-lsys-doctest.lsys");
@@ -134,7 +160,11 @@ impl LSystem {
     pub fn from_file(path: impl AsRef<std::path::Path>) -> Result<LSystem, GrammarFileError> {
         let path = path.as_ref();
         let text = sylva_base::text_file::read(path, MAX_GRAMMAR_BYTES as u64)?;
-        LSystem::parse(&text).map_err(|error| GrammarFileError::Parse {
+        let dialect = match Dialect::of_path(path) {
+            Dialect::Sylva => Dialect::declared_in(&text),
+            named => named,
+        };
+        LSystem::parse_dialect(&text, dialect).map_err(|error| GrammarFileError::Parse {
             path: path.to_path_buf(),
             error,
         })

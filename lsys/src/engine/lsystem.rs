@@ -29,6 +29,8 @@ pub struct LSystem {
     pub(crate) compiled_homomorphism: Compiled,
     /// The axiom evaluated once, since its parameters are constants.
     pub(crate) axiom_word: Word,
+    /// How many steps the model is meant to be derived (cpfg's `derivation length`).
+    pub(crate) derivation_length: Option<u32>,
 }
 
 impl PartialEq for LSystem {
@@ -40,6 +42,7 @@ impl PartialEq for LSystem {
             && self.productions == other.productions
             && self.decomposition == other.decomposition
             && self.homomorphism == other.homomorphism
+            && self.derivation_length == other.derivation_length
     }
 }
 
@@ -115,7 +118,20 @@ impl LSystem {
             compiled_decomposition: Compiled::default(),
             homomorphism: RuleSet::default(),
             compiled_homomorphism: Compiled::default(),
+            derivation_length: None,
         })
+    }
+
+    /// This system stating how many steps it is meant to be derived.
+    pub fn with_derivation_length(mut self, steps: Option<u32>) -> LSystem {
+        self.derivation_length = steps;
+        self
+    }
+
+    /// How many steps the model is meant to be derived, when it says (cpfg's `derivation
+    /// length:`, sylva's `#derivation N`).
+    pub fn derivation_length(&self) -> Option<u32> {
+        self.derivation_length
     }
 
     /// This system with a decomposition (applied to the axiom and after every step) and a

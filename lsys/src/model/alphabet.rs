@@ -63,16 +63,16 @@ impl Alphabet {
         !c.is_whitespace() && !c.is_control() && !RESERVED.contains(&c)
     }
 
-    /// Whether `name` can be a symbol of several characters: at most [`MAX_NAME_CHARS`], no
-    /// whitespace, control characters, parentheses or commas (the notation around modules),
-    /// and not a bracket.
+    /// Whether `name` can be a symbol named by a dialect: one to [`MAX_NAME_CHARS`]
+    /// characters without whitespace, control characters or parentheses, and no brackets or
+    /// commas in a name of several. (A dialect may use one of sylva's reserved characters as
+    /// a module, as cpfg uses `#` and `,`; sylva's notation cannot print such a grammar back.)
     pub fn is_symbol_name(name: &str) -> bool {
         let n = name.chars().count();
-        n == 1 && name.chars().all(Self::is_symbol_char)
+        let plain = |c: char| !c.is_whitespace() && !c.is_control() && !"()".contains(c);
+        n == 1 && name.chars().all(plain)
             || (2..=MAX_NAME_CHARS).contains(&n)
-                && name
-                    .chars()
-                    .all(|c| !c.is_whitespace() && !c.is_control() && !"(),[]".contains(c))
+                && name.chars().all(|c| plain(c) && !",[]".contains(c))
     }
 
     /// The id of `c`, adding it if new. `None` when `c` cannot be a symbol or the alphabet is full.
@@ -180,7 +180,8 @@ mod tests {
         assert_eq!(a.char(apex), '\u{FFFD}');
         assert!(a.intern_name("@Gs").is_some());
         assert!(a.has_long_names());
-        for bad in ["", "a b", "F(", "x,y", &"A".repeat(65)] {
+        assert!(a.intern_name("#").is_some(), "cpfg's width module");
+        for bad in ["", "a b", "F(", "x,y", "(", &"A".repeat(65)] {
             assert_eq!(a.intern_name(bad), None, "{bad}");
         }
     }

@@ -6,7 +6,9 @@
 //! flat chain costs linear time up to the point where it is refused.
 
 use crate::error::ParseError;
-use crate::model::expr::{BinaryOp, Expr, FUNCTIONS, MAX_EXPR_DEPTH, MAX_NESTING, UnaryOp};
+use crate::model::expr::{
+    BinaryOp, Expr, FUNCTIONS, Function, MAX_EXPR_DEPTH, MAX_NESTING, UnaryOp,
+};
 use crate::syntax::cursor::Cursor;
 
 /// Names an expression may refer to.
@@ -15,6 +17,10 @@ pub(crate) trait Scope {
     fn var(&self, name: &str) -> Option<u16>;
     /// The value of a constant.
     fn constant(&self, name: &str) -> Option<f64>;
+    /// Whether trigonometric functions take and give degrees (cpfg) rather than radians.
+    fn degrees(&self) -> bool {
+        false
+    }
 }
 
 /// Parses one expression at the cursor. Stops before any character that cannot continue it.
@@ -26,6 +32,15 @@ pub(crate) fn parse_expr(cur: &mut Cursor<'_>, scope: &dyn Scope) -> Result<Expr
     }
     .or()?;
     Ok(parsed.expr)
+}
+
+/// Whether the cursor is at an arrow, `->` or `-->`, which ends an expression.
+fn arrow_at(cur: &Cursor<'_>) -> bool {
+    match (cur.peek(), cur.peek_at(1), cur.peek_at(2)) {
+        (Some('-'), Some('>'), _) => true,
+        (Some('-'), Some('-'), Some('>')) => true,
+        _ => false,
+    }
 }
 
 /// A subtree and its depth (1 for a leaf), kept together so no walk is needed to measure it.
@@ -139,11 +154,13 @@ impl ExprParser<'_, '_> {
 
     fn add(&mut self) -> Result<Parsed, ParseError> {
         self.chain(Self::mul, |p| {
-            // "->" ends a condition; it is not a subtraction.
-            let op = match (p.cur.peek(), p.cur.peek_at(1)) {
-                (Some('+'), _) => BinaryOp::Add,
-                (Some('-'), Some(c)) if c != '>' => BinaryOp::Sub,
-                (Some('-'), None) => BinaryOp::Sub,
+            // "->" and cpfg's "-->" end a condition; they are not a subtraction.
+            if p.cur.peek() == Some('-') && arrow_at(p.cur) {
+                return None;
+            }
+            let op = match p.cur.peek() {
+                Some('+') => BinaryOp::Add,
+                Some('-') => BinaryOp::Sub,
                 _ => return None,
             };
             p.cur.bump();
@@ -166,7 +183,7 @@ impl ExprParser<'_, '_> {
     fn unary(&mut self) -> Result<Parsed, ParseError> {
         let at = self.here();
         let op = match (self.cur.peek(), self.cur.peek_at(1)) {
-            (Some('-'), Some(c)) if c != '>' => Some(UnaryOp::Neg),
+            (Some('-'), _) if !arrow_at(self.cur) => Some(UnaryOp::Neg),
             (Some('!'), Some(c)) if c != '=' => Some(UnaryOp::Not),
             _ => None,
         };
@@ -267,7 +284,37 @@ impl ExprParser<'_, '_> {
                 ),
             ));
         }
+        if self.scope.degrees() {
+            return self.in_degrees(func, args, start, depth);
+        }
         self.node(start, depth, || Expr::Call(func, args))
+    }
+
+    /// A trigonometric call of a dialect that measures angles in degrees: its argument
+    /// turned into radians, or its result into degrees.
+    fn in_degrees(
+        &self,
+        func: Function,
+        mut args: Vec<Expr>,
+        start: usize,
+        depth: usize,
+    ) -> Result<Parsed, ParseError> {
+        let scale =
+            |e: Expr, k: f64| Expr::Binary(BinaryOp::Mul, Box::new(e), Box::new(Expr::Number(k)));
+        match func {
+            Function::Sin | Function::Cos | Function::Tan => {
+                let arg = args.pop().unwrap_or(Expr::Number(0.0));
+                let arg = scale(arg, std::f64::consts::PI / 180.0);
+                self.node(start, depth + 1, || Expr::Call(func, vec![arg]))
+            }
+            Function::Asin | Function::Acos | Function::Atan | Function::Atan2 => {
+                let call = self.node(start, depth, || Expr::Call(func, args))?;
+                self.node(start, call.depth, || {
+                    scale(call.expr, 180.0 / std::f64::consts::PI)
+                })
+            }
+            _ => self.node(start, depth, || Expr::Call(func, args)),
+        }
     }
 
     fn number(&mut self) -> Result<Parsed, ParseError> {

@@ -1,6 +1,7 @@
 //! Grammar text: the parser of grammars, expressions and words, and the printer back to text.
 
 pub(crate) mod comments;
+pub(crate) mod cpfg;
 pub(crate) mod cursor;
 pub(crate) mod expr_parser;
 pub(crate) mod parser;

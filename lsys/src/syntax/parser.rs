@@ -24,6 +24,8 @@ const MAX_BINDINGS: usize = u16::MAX as usize;
 struct Names<'a> {
     constants: &'a HashMap<String, f64>,
     vars: &'a HashMap<String, u16>,
+    /// Trigonometry in degrees (cpfg).
+    degrees: bool,
 }
 
 impl Scope for Names<'_> {
@@ -33,6 +35,9 @@ impl Scope for Names<'_> {
     fn constant(&self, name: &str) -> Option<f64> {
         self.constants.get(name).copied()
     }
+    fn degrees(&self) -> bool {
+        self.degrees
+    }
 }
 
 /// No formal parameters: the scope of `#define`, weights and the axiom.
@@ -41,7 +46,60 @@ fn no_vars() -> &'static HashMap<String, u16> {
     EMPTY.get_or_init(HashMap::new)
 }
 
+/// `text` without its `//` comments (to the end of each line).
+fn strip_line_comments(text: &[char]) -> Vec<char> {
+    let mut out = Vec::with_capacity(text.len());
+    let mut comment = false;
+    for (i, &c) in text.iter().enumerate() {
+        if c == '\n' {
+            comment = false;
+        } else if c == '/' && text.get(i + 1) == Some(&'/') {
+            comment = true;
+        }
+        // Characters become spaces so that columns stay where they were.
+        out.push(if comment { ' ' } else { c });
+    }
+    out
+}
+
+/// The notations grammar text may be written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Dialect {
+    /// sylva's notation (ABOP's, one production per line): [`LSystem::parse`]'s default.
+    Sylva,
+    /// cpfg's `.l` files (the virtual laboratory): `Lsystem:` ... `endlsystem`, `-->`,
+    /// `derivation length:`, `consider:`, trigonometry in degrees, `*` for the empty word.
+    Cpfg,
+}
+
+impl Dialect {
+    /// The dialect a file's extension names: `.l` is cpfg; anything else sylva's notation.
+    pub fn of_path(path: &std::path::Path) -> Dialect {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("l") => Dialect::Cpfg,
+            _ => Dialect::Sylva,
+        }
+    }
+
+    /// The dialect a text declares: cpfg when a line starts with `Lsystem:` (outside
+    /// comments), else sylva's notation.
+    pub fn declared_in(text: &str) -> Dialect {
+        let src: Vec<char> = text.chars().collect();
+        let stripped = strip_block_comments(&src).unwrap_or(src);
+        let cpfg = stripped.split(|&c| c == '\n').any(|line| {
+            let line: String = line.iter().collect();
+            line.trim_start().starts_with("Lsystem:")
+        });
+        if cpfg { Dialect::Cpfg } else { Dialect::Sylva }
+    }
+}
+
 pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
+    parse_dialect(text, Dialect::declared_in(text))
+}
+
+pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
     if text.len() > MAX_GRAMMAR_BYTES {
         return Err(ParseError::new(
             1,
@@ -54,9 +112,15 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
     let src: Vec<char> = text.chars().collect();
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser {
+        dialect,
+        derivation_length: None,
+        consider: None,
         long_names: Vec::new(),
         section: Section::Main,
-        rule_sets: [RuleSet::default(), RuleSet::default()],
+        rule_sets: [RuleSet::default(), RuleSet::default()].map(|mut set| {
+            set.max_depth = DEFAULT_MAX_DEPTH;
+            set
+        }),
         alphabet: Alphabet::new(),
         constants: Vec::new(),
         values: HashMap::new(),
@@ -65,9 +129,31 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
         axiom: None,
         productions: Vec::new(),
     };
-    for (n, line) in src.split(|&c| c == '\n').enumerate() {
-        let line = line.strip_suffix(&['\r']).unwrap_or(line);
-        p.line(&mut Cursor::new(line, n + 1))?;
+    match dialect {
+        Dialect::Sylva => {
+            for (n, line) in src.split(|&c| c == '\n').enumerate() {
+                let line = line.strip_suffix(&['\r']).unwrap_or(line);
+                p.line(&mut Cursor::new(line, n + 1))?;
+            }
+        }
+        Dialect::Cpfg => {
+            // cpfg files go through the C preprocessor, which ends a line at '//'.
+            let src = strip_line_comments(&src);
+            for name in CPFG_LONG_NAMES {
+                p.long_names.push((name.chars().collect(), None));
+            }
+            p.long_names
+                .sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
+            crate::syntax::cpfg::read(&src, &mut p)?;
+        }
+    }
+    if let Some(consider) = p.consider.take() {
+        // cpfg's `consider:` names the symbols contexts see: every other one is ignored
+        // (brackets always delimit branches).
+        p.ignore = (0..p.alphabet.len() as u16)
+            .map(SymbolId)
+            .filter(|s| !consider.contains(s) && *s != PUSH && *s != POP)
+            .collect();
     }
     let Some((axiom, axiom_at)) = p.axiom else {
         return Err(ParseError::new(
@@ -94,8 +180,10 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
     let productions = main.into_iter().map(|(p, _)| p).collect();
     // The parser checks everything `from_parts` checks, at the place it happens; should a
     // check only `from_parts` makes ever fail, the error still points at the right line.
+    let derivation_length = p.derivation_length;
     LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
         .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
+        .map(|system| system.with_derivation_length(derivation_length))
         .map_err(|e| {
             let at = match &e {
                 GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
@@ -125,6 +213,7 @@ pub(crate) fn parse_modules(
     let names = Names {
         constants: &HashMap::new(),
         vars: no_vars(),
+        degrees: false,
     };
     let mut params = Vec::new();
     for (n, line) in chars.split(|&c| c == '\n').enumerate() {
@@ -168,10 +257,25 @@ pub(crate) fn parse_modules(
 
 /// Which productions the lines being read add to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Section {
+pub(crate) enum Section {
     Main = 0,
     Decomposition = 1,
     Homomorphism = 2,
+}
+
+/// Most steps a derivation length may state.
+const MAX_DERIVATION_LENGTH: u32 = 1_000_000;
+
+/// A stated derivation length as a whole number of steps.
+pub(crate) fn whole_steps(cur: &Cursor<'_>, at: usize, steps: f64) -> Result<u32, ParseError> {
+    if steps.fract() == 0.0 && (0.0..=f64::from(MAX_DERIVATION_LENGTH)).contains(&steps) {
+        Ok(steps as u32)
+    } else {
+        Err(cur.error_at(
+            at,
+            format!("a derivation length must be a whole number from 0 to {MAX_DERIVATION_LENGTH}, not {steps}"),
+        ))
+    }
 }
 
 /// A rule set's maximum depth when the grammar does not give one (cpfg's default).
@@ -182,10 +286,10 @@ pub const MAX_RULE_DEPTH: u32 = 10_000;
 
 /// The declared names of several characters at the cursor, longest first: the id and length
 /// of the first that the text continues with.
-pub(crate) fn long_name_at(
+pub(crate) fn long_name_at<T: Copy>(
     cur: &Cursor<'_>,
-    names: &[(Vec<char>, SymbolId)],
-) -> Option<(SymbolId, usize)> {
+    names: &[(Vec<char>, T)],
+) -> Option<(T, usize)> {
     names.iter().find_map(|(name, id)| {
         name.iter()
             .enumerate()
@@ -194,29 +298,44 @@ pub(crate) fn long_name_at(
     })
 }
 
-struct GrammarParser {
-    /// Symbols of several characters declared with `#module`, longest first: modules are
-    /// read by the longest declared name the text continues with, else by one character.
-    long_names: Vec<(Vec<char>, SymbolId)>,
-    section: Section,
+/// cpfg's modules of several characters: spheres, circles, generalized cylinders, texture
+/// and tropism controls, and the query and communication modules.
+const CPFG_LONG_NAMES: &[&str] = &[
+    // Width and colour: sylva's notation reserves these characters, cpfg draws with them.
+    "#", ",", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts", "@Te",
+    "@Tf", "@Tx", "@R", "@M", "@m", "@H", "@L", "@b", "@Ds", "@De", "@Dd", "@Di", "@s", "@D", "@J",
+    "@I", "@P", "@S", "?P", "?H", "?L", "?U", "?E",
+];
+
+pub(crate) struct GrammarParser {
+    pub(crate) dialect: Dialect,
+    /// The derivation length the grammar states (cpfg's `derivation length:`).
+    pub(crate) derivation_length: Option<u32>,
+    /// cpfg's `consider:` symbols, when given.
+    pub(crate) consider: Option<Vec<SymbolId>>,
+    /// Symbols of several characters (declared with `#module`, or the dialect's own), longest
+    /// first, interned when first met: modules are read by the longest such name the text
+    /// continues with, else by one character.
+    long_names: Vec<(Vec<char>, Option<SymbolId>)>,
+    pub(crate) section: Section,
     /// The decomposition's and the homomorphism's depths (their productions are gathered
     /// at the end).
-    rule_sets: [RuleSet; 2],
+    pub(crate) rule_sets: [RuleSet; 2],
     alphabet: Alphabet,
     constants: Vec<(String, Expr)>,
     /// Each constant's value, computed once when it is defined.
     values: HashMap<String, f64>,
     /// Where each constant was defined, for errors found after parsing.
     constant_at: Vec<(String, Location)>,
-    ignore: Vec<SymbolId>,
+    pub(crate) ignore: Vec<SymbolId>,
     /// The axiom and where each of its modules starts.
     axiom: Option<(Vec<ModuleTemplate>, Vec<Location>)>,
     /// The productions, where each starts and its section.
-    productions: Vec<(Production, Location, Section)>,
+    pub(crate) productions: Vec<(Production, Location, Section)>,
 }
 
 impl GrammarParser {
-    fn line(&mut self, cur: &mut Cursor<'_>) -> Result<(), ParseError> {
+    pub(crate) fn line(&mut self, cur: &mut Cursor<'_>) -> Result<(), ParseError> {
         if cur.at_end() || cur.eat_str("//") {
             return Ok(());
         }
@@ -236,7 +355,7 @@ impl GrammarParser {
         Ok(())
     }
 
-    fn directive(&mut self, cur: &mut Cursor<'_>) -> Result<(), ParseError> {
+    pub(crate) fn directive(&mut self, cur: &mut Cursor<'_>) -> Result<(), ParseError> {
         let at = cur.pos();
         match cur.ident().as_deref() {
             Some("define") => {
@@ -248,6 +367,7 @@ impl GrammarParser {
                 let scope = Names {
                     constants: &self.values,
                     vars: no_vars(),
+                    degrees: self.dialect == Dialect::Cpfg,
                 };
                 let value = parse_expr(cur, &scope)?;
                 if !cur.at_end() {
@@ -282,6 +402,12 @@ impl GrammarParser {
                 }
                 Ok(())
             }
+            Some("derivation") => {
+                let at = cur.pos();
+                let steps = self.constant_value(cur)?;
+                self.derivation_length = Some(whole_steps(cur, at, steps)?);
+                Ok(())
+            }
             Some("module") => {
                 cur.eat(':');
                 cur.skip_ws();
@@ -308,7 +434,7 @@ impl GrammarParser {
                     };
                     let chars: Vec<char> = name.chars().collect();
                     if chars.len() > 1 && !self.long_names.iter().any(|(n, _)| *n == chars) {
-                        self.long_names.push((chars, id));
+                        self.long_names.push((chars, Some(id)));
                         self.long_names.sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
                     }
                     cur.skip_ws();
@@ -338,19 +464,43 @@ impl GrammarParser {
             }
             _ => Err(cur.error_at(
                 at,
-                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#decomposition [depth N]' or '#homomorphism [depth N]'",
+                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#decomposition [depth N]' or '#homomorphism [depth N]'",
             )),
         }
     }
 
-    /// A maximum depth: a constant expression with a whole value from 0 to [`MAX_RULE_DEPTH`],
-    /// then the end of the line.
-    fn depth(&mut self, cur: &mut Cursor<'_>) -> Result<u32, ParseError> {
+    /// A constant expression (numbers and `#define`s), then the end of the line.
+    pub(crate) fn constant_value(&mut self, cur: &mut Cursor<'_>) -> Result<f64, ParseError> {
         cur.skip_ws();
         let at = cur.pos();
         let scope = Names {
             constants: &self.values,
             vars: no_vars(),
+            degrees: self.dialect == Dialect::Cpfg,
+        };
+        let value = parse_expr(cur, &scope)?;
+        if !cur.at_end() {
+            return Err(cur.error(format!(
+                "expected end of line after the value, found {}",
+                cur.describe_next()
+            )));
+        }
+        let number = value.eval_constant(0.0, 0);
+        if !value.is_constant() || !number.is_finite() {
+            return Err(cur.error_at(at, "expected a constant, finite value"));
+        }
+        Ok(number)
+    }
+
+    /// A maximum depth: a constant expression with a whole value from 0 to [`MAX_RULE_DEPTH`],
+    /// then the end of the line.
+    pub(crate) fn depth(&mut self, cur: &mut Cursor<'_>) -> Result<u32, ParseError> {
+        cur.skip_ws();
+        let at = cur.pos();
+        let scope = Names {
+            constants: &self.values,
+            vars: no_vars(),
+            degrees: self.dialect == Dialect::Cpfg,
         };
         let value = parse_expr(cur, &scope)?;
         if !cur.at_end() {
@@ -374,9 +524,27 @@ impl GrammarParser {
 
     /// The module symbol at the cursor, read past: the longest declared name it continues
     /// with, else one character.
-    fn symbol(&mut self, cur: &mut Cursor<'_>) -> Result<SymbolId, ParseError> {
+    pub(crate) fn symbol(&mut self, cur: &mut Cursor<'_>) -> Result<SymbolId, ParseError> {
         let pos = cur.pos();
-        if let Some((id, n)) = long_name_at(cur, &self.long_names) {
+        let found = self.long_names.iter().position(|(name, _)| {
+            name.iter()
+                .enumerate()
+                .all(|(k, &c)| cur.peek_at(k) == Some(c))
+        });
+        if let Some(k) = found {
+            let (name, id) = &mut self.long_names[k];
+            let n = name.len();
+            let id = match id {
+                Some(id) => *id,
+                None => {
+                    let text: String = name.iter().collect();
+                    let new = self.alphabet.intern_name(&text).ok_or_else(|| {
+                        cur.error_at(pos, "too many distinct symbols (at most 65535)")
+                    })?;
+                    *id = Some(new);
+                    new
+                }
+            };
             cur.set_pos(pos + n);
             return Ok(id);
         }
@@ -394,7 +562,11 @@ impl GrammarParser {
         })
     }
 
-    fn axiom_line(&mut self, cur: &mut Cursor<'_>, start: usize) -> Result<(), ParseError> {
+    pub(crate) fn axiom_line(
+        &mut self,
+        cur: &mut Cursor<'_>,
+        start: usize,
+    ) -> Result<(), ParseError> {
         if self.axiom.is_some() {
             return Err(cur.error_at(start, "a second axiom: a grammar has exactly one"));
         }
@@ -439,9 +611,10 @@ impl GrammarParser {
             let pos = cur.pos();
             let Some(c) = cur.peek() else { break };
             let long = long_name_at(cur, &self.long_names).is_some();
-            if !long
-                && (matches!(c, '<' | '>' | ':' | '→') || (c == '-' && cur.peek_at(1) == Some('>')))
-            {
+            let arrow = c == '-'
+                && (cur.peek_at(1) == Some('>')
+                    || (cur.peek_at(1) == Some('-') && cur.peek_at(2) == Some('>')));
+            if !long && (matches!(c, '<' | '>' | ':' | '→') || arrow) {
                 break;
             }
             let symbol = self.symbol(cur)?;
@@ -483,7 +656,7 @@ impl GrammarParser {
         Ok(out)
     }
 
-    fn production(&mut self, cur: &mut Cursor<'_>) -> Result<Production, ParseError> {
+    pub(crate) fn production(&mut self, cur: &mut Cursor<'_>) -> Result<Production, ParseError> {
         // An optional label such as "p1:" (ABOP prints productions that way).
         let start = cur.pos();
         if let Some(label) = cur.ident()
@@ -515,17 +688,31 @@ impl GrammarParser {
         let scope = Names {
             constants: &self.values,
             vars: &names,
+            degrees: self.dialect == Dialect::Cpfg,
+        };
+        let unsupported_block = |cur: &mut Cursor<'_>| {
+            cur.skip_ws();
+            if cur.peek() == Some('{') {
+                Err(cur.error(
+                    "unsupported: statement blocks '{ ... }' in productions (C-like statements before or after the condition)",
+                ))
+            } else {
+                Ok(())
+            }
         };
         let condition = if cur.eat(':') {
+            unsupported_block(cur)?;
             if cur.eat('*') {
                 None
             } else {
-                Some(parse_expr(cur, &scope)?)
+                let condition = parse_expr(cur, &scope)?;
+                unsupported_block(cur)?;
+                Some(condition)
             }
         } else {
             None
         };
-        if !(cur.eat_str("->") || cur.eat('→')) {
+        if !(cur.eat_str("-->") || cur.eat_str("->") || cur.eat('→')) {
             return Err(cur.error(format!(
                 "expected '->' after the predecessor, found {}",
                 cur.describe_next()
@@ -540,6 +727,7 @@ impl GrammarParser {
                 &Names {
                     constants: &self.values,
                     vars: no_vars(),
+                    degrees: self.dialect == Dialect::Cpfg,
                 },
             )?;
             let w = e.eval_constant(0.0, 0);
@@ -581,6 +769,17 @@ impl GrammarParser {
             return Err(cur.error(format!("choices nested more than {MAX_NESTING} deep")));
         }
         let mut items = Vec::new();
+        if self.dialect == Dialect::Cpfg && depth == 0 {
+            // cpfg writes the empty successor as '*'.
+            let at = cur.pos();
+            if cur.eat('*') {
+                cur.skip_ws();
+                if cur.at_end() || cur.peek() == Some(':') {
+                    return Ok(items);
+                }
+            }
+            cur.set_pos(at);
+        }
         loop {
             cur.skip_ws();
             let pos = cur.pos();
@@ -596,6 +795,7 @@ impl GrammarParser {
                 let scope = Names {
                     constants: &self.values,
                     vars: names,
+                    degrees: self.dialect == Dialect::Cpfg,
                 };
                 let probability = parse_expr(cur, &scope)?;
                 cur.expect(')', "')' after the choice's probability")?;
@@ -618,6 +818,7 @@ impl GrammarParser {
             let scope = Names {
                 constants: &self.values,
                 vars: names,
+                degrees: self.dialect == Dialect::Cpfg,
             };
             let mut args = Vec::new();
             if cur.eat('(') {

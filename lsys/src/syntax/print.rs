@@ -220,6 +220,9 @@ impl fmt::Display for LSystem {
         for (name, e) in &self.constants {
             writeln!(f, "#define {name} {e}")?;
         }
+        if let Some(n) = self.derivation_length {
+            writeln!(f, "#derivation {n}")?;
+        }
         let long: Vec<&str> = a.names().filter(|n| n.chars().nth(1).is_some()).collect();
         if !long.is_empty() {
             writeln!(f, "#module {}", long.join(" "))?;

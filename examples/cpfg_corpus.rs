@@ -1,0 +1,166 @@
+//! Loads every cpfg model (`.l` file with an `Lsystem:` line) under a folder, derives its
+//! stated derivation length, meshes it, and prints a Markdown table: model, result, reason.
+//!
+//! ```text
+//! cargo run --release --example cpfg_corpus -- DIR [--out table.md]
+//! ```
+//!
+//! The virtual laboratory's models (github.com/AlgorithmicBotany/vlab, folder `oofs`) are
+//! the corpus this was made for. Models that need files beside them (function files for
+//! `func(...)`, surfaces for `~`, an environment program for `?E`, `#include`) are listed
+//! but counted apart: the question asked of the rest is whether they load, derive and mesh.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use sylva::lsys::{LSystem, Limits};
+use sylva::turtle::{MeshBuilder, TurtleOptions, interpret};
+
+const USAGE: &str = "usage: cpfg_corpus DIR [--out table.md]";
+
+/// Most modules a corpus model may derive: enough for the models, small enough that a run
+/// over a hundred of them stays quick.
+const MAX_MODULES: usize = 2_000_000;
+
+/// What a model needs from beside its own file, if anything (judged from its text).
+fn external_files(text: &str) -> Option<&'static str> {
+    let code: String = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    if code.contains("func(") || code.contains("func (") {
+        Some("function files (func)")
+    } else if code.contains("curve(") {
+        Some("curve files (curve)")
+    } else if code.contains("#include") {
+        Some("#include")
+    } else if code.contains("?E") {
+        Some("an environment program (?E)")
+    } else if code
+        .char_indices()
+        .any(|(i, c)| c == '~' && code[i + 1..].starts_with(|n: char| n.is_ascii_alphabetic()))
+    {
+        Some("surface files (~)")
+    } else {
+        None
+    }
+}
+
+/// The result of one model: `Ok` with the modules and triangles, or the reason it failed.
+fn try_model(path: &Path) -> Result<(u32, usize, usize), String> {
+    let grammar = LSystem::from_file(path).map_err(|e| match e {
+        sylva::lsys::GrammarFileError::Parse { error, .. } => error.to_string(),
+        other => other.to_string(),
+    })?;
+    let steps = grammar.derivation_length().unwrap_or(1);
+    let limits = Limits::DEFAULT.with_max_modules(MAX_MODULES);
+    let word = grammar
+        .derive_with(steps, 1, &limits)
+        .and_then(|w| grammar.interpretation(&w, 1))
+        .map_err(|e| format!("derivation: {e}"))?;
+    let options = TurtleOptions::default();
+    let mut mesh = MeshBuilder::new(&options);
+    interpret(&word, &options, &mut mesh).map_err(|e| format!("turtle: {e}"))?;
+    let triangles = mesh.finish().triangle_count();
+    if triangles == 0 {
+        return Err(format!(
+            "meshed to no triangles ({} modules after {steps} steps)",
+            word.len()
+        ));
+    }
+    Ok((steps, word.len(), triangles))
+}
+
+fn models(dir: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+    let mut entries: Vec<_> = std::fs::read_dir(dir)?.collect::<Result<_, _>>()?;
+    entries.sort_by_key(|e| e.path());
+    for e in entries {
+        let path = e.path();
+        if path.is_dir() {
+            models(&path, out)?;
+        } else if path.extension().is_some_and(|x| x == "l")
+            && std::fs::read_to_string(&path)
+                .is_ok_and(|t| t.lines().any(|l| l.trim_start().starts_with("Lsystem:")))
+        {
+            out.push(path);
+        }
+    }
+    Ok(())
+}
+
+fn run() -> Result<(), String> {
+    let mut dir = None;
+    let mut out = None;
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--out" => out = Some(common::parse_value::<String>("--out", it.next())?),
+            "--help" | "-h" => common::print_help(USAGE),
+            s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
+            s => dir = Some(PathBuf::from(s)),
+        }
+    }
+    let dir = dir.ok_or(format!("give the folder of models\n{USAGE}"))?;
+    let mut paths = Vec::new();
+    models(&dir, &mut paths).map_err(|e| format!("{}: {e}", dir.display()))?;
+    if paths.is_empty() {
+        return Err(format!(
+            "no cpfg models (.l files with 'Lsystem:') under {}",
+            dir.display()
+        ));
+    }
+    let mut table = String::from("| model | needs | result | reason |\n|---|---|---|---|\n");
+    let (mut standalone, mut standalone_ok, mut ok, mut unsupported) = (0, 0, 0, 0);
+    for path in &paths {
+        let name = path
+            .strip_prefix(&dir)
+            .unwrap_or(path)
+            .display()
+            .to_string();
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let needs = external_files(&text);
+        let result = try_model(path);
+        let (verdict, reason) = match &result {
+            Ok((steps, modules, triangles)) => (
+                "meshes",
+                format!("{steps} steps, {modules} modules, {triangles} triangles"),
+            ),
+            Err(e) if e.contains("unsupported:") => ("refused", e.clone()),
+            Err(e) => ("fails", e.clone()),
+        };
+        ok += usize::from(result.is_ok());
+        unsupported += usize::from(verdict == "refused");
+        if needs.is_none() {
+            standalone += 1;
+            standalone_ok += usize::from(result.is_ok());
+        }
+        table.push_str(&format!(
+            "| {name} | {} | {verdict} | {} |\n",
+            needs.unwrap_or("-"),
+            reason.replace('|', "\\|")
+        ));
+    }
+    let summary = format!(
+        "{} models: {ok} load, derive and mesh; {unsupported} refused as unsupported; {} fail. \
+         Of the {standalone} that need no other files, {standalone_ok} mesh ({:.0}%).",
+        paths.len(),
+        paths.len() - ok - unsupported,
+        100.0 * standalone_ok as f64 / standalone.max(1) as f64
+    );
+    match out {
+        Some(file) => {
+            std::fs::write(&file, format!("{summary}\n\n{table}"))
+                .map_err(|e| format!("{file}: {e}"))?;
+            println!("{summary}\nwrote {file}");
+        }
+        None => println!("{summary}\n\n{table}"),
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    common::finish(run())
+}

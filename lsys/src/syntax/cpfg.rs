@@ -1,0 +1,312 @@
+//! The cpfg dialect's file structure: `.l` files of the virtual laboratory.
+//!
+//! A cpfg file is C-preprocessed text around one L-system:
+//!
+//! ```text
+//! #define STEPS 10
+//! Lsystem: 1
+//! derivation length: STEPS
+//! ignore: + - /
+//! Axiom: A(1)
+//! A(n) : n < 5 --> F(n) [+A(n+1)] A(n+1)
+//! homomorphism
+//! maximum depth: 4
+//! F(n) --> F(n/2) F(n/2)
+//! endlsystem
+//! ```
+//!
+//! Statements are lines, but a production may run over several: it continues until a blank
+//! line, a keyword, a directive, or a line with an arrow of its own once it has its arrow.
+//! The productions themselves are read by the shared parser in cpfg mode (`-->`, `*` for
+//! the empty successor, trigonometry in degrees, cpfg's modules of several characters).
+//! What the engine does not run yet is refused with an `unsupported: ...` error at its place.
+
+use crate::error::ParseError;
+use crate::syntax::cursor::Cursor;
+use crate::syntax::parser::{GrammarParser, Section, whole_steps};
+
+/// cpfg's keywords, as a line starts with them (compared without case).
+const KEYWORDS: &[&str] = &[
+    "lsystem:",
+    "derivation length:",
+    "axiom:",
+    "ignore:",
+    "consider:",
+    "homomorphism",
+    "decomposition",
+    "maximum depth:",
+    "endlsystem",
+    "no warnings",
+    "warnings",
+    "starteach:",
+    "endeach:",
+    "start:",
+    "end:",
+    "define:",
+    "seed:",
+    "ring lsystem",
+];
+
+/// The keyword a line starts with, and the column after it (0-based, in characters).
+fn keyword(line: &[char]) -> Option<(&'static str, usize)> {
+    let indent = line.iter().take_while(|c| c.is_whitespace()).count();
+    let rest: String = line[indent..].iter().collect::<String>().to_lowercase();
+    KEYWORDS.iter().find_map(|&k| {
+        let after = rest.strip_prefix(k)?;
+        // A keyword without a colon must be the whole word ("homomorphism", not a module).
+        let whole = k.ends_with(':') || after.is_empty() || after.starts_with(char::is_whitespace);
+        whole.then_some((k, indent + k.chars().count()))
+    })
+}
+
+fn is_blank(line: &[char]) -> bool {
+    line.iter().all(|c| c.is_whitespace())
+}
+
+fn is_directive(line: &[char]) -> bool {
+    line.iter().find(|c| !c.is_whitespace()) == Some(&'#')
+}
+
+fn has_arrow(line: &[char]) -> bool {
+    line.windows(3).any(|w| w == ['-', '-', '>']) || line.windows(2).any(|w| w == ['-', '>'])
+}
+
+/// A statement joined from lines `first..` (1-based line numbers): the text with each line
+/// break turned into a space, and where each line starts in it, so that an error's column
+/// can be traced back to its own line.
+struct Joined {
+    chars: Vec<char>,
+    first: usize,
+    starts: Vec<usize>,
+}
+
+impl Joined {
+    fn new(lines: &[&[char]], first: usize) -> Joined {
+        let mut chars = Vec::new();
+        let mut starts = Vec::new();
+        for line in lines {
+            if !starts.is_empty() {
+                chars.push(' ');
+            }
+            starts.push(chars.len());
+            chars.extend_from_slice(line);
+        }
+        Joined {
+            chars,
+            first,
+            starts,
+        }
+    }
+
+    /// `error` (found on the joined text, as if it were line `first`) at its own line.
+    fn locate(&self, mut error: ParseError) -> ParseError {
+        if error.location.line == self.first {
+            let offset = error.location.column.saturating_sub(1);
+            let k = self.starts.partition_point(|&s| s <= offset).max(1) - 1;
+            error.location.line = self.first + k;
+            error.location.column = offset - self.starts[k] + 1;
+        }
+        error
+    }
+}
+
+fn unsupported(line: usize, column: usize, what: &str) -> ParseError {
+    ParseError::new(line, column + 1, format!("unsupported: {what}"))
+}
+
+/// Reads the lines of a cpfg file (comments already removed) into `p`.
+pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError> {
+    let lines: Vec<&[char]> = src
+        .split(|&c| c == '\n')
+        .map(|l| l.strip_suffix(&['\r']).unwrap_or(l))
+        .collect();
+    let mut lsystems = 0;
+    let mut i = 0;
+    while i < lines.len() {
+        let line = lines[i];
+        let n = i + 1;
+        let indent = line.iter().take_while(|c| c.is_whitespace()).count();
+        if is_blank(line) || line[indent..].starts_with(&['/', '/']) {
+            i += 1;
+            continue;
+        }
+        if is_directive(line) {
+            preprocessor(line, n, indent, p)?;
+            i += 1;
+            continue;
+        }
+        if let Some((word, after)) = keyword(line) {
+            let mut cur = Cursor::new(line, n);
+            cur.set_pos(after);
+            match word {
+                "lsystem:" => {
+                    lsystems += 1;
+                    if lsystems > 1 {
+                        return Err(unsupported(
+                            n,
+                            indent,
+                            "sub-L-systems (a second 'Lsystem:' in one file)",
+                        ));
+                    }
+                }
+                "derivation length:" => {
+                    let at = cur.pos();
+                    let steps = p.constant_value(&mut cur)?;
+                    p.derivation_length = Some(whole_steps(&cur, at, steps)?);
+                }
+                "axiom:" => {
+                    // The axiom runs on over lines without an arrow.
+                    let mut end = i + 1;
+                    while end < lines.len()
+                        && !(is_blank(lines[end])
+                            || is_directive(lines[end])
+                            || keyword(lines[end]).is_some()
+                            || has_arrow(lines[end]))
+                    {
+                        end += 1;
+                    }
+                    let joined = Joined::new(&lines[i..end], n);
+                    let mut cur = Cursor::new(&joined.chars, n);
+                    cur.set_pos(after);
+                    p.axiom_line(&mut cur, indent)
+                        .map_err(|e| joined.locate(e))?;
+                    i = end;
+                    continue;
+                }
+                "ignore:" | "consider:" => {
+                    let mut symbols = Vec::new();
+                    while !cur.at_end() {
+                        symbols.push(p.symbol(&mut cur)?);
+                    }
+                    if word == "ignore:" {
+                        p.ignore.extend(symbols);
+                    } else {
+                        p.consider.get_or_insert_with(Vec::new).extend(symbols);
+                    }
+                }
+                "homomorphism" => p.section = Section::Homomorphism,
+                "decomposition" => p.section = Section::Decomposition,
+                "maximum depth:" => {
+                    let depth = p.depth(&mut cur)?;
+                    match p.section {
+                        Section::Decomposition => p.rule_sets[0].max_depth = depth,
+                        Section::Homomorphism => p.rule_sets[1].max_depth = depth,
+                        Section::Main => {
+                            return Err(cur.error_at(
+                                indent,
+                                "'maximum depth:' belongs in a homomorphism or decomposition section",
+                            ));
+                        }
+                    }
+                }
+                // Whether cpfg reports passes beyond the maximum depth; here they are errors.
+                "warnings" | "no warnings" => {}
+                // The derivation's seed is the caller's choice here (`derive`'s `seed`).
+                "seed:" => {}
+                "ring lsystem" => {
+                    return Err(unsupported(
+                        n,
+                        indent,
+                        "ring L-systems (a circular word for contexts)",
+                    ));
+                }
+                "endlsystem" => return Ok(()),
+                "start:" | "end:" | "starteach:" | "endeach:" => {
+                    return Err(unsupported(
+                        n,
+                        indent,
+                        &format!(
+                            "'{}' blocks (C-like statements run around the derivation)",
+                            &line[indent..after].iter().collect::<String>()
+                        ),
+                    ));
+                }
+                _ => {
+                    return Err(unsupported(
+                        n,
+                        indent,
+                        "'define:' blocks (arrays and global variables)",
+                    ));
+                }
+            }
+            i += 1;
+            continue;
+        }
+        // A production, over as many lines as it takes.
+        let end = continuation(&lines, i);
+        let joined = Joined::new(&lines[i..end], n);
+        let mut cur = Cursor::new(&joined.chars, n);
+        let at = cur.location();
+        let production = p.production(&mut cur).map_err(|e| joined.locate(e))?;
+        p.productions.push((production, at, p.section));
+        i = end;
+    }
+    Ok(())
+}
+
+/// Where the statement starting at line `i` ends (exclusive): at a blank line, a keyword, a
+/// directive, or a line with an arrow once the statement has one.
+fn continuation(lines: &[&[char]], i: usize) -> usize {
+    let mut arrow = has_arrow(lines[i]);
+    let mut j = i + 1;
+    while j < lines.len() {
+        let line = lines[j];
+        if is_blank(line) || is_directive(line) || keyword(line).is_some() {
+            break;
+        }
+        if arrow && has_arrow(line) {
+            break;
+        }
+        arrow |= has_arrow(line);
+        j += 1;
+    }
+    j
+}
+
+/// A preprocessor line: `#define NAME value` is a constant; the rest of the C preprocessor
+/// is refused.
+fn preprocessor(
+    line: &[char],
+    n: usize,
+    indent: usize,
+    p: &mut GrammarParser,
+) -> Result<(), ParseError> {
+    let rest: String = line[indent + 1..].iter().collect();
+    let word: String = rest
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric())
+        .collect();
+    match word.as_str() {
+        "define" => {
+            // A function-like macro: the name is followed at once by '('.
+            let after = rest.trim_start()["define".len()..].trim_start();
+            let name: String = after
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            if after[name.len()..].starts_with('(') {
+                return Err(unsupported(
+                    n,
+                    indent,
+                    &format!("the function-like macro '{name}(...)' (#define with parameters)"),
+                ));
+            }
+            if after[name.len()..].trim().is_empty() {
+                // `#define FLAG` with no value: cpfg models use it for #ifdef, refused below.
+                return Ok(());
+            }
+            p.line(&mut Cursor::new(line, n))
+        }
+        "include" => Err(unsupported(
+            n,
+            indent,
+            "#include (the model needs another file)",
+        )),
+        _ => Err(unsupported(
+            n,
+            indent,
+            &format!("the C preprocessor's #{word}"),
+        )),
+    }
+}
