@@ -36,11 +36,10 @@ pub(crate) fn parse_expr(cur: &mut Cursor<'_>, scope: &dyn Scope) -> Result<Expr
 
 /// Whether the cursor is at an arrow, `->` or `-->`, which ends an expression.
 fn arrow_at(cur: &Cursor<'_>) -> bool {
-    match (cur.peek(), cur.peek_at(1), cur.peek_at(2)) {
-        (Some('-'), Some('>'), _) => true,
-        (Some('-'), Some('-'), Some('>')) => true,
-        _ => false,
-    }
+    matches!(
+        (cur.peek(), cur.peek_at(1), cur.peek_at(2)),
+        (Some('-'), Some('>'), _) | (Some('-'), Some('-'), Some('>'))
+    )
 }
 
 /// A subtree and its depth (1 for a leaf), kept together so no walk is needed to measure it.
