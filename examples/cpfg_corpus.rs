@@ -2,8 +2,11 @@
 //! stated derivation length, meshes it, and prints a Markdown table: model, result, reason.
 //!
 //! ```text
-//! cargo run --release --example cpfg_corpus -- DIR [--out table.md]
+//! cargo run --release --example cpfg_corpus -- DIR [--out table.md] [--min-percent P]
 //! ```
+//!
+//! `--min-percent P` fails (exit status 1) when fewer than P% of the models that need no
+//! other files mesh: CI holds the line with it.
 //!
 //! The virtual laboratory's models (github.com/AlgorithmicBotany/vlab, folder `oofs`) are
 //! the corpus this was made for. Models that need files beside them (function files for
@@ -18,7 +21,7 @@ use std::process::ExitCode;
 use sylva::lsys::{LSystem, Limits};
 use sylva::turtle::{MeshBuilder, TurtleOptions, interpret};
 
-const USAGE: &str = "usage: cpfg_corpus DIR [--out table.md]";
+const USAGE: &str = "usage: cpfg_corpus DIR [--out table.md] [--min-percent P]";
 
 /// Most modules a corpus model may derive: enough for the models, small enough that a run
 /// over a hundred of them stays quick.
@@ -94,10 +97,12 @@ fn models(dir: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
 fn run() -> Result<(), String> {
     let mut dir = None;
     let mut out = None;
+    let mut min_percent = 0.0f64;
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
             "--out" => out = Some(common::parse_value::<String>("--out", it.next())?),
+            "--min-percent" => min_percent = common::parse_value("--min-percent", it.next())?,
             "--help" | "-h" => common::print_help(USAGE),
             s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
             s => dir = Some(PathBuf::from(s)),
@@ -143,12 +148,13 @@ fn run() -> Result<(), String> {
             reason.replace('|', "\\|")
         ));
     }
+    let percent = 100.0 * standalone_ok as f64 / standalone.max(1) as f64;
     let summary = format!(
         "{} models: {ok} load, derive and mesh; {unsupported} refused as unsupported; {} fail. \
          Of the {standalone} that need no other files, {standalone_ok} mesh ({:.0}%).",
         paths.len(),
         paths.len() - ok - unsupported,
-        100.0 * standalone_ok as f64 / standalone.max(1) as f64
+        percent
     );
     match out {
         Some(file) => {
@@ -157,6 +163,11 @@ fn run() -> Result<(), String> {
             println!("{summary}\nwrote {file}");
         }
         None => println!("{summary}\n\n{table}"),
+    }
+    if percent < min_percent {
+        return Err(format!(
+            "{percent:.0}% of the stand-alone models mesh, fewer than the {min_percent}% required"
+        ));
     }
     Ok(())
 }

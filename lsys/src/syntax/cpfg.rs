@@ -15,7 +15,8 @@
 //! endlsystem
 //! ```
 //!
-//! Statements are lines, but a production may run over several: it continues until a blank
+//! The C preprocessor's macros are expanded first (`preprocessor.rs`). Statements are lines,
+//! but a production may run over several: it continues until a blank
 //! line, a keyword, a directive, or a line with an arrow of its own once it has its arrow.
 //! The productions themselves are read by the shared parser in cpfg mode (`-->`, `*` for
 //! the empty successor, trigonometry in degrees, cpfg's modules of several characters).
@@ -53,8 +54,11 @@ fn keyword(line: &[char]) -> Option<(&'static str, usize)> {
     let rest: String = line[indent..].iter().collect::<String>().to_lowercase();
     KEYWORDS.iter().find_map(|&k| {
         let after = rest.strip_prefix(k)?;
-        // A keyword without a colon must be the whole word ("homomorphism", not a module).
-        let whole = k.ends_with(':') || after.is_empty() || after.starts_with(char::is_whitespace);
+        // A keyword without a colon must be the whole word ("homomorphism", not a module);
+        // a colon may follow it ("homomorphism:").
+        let whole = k.ends_with(':')
+            || after.is_empty()
+            || after.starts_with(|c: char| c.is_whitespace() || c == ':');
         whole.then_some((k, indent + k.chars().count()))
     })
 }
@@ -131,7 +135,7 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
             continue;
         }
         if is_directive(line) {
-            preprocessor(line, n, indent, p)?;
+            preprocessor(line, n, indent)?;
             i += 1;
             continue;
         }
@@ -244,18 +248,33 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
     Ok(())
 }
 
+fn ends_statement(line: &[char]) -> bool {
+    is_blank(line) || is_directive(line) || keyword(line).is_some()
+}
+
 /// Where the statement starting at line `i` ends (exclusive): at a blank line, a keyword, a
-/// directive, or a line with an arrow once the statement has one.
+/// directive, or, once the statement has its arrow, at a line that begins the next
+/// production: one with an arrow, or one with a condition (`:`) whose arrow comes on a later
+/// line.
 fn continuation(lines: &[&[char]], i: usize) -> usize {
     let mut arrow = has_arrow(lines[i]);
     let mut j = i + 1;
     while j < lines.len() {
         let line = lines[j];
-        if is_blank(line) || is_directive(line) || keyword(line).is_some() {
+        if ends_statement(line) {
             break;
         }
         if arrow && has_arrow(line) {
             break;
+        }
+        if arrow && line.contains(&':') {
+            let arrow_follows = lines[j + 1..]
+                .iter()
+                .take_while(|l| !ends_statement(l))
+                .any(|l| has_arrow(l));
+            if arrow_follows {
+                break;
+            }
         }
         arrow |= has_arrow(line);
         j += 1;
@@ -263,14 +282,9 @@ fn continuation(lines: &[&[char]], i: usize) -> usize {
     j
 }
 
-/// A preprocessor line: `#define NAME value` is a constant; the rest of the C preprocessor
-/// is refused.
-fn preprocessor(
-    line: &[char],
-    n: usize,
-    indent: usize,
-    p: &mut GrammarParser,
-) -> Result<(), ParseError> {
+/// A preprocessor line left after preprocessing: `#define` was run already (its macros are
+/// expanded in the lines); `#include` and the rest of the C preprocessor are refused.
+fn preprocessor(line: &[char], n: usize, indent: usize) -> Result<(), ParseError> {
     let rest: String = line[indent + 1..].iter().collect();
     let word: String = rest
         .trim_start()
@@ -278,26 +292,7 @@ fn preprocessor(
         .take_while(|c| c.is_ascii_alphanumeric())
         .collect();
     match word.as_str() {
-        "define" => {
-            // A function-like macro: the name is followed at once by '('.
-            let after = rest.trim_start()["define".len()..].trim_start();
-            let name: String = after
-                .chars()
-                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                .collect();
-            if after[name.len()..].starts_with('(') {
-                return Err(unsupported(
-                    n,
-                    indent,
-                    &format!("the function-like macro '{name}(...)' (#define with parameters)"),
-                ));
-            }
-            if after[name.len()..].trim().is_empty() {
-                // `#define FLAG` with no value: cpfg models use it for #ifdef, refused below.
-                return Ok(());
-            }
-            p.line(&mut Cursor::new(line, n))
-        }
+        "define" | "undef" => Ok(()),
         "include" => Err(unsupported(
             n,
             indent,
@@ -308,5 +303,20 @@ fn preprocessor(
             indent,
             &format!("the C preprocessor's #{word}"),
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keywords_are_found_with_and_without_colons() {
+        let line: Vec<char> = "homomorphism: no warnings".chars().collect();
+        assert_eq!(keyword(&line), Some(("homomorphism", 12)));
+        let line: Vec<char> = "  Lsystem: 1".chars().collect();
+        assert_eq!(keyword(&line), Some(("lsystem:", 10)));
+        let line: Vec<char> = "homomorphismX --> F".chars().collect();
+        assert_eq!(keyword(&line), None);
     }
 }

@@ -5,5 +5,6 @@ pub(crate) mod cpfg;
 pub(crate) mod cursor;
 pub(crate) mod expr_parser;
 pub(crate) mod parser;
+pub(crate) mod preprocessor;
 pub(crate) mod print;
 pub(crate) mod word_text;

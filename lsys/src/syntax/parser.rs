@@ -137,8 +137,11 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
             }
         }
         Dialect::Cpfg => {
-            // cpfg files go through the C preprocessor, which ends a line at '//'.
+            // cpfg files go through the C preprocessor, which ends a line at '//' and
+            // expands macros.
             let src = strip_line_comments(&src);
+            let lines = crate::syntax::preprocessor::preprocess(&src)?.lines;
+            let src = lines.join(&'\n');
             for name in CPFG_LONG_NAMES {
                 p.long_names.push((name.chars().collect(), None));
             }
@@ -676,9 +679,9 @@ impl GrammarParser {
             if first.iter().any(|p| p.symbol == PUSH || p.symbol == POP) {
                 return Err(cur.error_at(head_at, "a left context cannot contain '[' or ']'"));
             }
-            (first, single(cur, pred, at)?)
+            (first, self.single(cur, pred, at)?)
         } else {
-            (Vec::new(), single(cur, first, head_at)?)
+            (Vec::new(), self.single(cur, first, head_at)?)
         };
         let right = if cur.eat('>') {
             self.patterns(cur, &mut names)?
@@ -700,6 +703,7 @@ impl GrammarParser {
                 Ok(())
             }
         };
+        unsupported_block(cur)?;
         let condition = if cur.eat(':') {
             unsupported_block(cur)?;
             if cur.eat('*') {
@@ -839,13 +843,25 @@ impl GrammarParser {
     }
 }
 
-fn single(cur: &Cursor<'_>, mut patterns: Vec<Pattern>, at: usize) -> Result<Pattern, ParseError> {
-    match patterns.len() {
-        1 => Ok(patterns.remove(0)),
-        0 => Err(cur.error_at(at, "expected a predecessor symbol")),
-        _ => Err(cur.error_at(
-            at,
-            "expected one predecessor module (use '<' and '>' for contexts)",
-        )),
+impl GrammarParser {
+    /// The one module of a predecessor.
+    fn single(
+        &self,
+        cur: &Cursor<'_>,
+        mut patterns: Vec<Pattern>,
+        at: usize,
+    ) -> Result<Pattern, ParseError> {
+        match patterns.len() {
+            1 => Ok(patterns.remove(0)),
+            0 => Err(cur.error_at(at, "expected a predecessor symbol")),
+            _ if self.dialect == Dialect::Cpfg => Err(cur.error_at(
+                at,
+                "unsupported: a predecessor of several modules (cpfg's string predecessors)",
+            )),
+            _ => Err(cur.error_at(
+                at,
+                "expected one predecessor module (use '<' and '>' for contexts)",
+            )),
+        }
     }
 }

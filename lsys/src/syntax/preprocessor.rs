@@ -1,0 +1,384 @@
+//! The part of the C preprocessor cpfg models use: `#define` of object-like and
+//! function-like macros, expanded by name in later lines as `cpp` would (a macro is not
+//! expanded inside its own expansion), `#undef`, and `#ifdef` / `#ifndef` / `#else` /
+//! `#endif`. Lines keep their numbers; a line with macros in it has its text replaced.
+
+use std::collections::HashMap;
+
+use crate::error::ParseError;
+
+/// Most characters one line may expand to: macros that multiply themselves stop here.
+const MAX_EXPANDED_CHARS: usize = 1 << 16;
+/// Deepest nesting of macros within macros.
+const MAX_EXPANSION_DEPTH: usize = 64;
+
+#[derive(Debug, Clone)]
+struct Macro {
+    /// `None` for an object-like macro.
+    params: Option<Vec<String>>,
+    body: Vec<char>,
+}
+
+/// The preprocessed lines, each with its line number in the source.
+pub(crate) struct Preprocessed {
+    pub(crate) lines: Vec<Vec<char>>,
+}
+
+fn is_ident_start(c: char) -> bool {
+    c.is_ascii_alphabetic() || c == '_'
+}
+
+fn is_ident(c: char) -> bool {
+    c.is_ascii_alphanumeric() || c == '_'
+}
+
+/// Runs the directives of `src` (comments already removed) and expands its macros. Directive
+/// lines become blank; `#define` of a plain constant is also left to the grammar parser,
+/// which reads the directive line as before expansion.
+pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
+    let mut macros: HashMap<String, Macro> = HashMap::new();
+    let mut lines = Vec::new();
+    // Whether each open #if's branch is taken.
+    let mut conditions: Vec<bool> = Vec::new();
+    for (k, raw) in spliced(src).iter().enumerate() {
+        let n = k + 1;
+        let raw = &raw[..];
+        let indent = raw.iter().take_while(|c| c.is_whitespace()).count();
+        let active = conditions.iter().all(|&c| c);
+        if raw.get(indent) == Some(&'#') {
+            let text: String = raw[indent + 1..].iter().collect();
+            let text = text.trim_start();
+            let word: String = text.chars().take_while(|c| is_ident(*c)).collect();
+            let rest = text[word.len()..].trim();
+            let err = |m: String| ParseError::new(n, indent + 1, m);
+            match word.as_str() {
+                "ifdef" | "ifndef" => {
+                    let defined = macros.contains_key(rest);
+                    conditions.push(defined == (word == "ifdef"));
+                }
+                "if" => {
+                    let taken = active && condition(rest, &macros).map_err(err)?;
+                    conditions.push(taken);
+                }
+                "else" => match conditions.last_mut() {
+                    Some(c) => *c = !*c,
+                    None => return Err(err("#else without #ifdef".into())),
+                },
+                "endif" => {
+                    if conditions.pop().is_none() {
+                        return Err(err("#endif without #ifdef".into()));
+                    }
+                }
+                "define" if active => {
+                    let name: String = rest.chars().take_while(|c| is_ident(*c)).collect();
+                    if name.is_empty() {
+                        return Err(err("expected a macro name after #define".into()));
+                    }
+                    let after = &rest[name.len()..];
+                    let (params, body) = if let Some(list) = after.strip_prefix('(') {
+                        let close = list
+                            .find(')')
+                            .ok_or_else(|| err(format!("macro '{name}': ')' missing")))?;
+                        let params = list[..close]
+                            .split(',')
+                            .map(|p| p.trim().to_string())
+                            .filter(|p| !p.is_empty())
+                            .collect();
+                        (Some(params), list[close + 1..].trim())
+                    } else {
+                        (None, after.trim())
+                    };
+                    macros.insert(
+                        name,
+                        Macro {
+                            params,
+                            body: body.chars().collect(),
+                        },
+                    );
+                    // The line stays for the grammar parser only when it defines a
+                    // constant it can read; otherwise it is blank.
+                    lines.push(raw.to_vec());
+                    continue;
+                }
+                "undef" if active => {
+                    macros.remove(rest);
+                }
+                "define" | "undef" => {}
+                _ if !active => {}
+                // #include and the rest: left for the dialect to refuse at their place.
+                _ => {
+                    lines.push(raw.to_vec());
+                    continue;
+                }
+            }
+            lines.push(Vec::new());
+            continue;
+        }
+        if !active {
+            lines.push(Vec::new());
+            continue;
+        }
+        let expanded =
+            expand(raw, &macros, &mut Vec::new(), 0).map_err(|m| ParseError::new(n, 1, m))?;
+        lines.push(expanded);
+    }
+    if !conditions.is_empty() {
+        return Err(ParseError::new(
+            lines.len().max(1),
+            1,
+            "#ifdef without #endif",
+        ));
+    }
+    Ok(Preprocessed { lines })
+}
+
+/// The source's lines with cpp's line splices joined: a line ending in `\\` continues on
+/// the next. The joined line takes the first one's place and blank lines the others', so
+/// numbering stays.
+fn spliced(src: &[char]) -> Vec<Vec<char>> {
+    let mut out: Vec<Vec<char>> = Vec::new();
+    let mut pending: Option<Vec<char>> = None;
+    let mut blanks = 0;
+    for raw in src.split(|&c| c == '\n') {
+        let raw = raw.strip_suffix(&['\r']).unwrap_or(raw);
+        let mut line = pending.take().unwrap_or_default();
+        let trimmed_end = raw.len() - raw.iter().rev().take_while(|c| c.is_whitespace()).count();
+        if raw[..trimmed_end].last() == Some(&'\\') {
+            line.extend_from_slice(&raw[..trimmed_end - 1]);
+            line.push(' ');
+            pending = Some(line);
+            blanks += 1;
+            continue;
+        }
+        line.extend_from_slice(raw);
+        out.push(line);
+        out.extend(std::iter::repeat_n(Vec::new(), blanks));
+        blanks = 0;
+    }
+    if let Some(line) = pending {
+        out.push(line);
+        out.extend(std::iter::repeat_n(Vec::new(), blanks.saturating_sub(1)));
+    }
+    out
+}
+
+/// The value of an `#if` condition: its macros expanded, `defined(NAME)` answered, names
+/// left over read as 0 (as cpp reads them), and the rest evaluated as a constant expression.
+fn condition(text: &str, macros: &HashMap<String, Macro>) -> Result<bool, String> {
+    let mut text = text.to_string();
+    while let Some(at) = text.find("defined") {
+        let rest = text[at + "defined".len()..].trim_start();
+        let inner = rest.strip_prefix('(').unwrap_or(rest);
+        let name: String = inner.chars().take_while(|c| is_ident(*c)).collect();
+        let after = &inner[name.len()..];
+        let after = if rest.starts_with('(') {
+            after.trim_start().strip_prefix(')').unwrap_or(after)
+        } else {
+            after
+        };
+        let value = if macros.contains_key(&name) { "1" } else { "0" };
+        text = format!("{}{value}{after}", &text[..at]);
+    }
+    let chars: Vec<char> = text.chars().collect();
+    let expanded = expand(&chars, macros, &mut Vec::new(), 0)?;
+    let zeroed = substitute_names(&expanded);
+    let mut cur = crate::syntax::cursor::Cursor::new(&zeroed, 1);
+    let value = crate::syntax::expr_parser::parse_expr(&mut cur, &NoNames)
+        .map_err(|e| format!("#if: {}", e.message))?;
+    if !cur.at_end() {
+        return Err(format!("#if: unexpected {}", cur.describe_next()));
+    }
+    Ok(value.eval_constant(0.0, 0) != 0.0)
+}
+
+/// Names in an `#if` that no macro defined are 0.
+fn substitute_names(text: &[char]) -> Vec<char> {
+    let mut out = Vec::with_capacity(text.len());
+    let mut i = 0;
+    while i < text.len() {
+        if is_ident_start(text[i]) && (i == 0 || !is_ident(text[i - 1])) {
+            let end = i + text[i..].iter().take_while(|c| is_ident(**c)).count();
+            out.push('0');
+            i = end;
+        } else {
+            out.push(text[i]);
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The empty scope of `#if` conditions.
+struct NoNames;
+
+impl crate::syntax::expr_parser::Scope for NoNames {
+    fn var(&self, _: &str) -> Option<u16> {
+        None
+    }
+    fn constant(&self, _: &str) -> Option<f64> {
+        None
+    }
+}
+
+/// `text` with every macro name (not among `hiding`, the macros being expanded) replaced.
+fn expand(
+    text: &[char],
+    macros: &HashMap<String, Macro>,
+    hiding: &mut Vec<String>,
+    depth: usize,
+) -> Result<Vec<char>, String> {
+    if depth > MAX_EXPANSION_DEPTH {
+        return Err(format!("macros nest more than {MAX_EXPANSION_DEPTH} deep"));
+    }
+    let mut out = Vec::with_capacity(text.len());
+    let mut i = 0;
+    while i < text.len() {
+        let c = text[i];
+        let starts_name = is_ident_start(c) && (i == 0 || !is_ident(text[i - 1]));
+        if !starts_name {
+            out.push(c);
+            i += 1;
+            continue;
+        }
+        let end = i + text[i..].iter().take_while(|c| is_ident(**c)).count();
+        let name: String = text[i..end].iter().collect();
+        let Some(m) = macros.get(&name).filter(|_| !hiding.contains(&name)) else {
+            out.extend_from_slice(&text[i..end]);
+            i = end;
+            continue;
+        };
+        let (body, next) = match &m.params {
+            None => (m.body.clone(), end),
+            Some(params) => {
+                // A function-like macro's name not followed by '(' is just a name.
+                let open = end + text[end..].iter().take_while(|c| c.is_whitespace()).count();
+                if text.get(open) != Some(&'(') {
+                    out.extend_from_slice(&text[i..end]);
+                    i = end;
+                    continue;
+                }
+                let (args, after) = arguments(text, open)
+                    .ok_or_else(|| format!("macro '{name}': its arguments' ')' is missing"))?;
+                if args.len() != params.len() && !(params.is_empty() && args.len() == 1) {
+                    return Err(format!(
+                        "macro '{name}' takes {} argument(s), {} given",
+                        params.len(),
+                        args.len()
+                    ));
+                }
+                // Arguments are expanded first, then put in place of the parameters.
+                let mut bound = HashMap::new();
+                for (p, a) in params.iter().zip(&args) {
+                    bound.insert(p.clone(), expand(a, macros, hiding, depth + 1)?);
+                }
+                (substitute(&m.body, &bound), after)
+            }
+        };
+        hiding.push(name);
+        let expanded = expand(&body, macros, hiding, depth + 1)?;
+        hiding.pop();
+        out.extend(expanded);
+        if out.len() > MAX_EXPANDED_CHARS {
+            return Err(format!(
+                "a line expands to more than {MAX_EXPANDED_CHARS} characters"
+            ));
+        }
+        i = next;
+    }
+    Ok(out)
+}
+
+/// The comma-separated arguments of a call whose '(' is at `open`, and the index after its
+/// ')'; commas inside nested parentheses belong to the argument.
+fn arguments(text: &[char], open: usize) -> Option<(Vec<Vec<char>>, usize)> {
+    let mut depth = 0usize;
+    let mut args = vec![Vec::new()];
+    for (k, &c) in text.iter().enumerate().skip(open + 1) {
+        match c {
+            '(' => depth += 1,
+            ')' if depth == 0 => return Some((args, k + 1)),
+            ')' => depth -= 1,
+            ',' if depth == 0 => {
+                args.push(Vec::new());
+                continue;
+            }
+            _ => {}
+        }
+        args.last_mut()?.push(c);
+    }
+    None
+}
+
+/// `body` with each parameter name replaced by its argument (in parentheses' absence, as cpp
+/// does: the model's own parentheses decide precedence).
+fn substitute(body: &[char], bound: &HashMap<String, Vec<char>>) -> Vec<char> {
+    let mut out = Vec::with_capacity(body.len());
+    let mut i = 0;
+    while i < body.len() {
+        if is_ident_start(body[i]) && (i == 0 || !is_ident(body[i - 1])) {
+            let end = i + body[i..].iter().take_while(|c| is_ident(**c)).count();
+            let name: String = body[i..end].iter().collect();
+            match bound.get(&name) {
+                Some(arg) => out.extend_from_slice(arg),
+                None => out.extend_from_slice(&body[i..end]),
+            }
+            i = end;
+        } else {
+            out.push(body[i]);
+            i += 1;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(text: &str) -> Vec<String> {
+        let chars: Vec<char> = text.chars().collect();
+        preprocess(&chars)
+            .unwrap()
+            .lines
+            .iter()
+            .map(|l| l.iter().collect())
+            .collect()
+    }
+
+    #[test]
+    fn object_and_function_macros_expand_like_cpp() {
+        let lines = run("#define A nran(80,4)\n#define W(x) (x*2+A)\nF(W(3)) A AB\n");
+        assert_eq!(lines[2], "F((3*2+nran(80,4))) nran(80,4) AB");
+    }
+
+    #[test]
+    fn a_macro_is_not_expanded_inside_itself() {
+        let lines = run("#define X X+1\nF(X)\n");
+        assert_eq!(lines[1], "F(X+1)");
+    }
+
+    #[test]
+    fn conditionals_keep_or_blank_lines() {
+        let lines = run("#define ON\n#ifdef ON\nA\n#else\nB\n#endif\n#ifndef ON\nC\n#endif\n");
+        assert_eq!(lines[2], "A");
+        assert_eq!(lines[4], "");
+        assert_eq!(lines[7], "");
+    }
+
+    #[test]
+    fn if_conditions_and_line_splices() {
+        let lines = run(
+            "#define LEAVES 1\n#if LEAVES==1\nA\n#else\nB\n#endif\n#define W(x) \\\n  (x+1)\nW(2)\n",
+        );
+        assert_eq!(lines[2], "A");
+        assert_eq!(lines[4], "");
+        assert_eq!(lines.len(), 10, "{lines:?}");
+        assert_eq!(lines[8].trim(), "(2+1)");
+    }
+
+    #[test]
+    fn runaway_macros_are_errors() {
+        let text: Vec<char> = "#define A B B\n#define B C C\n#define C D D\n#define D E E\n#define E F F\n#define F G G\n#define G H H\n#define H I I\n#define I J J\n#define J K K\n#define K L L\n#define L M M\n#define M N N\n#define N O O\n#define O P P\n#define P Q Q\nA\n".chars().collect();
+        assert!(preprocess(&text).is_err());
+    }
+}
