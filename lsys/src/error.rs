@@ -75,12 +75,28 @@ pub enum GrammarError {
     /// The ignore set names a symbol that is not in the alphabet.
     #[error("the ignore set names a symbol that is not in the alphabet")]
     InvalidIgnore,
+    /// A block run around the derivation (cpfg's `Start:` and the like) uses a parameter,
+    /// an unknown block variable or too deep an expression.
+    #[error("block: {0}")]
+    InvalidBlock(String),
 }
 
 /// A derivation that was stopped before it could finish.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DeriveError {
+    /// A statement block ran more statements than
+    /// [`MAX_BLOCK_STATEMENTS`](crate::MAX_BLOCK_STATEMENTS) in one run: a loop that does
+    /// not end.
+    #[error(
+        "generation {generation}: a statement block ran more than {limit} statements (a loop that never ends?)"
+    )]
+    EndlessBlock {
+        /// The generation being produced.
+        generation: u32,
+        /// The limit.
+        limit: u64,
+    },
     /// A decomposition or homomorphism still rewrote modules after its maximum depth of
     /// passes: its productions recurse without end, or the depth is set too low.
     #[error(

@@ -98,12 +98,14 @@ mod model;
 mod presets;
 mod syntax;
 
+pub use engine::block::MAX_BLOCK_STATEMENTS;
 pub use engine::derive::{Deriver, Limits};
 pub use engine::lsystem::LSystem;
 pub use error::{DeriveError, GrammarError, GrammarFileError, Location, ParseError};
 pub use model::alphabet::{Alphabet, CUT, MAX_NAME_CHARS, POP, PUSH, RESERVED, SymbolId};
 pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
+pub use model::statement::{Blocks, Statement};
 pub use model::word::{Module, Word};
 pub use presets::{PRESETS, Preset, preset};
 pub use syntax::parser::{Dialect, MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};

@@ -419,3 +419,55 @@ fn long_module_names_derive_and_round_trip() {
     let err = LSystem::parse("#module A(b)\naxiom: A").unwrap_err();
     assert_eq!((err.location.line, err.location.column), (1, 9));
 }
+
+/// Statement blocks (cpfg's C-like blocks, sylva's notation too): a block before the
+/// condition may change the production's own parameters, a block after it sets block
+/// variables the successor reads, and `#start` runs before the derivation. Worked by hand:
+/// the counter c goes 10, 11, 12 and the apex reads it each step.
+#[test]
+fn statement_blocks_run_around_conditions_and_derivations() {
+    let src = "#start { c = 10; }
+        axiom: A(0)
+        A(n) : { n = n + 2; } n < 5 { c = c + 1; } -> B(n, c) A(n)";
+    let g = LSystem::parse(src).unwrap();
+    assert!(g.globals().contains(&"c".to_string()));
+    assert_eq!(g.derive(1, 0).unwrap().to_string(), "B(2,11)A(2)");
+    assert_eq!(g.derive(2, 0).unwrap().to_string(), "B(2,11)B(4,12)A(4)");
+    // n becomes 6: the condition fails and A(4) is copied unchanged.
+    assert_eq!(g.derive(3, 0).unwrap().to_string(), "B(2,11)B(4,12)A(4)");
+    // Loops and branches; the grammar prints back to itself.
+    let loops = "axiom: A(5)
+        A(n) : { s = 0; k = 0; while (k < n) { s = s + k; k = k + 1; } if (s > 9) { s = -s; } else { s = 0; } } * -> S(s)";
+    let g = LSystem::parse(loops).unwrap();
+    assert_eq!(g.derive(1, 0).unwrap().to_string(), "S(-10)");
+    assert_eq!(LSystem::parse(&g.to_string()).unwrap(), g);
+}
+
+/// A block that never ends is an error after MAX_BLOCK_STATEMENTS, never a hang.
+#[test]
+fn endless_blocks_are_errors() {
+    let g = LSystem::parse("axiom: A\nA : { k = 0; while (1) { k = k + 1; } } * -> B").unwrap();
+    assert!(matches!(
+        g.derive(1, 0),
+        Err(DeriveError::EndlessBlock { generation: 1, .. })
+    ));
+}
+
+/// cpfg's blocks as vlab models write them: over several lines, `Start:` and a parameter
+/// changed before the condition (Lychnis's S(x_rel, x_max)).
+#[test]
+fn cpfg_blocks_over_several_lines() {
+    let src = "#define N 4
+        Lsystem: 1
+        derivation length: 1
+        Start: { total = 0;
+                 step = 1/N; }
+        Axiom: S(0, 2)
+        S(x, m) : { x = x + step;
+                    total = total + 1; } x <= 1 -->
+            f(m/N) S(x, m)
+        S(x, m) : x > 1 --> *
+        endlsystem";
+    let g = LSystem::parse_dialect(src, sylva_lsys::Dialect::Cpfg).unwrap();
+    assert_eq!(g.derive(1, 0).unwrap().to_string(), "f(0.5)S(0.25,2)");
+}

@@ -1,8 +1,10 @@
 //! The compiled form of a grammar that the engine runs: flat programs and per-symbol tables.
 
+use crate::engine::block::{self, Instruction};
 use crate::engine::eval::Op;
 use crate::model::alphabet::{Alphabet, SymbolId};
 use crate::model::grammar::{Pattern, Production, SuccessorItem};
+use crate::model::statement::Statement;
 
 /// A range into one of the flat tables.
 pub(crate) type Span = (u32, u32);
@@ -32,6 +34,9 @@ pub(crate) struct CProduction {
     pub(crate) arity: u8,
     pub(crate) right: Vec<CPattern>,
     pub(crate) condition: Option<Span>,
+    /// The blocks before the condition and on application, as spans of `blocks`.
+    pub(crate) pre: Span,
+    pub(crate) post: Span,
     pub(crate) successor: Span,
     pub(crate) weight: Option<f64>,
     /// Upper bound on the modules one application emits, for the size limit check.
@@ -45,6 +50,8 @@ pub(crate) struct CProduction {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Compiled {
     pub(crate) ops: Vec<Op>,
+    /// Statement blocks' instructions; their expressions are in `ops`.
+    pub(crate) blocks: Vec<Instruction>,
     /// Per successor-module argument: its program in `ops`.
     pub(crate) args: Vec<Span>,
     pub(crate) items: Vec<CItem>,
@@ -66,6 +73,13 @@ pub(crate) struct Compiled {
 }
 
 impl Compiled {
+    /// Compiles a block onto `blocks`: its span there.
+    pub(crate) fn block(&mut self, statements: &[Statement]) -> Span {
+        let start = self.blocks.len() as u32;
+        block::compile(statements, &mut self.ops, &mut self.blocks);
+        (start, self.blocks.len() as u32)
+    }
+
     pub(crate) fn new(
         alphabet: &Alphabet,
         ignore: &[SymbolId],
@@ -89,12 +103,21 @@ impl Compiled {
                     .collect::<Vec<_>>()
             };
             c.has_context |= !p.left.is_empty() || !p.right.is_empty();
-            let constant = c.pre_evaluate(successor);
+            // A production with statements must run them each time it fires.
+            let constant = if p.pre.is_empty() && p.post.is_empty() {
+                c.pre_evaluate(successor)
+            } else {
+                None
+            };
+            let pre = c.block(&p.pre);
+            let post = c.block(&p.post);
             c.productions.push(CProduction {
                 left: pat(&p.left),
                 arity: p.predecessor.params.len() as u8,
                 right: pat(&p.right),
                 condition,
+                pre,
+                post,
                 successor,
                 weight: p.weight,
                 max_modules,
@@ -128,7 +151,9 @@ impl Compiled {
                         let simple = q.left.is_empty()
                             && q.right.is_empty()
                             && q.condition.is_none()
-                            && q.weight.is_none();
+                            && q.weight.is_none()
+                            && q.pre.0 == q.pre.1
+                            && q.post.0 == q.post.1;
                         if simple { p } else { u32::MAX }
                     }
                     _ => u32::MAX,

@@ -1,5 +1,6 @@
 //! The rewriting engine: one derivation step streams the current word into the next.
 
+use crate::engine::block::{self, MAX_BLOCK_STATEMENTS};
 use crate::engine::compile::{CItem, CPattern, CProduction, Compiled, Span};
 use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
@@ -79,8 +80,11 @@ impl LSystem {
         limits: &Limits,
     ) -> Result<Word, DeriveError> {
         let mut d = Deriver::new(self, seed, *limits);
+        d.run_derivation_block(0, 0)?;
         let axiom = d.decompose(self.axiom_word(), 0)?;
-        d.derive_from(axiom, 0, generations)
+        let word = d.derive_from(axiom, 0, generations)?;
+        d.run_derivation_block(3, generations)?;
+        Ok(word)
     }
 
     /// The word the turtle draws for `word`: `word` rewritten by the homomorphism until no
@@ -121,10 +125,15 @@ pub struct Deriver<'g> {
     candidates: Vec<(u32, f64)>,
     /// For `]`: index of its `[`; for `[`: index of its `]`. `u32::MAX` when unmatched.
     partner: Vec<u32>,
+    /// The values of the grammar's block variables (cpfg's global variables).
+    globals: Vec<f64>,
     /// The productions rewrites use.
     table: Table,
     /// Productions applied by the last rewrite.
     fired: usize,
+    /// The production whose block before the condition set the parameters now bound, when
+    /// `select` chose it.
+    bound_for: Option<u32>,
 }
 
 impl<'g> Deriver<'g> {
@@ -139,8 +148,10 @@ impl<'g> Deriver<'g> {
             matched: Vec::new(),
             candidates: Vec::new(),
             partner: Vec::new(),
+            globals: vec![0.0; grammar.globals.len()],
             table: Table::Main,
             fired: 0,
+            bound_for: None,
         }
     }
 
@@ -221,11 +232,13 @@ impl<'g> Deriver<'g> {
         let decomposed = !self.grammar.decomposition.is_empty();
         for k in 1..=generations {
             let produced = generation.saturating_add(k);
+            self.run_derivation_block(1, produced)?;
             self.rewrite(&current, &mut next, produced)?;
             std::mem::swap(&mut current, &mut next);
             if decomposed {
                 current = self.decompose(current, produced)?;
             }
+            self.run_derivation_block(2, produced)?;
         }
         Ok(current)
     }
@@ -289,7 +302,7 @@ impl<'g> Deriver<'g> {
                     // A simple production has no context: nothing was matched, nothing needs to be.
                     Some((p, true))
                 }
-                _ => self.select(cur, i, &c.order[lo..hi], gen_f),
+                _ => self.select(cur, i, &c.order[lo..hi], gen_f)?,
             };
             match chosen {
                 Some((p, matched)) => {
@@ -309,7 +322,12 @@ impl<'g> Deriver<'g> {
                         );
                         cut_seen |= syms.contains(&CUT);
                     } else {
-                        self.bind(cur, i, prod, matched);
+                        // A block before the condition may have changed the parameters:
+                        // they are bound already for the production it chose.
+                        if self.bound_for != Some(p) {
+                            self.bind(cur, i, prod, matched);
+                        }
+                        self.run_block(c, prod.post, gen_f)?;
                         cut_seen |= self.emit(prod.successor, out, gen_f, generation)?;
                     }
                 }
@@ -368,20 +386,28 @@ impl<'g> Deriver<'g> {
         i: usize,
         order: &[u32],
         generation: f64,
-    ) -> Option<(u32, bool)> {
+    ) -> Result<Option<(u32, bool)>, DeriveError> {
         let c = self.compiled();
         self.candidates.clear();
+        self.bound_for = None;
         let mut total = 0.0;
         for &p in order {
             let prod = &c.productions[p as usize];
             if !self.matches(cur, i, prod) {
                 continue;
             }
-            if let Some((a, b)) = prod.condition {
+            let pre = prod.pre.0 != prod.pre.1;
+            if pre {
                 self.bind(cur, i, prod, true);
+                self.run_block(c, prod.pre, generation)?;
+            }
+            if let Some((a, b)) = prod.condition {
+                if !pre {
+                    self.bind(cur, i, prod, true);
+                }
                 let v = eval(
                     &c.ops[a as usize..b as usize],
-                    &self.vars,
+                    (&self.vars, &self.globals),
                     generation,
                     &mut self.rng,
                     &mut self.stack,
@@ -391,7 +417,12 @@ impl<'g> Deriver<'g> {
                 }
             }
             match prod.weight {
-                None if self.candidates.is_empty() => return Some((p, true)),
+                None if self.candidates.is_empty() => {
+                    if pre {
+                        self.bound_for = Some(p);
+                    }
+                    return Ok(Some((p, true)));
+                }
                 None => {}
                 Some(w) => {
                     total += w;
@@ -400,21 +431,58 @@ impl<'g> Deriver<'g> {
             }
         }
         if self.candidates.is_empty() || total <= 0.0 {
-            return None;
+            return Ok(None);
         }
         // Later candidates were matched after the drawn one: its match must be redone.
         let mut u = self.rng.unit() * total;
         for &(p, w) in &self.candidates {
             if u < w {
-                return Some((p, false));
+                return Ok(Some((p, false)));
             }
             u -= w;
         }
-        self.candidates
+        Ok(self
+            .candidates
             .iter()
             .rev()
             .find(|c| c.1 > 0.0)
-            .map(|c| (c.0, false))
+            .map(|c| (c.0, false)))
+    }
+
+    /// Runs a block of `compiled` (span into its instructions) on the bound parameters and
+    /// the block variables.
+    fn run_block(
+        &mut self,
+        compiled: &'g Compiled,
+        span: Span,
+        generation: f64,
+    ) -> Result<(), DeriveError> {
+        if span.0 == span.1 {
+            return Ok(());
+        }
+        block::run(
+            &compiled.blocks[span.0 as usize..span.1 as usize],
+            &compiled.ops,
+            (&mut self.vars, &mut self.globals),
+            generation,
+            &mut self.rng,
+            &mut self.stack,
+        )
+        .map_err(|_| DeriveError::EndlessBlock {
+            generation: generation as u32,
+            limit: MAX_BLOCK_STATEMENTS,
+        })
+    }
+
+    /// Runs one of the grammar's derivation blocks: 0 start, 1 start each, 2 end each, 3 end.
+    fn run_derivation_block(&mut self, which: usize, generation: u32) -> Result<(), DeriveError> {
+        let grammar: &'g LSystem = self.grammar;
+        self.vars.clear();
+        self.run_block(
+            &grammar.compiled,
+            grammar.block_spans[which],
+            f64::from(generation),
+        )
     }
 
     fn matches(&mut self, cur: &Word, i: usize, prod: &CProduction) -> bool {
@@ -582,7 +650,7 @@ impl<'g> Deriver<'g> {
                         let (lo, hi) = c.args[a as usize];
                         let v = eval(
                             &c.ops[lo as usize..hi as usize],
-                            &self.vars,
+                            (&self.vars, &self.globals),
                             generation,
                             &mut self.rng,
                             &mut self.stack,
@@ -609,7 +677,7 @@ impl<'g> Deriver<'g> {
                     let (lo, hi) = probability;
                     let p = eval(
                         &c.ops[lo as usize..hi as usize],
-                        &self.vars,
+                        (&self.vars, &self.globals),
                         generation,
                         &mut self.rng,
                         &mut self.stack,

@@ -8,6 +8,7 @@ use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp};
 pub(crate) enum Op {
     Num(f64),
     Var(u16),
+    Global(u16),
     Gen,
     Unary(UnaryOp),
     Binary(BinaryOp),
@@ -26,6 +27,7 @@ impl Expr {
             Expr::Number(v) => out.push(Op::Num(*v)),
             Expr::Constant { value, .. } => out.push(Op::Num(*value)),
             Expr::Var { slot, .. } => out.push(Op::Var(*slot)),
+            Expr::Global { slot, .. } => out.push(Op::Global(*slot)),
             Expr::Generation => out.push(Op::Gen),
             Expr::Unary(op, e) => {
                 e.compile_raw(out);
@@ -51,7 +53,7 @@ impl Expr {
         self.compile_raw(&mut ops);
         eval(
             &ops,
-            &[],
+            (&[], &[]),
             generation,
             &mut Random::new(rng_seed),
             &mut Vec::new(),
@@ -70,6 +72,10 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
         }
         Expr::Var { slot, .. } => {
             out.push(Op::Var(*slot));
+            return false;
+        }
+        Expr::Global { slot, .. } => {
+            out.push(Op::Global(*slot));
             return false;
         }
         Expr::Generation => {
@@ -99,7 +105,7 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
     if constant {
         let value = eval(
             &out[start..],
-            &[],
+            (&[], &[]),
             0.0,
             &mut Random::new(0),
             &mut Vec::new(),
@@ -110,11 +116,12 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
     constant
 }
 
-/// Runs a compiled program. Unbound variables read as 0 (the parser never produces them).
+/// Runs a compiled program over the bound parameters and the block variables (`vars`,
+/// `globals`). Unbound variables read as 0 (the parser never produces them).
 #[inline]
 pub(crate) fn eval(
     ops: &[Op],
-    vars: &[f64],
+    (vars, globals): (&[f64], &[f64]),
     generation: f64,
     rng: &mut Random,
     stack: &mut Vec<f64>,
@@ -130,6 +137,7 @@ pub(crate) fn eval(
         match *op {
             Op::Num(v) => stack.push(v),
             Op::Var(k) => stack.push(vars.get(k as usize).copied().unwrap_or(0.0)),
+            Op::Global(k) => stack.push(globals.get(k as usize).copied().unwrap_or(0.0)),
             Op::Gen => stack.push(generation),
             Op::Unary(u) => {
                 let a = stack.pop().unwrap_or(0.0);
@@ -227,7 +235,7 @@ mod tests {
         let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
         let mut ops = Vec::new();
         e.compile(&mut ops);
-        eval(&ops, &[x], 3.0, &mut Random::new(0), &mut Vec::new())
+        eval(&ops, (&[x], &[]), 3.0, &mut Random::new(0), &mut Vec::new())
     }
 
     #[test]

@@ -2,11 +2,12 @@
 
 use std::sync::Arc;
 
-use crate::engine::compile::Compiled;
+use crate::engine::compile::{Compiled, Span};
 use crate::error::GrammarError;
 use crate::model::alphabet::{Alphabet, SymbolId};
 use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
+use crate::model::statement::{Blocks, Statement, expressions};
 use crate::model::word::Word;
 
 /// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
@@ -31,6 +32,12 @@ pub struct LSystem {
     pub(crate) axiom_word: Word,
     /// How many steps the model is meant to be derived (cpfg's `derivation length`).
     pub(crate) derivation_length: Option<u32>,
+    /// The names of the block variables, by slot.
+    pub(crate) globals: Vec<String>,
+    /// The blocks run around the derivation, and their spans in `compiled.blocks`
+    /// (start, start each, end each, end).
+    pub(crate) blocks: Blocks,
+    pub(crate) block_spans: [Span; 4],
 }
 
 impl PartialEq for LSystem {
@@ -43,6 +50,8 @@ impl PartialEq for LSystem {
             && self.decomposition == other.decomposition
             && self.homomorphism == other.homomorphism
             && self.derivation_length == other.derivation_length
+            && self.globals == other.globals
+            && self.blocks == other.blocks
     }
 }
 
@@ -119,7 +128,77 @@ impl LSystem {
             homomorphism: RuleSet::default(),
             compiled_homomorphism: Compiled::default(),
             derivation_length: None,
+            globals: Vec::new(),
+            blocks: Blocks::default(),
+            block_spans: [(0, 0); 4],
         })
+    }
+
+    /// This system with block variables (`globals`, by slot: the names `Expr::Global` and
+    /// `Statement::Assign` refer to) and blocks run around the derivation. Checks that every
+    /// expression anywhere in the grammar refers to a block variable that exists.
+    pub fn with_blocks(
+        mut self,
+        globals: Vec<String>,
+        blocks: Blocks,
+    ) -> Result<LSystem, GrammarError> {
+        let n = globals.len();
+        let too_high = |e: &Expr| e.globals_used() > n;
+        for (k, p) in self
+            .productions
+            .iter()
+            .chain(&self.decomposition.productions)
+            .chain(&self.homomorphism.productions)
+            .enumerate()
+        {
+            let mut all = expressions(&p.pre);
+            all.extend(expressions(&p.post));
+            all.extend(p.condition.iter());
+            all.extend(successor_expressions(&p.successor));
+            if all.into_iter().any(too_high) {
+                return Err(GrammarError::InvalidProduction {
+                    index: k,
+                    message: "uses a block variable the grammar does not have".to_string(),
+                });
+            }
+        }
+        for block in [
+            &blocks.start,
+            &blocks.start_each,
+            &blocks.end_each,
+            &blocks.end,
+        ] {
+            let bad = expressions(block)
+                .into_iter()
+                .any(|e| too_high(e) || e.slots_used() > 0 || e.depth() > MAX_EXPR_DEPTH)
+                || assigned_slots(block).any(|s| s as usize >= n);
+            if bad {
+                return Err(GrammarError::InvalidBlock(
+                    "a block uses a parameter, an unknown block variable or too deep an expression"
+                        .to_string(),
+                ));
+            }
+        }
+        self.block_spans = [
+            &blocks.start,
+            &blocks.start_each,
+            &blocks.end_each,
+            &blocks.end,
+        ]
+        .map(|b| self.compiled.block(b));
+        self.globals = globals;
+        self.blocks = blocks;
+        Ok(self)
+    }
+
+    /// The block variables' names, by slot.
+    pub fn globals(&self) -> &[String] {
+        &self.globals
+    }
+
+    /// The blocks run around the derivation.
+    pub fn blocks(&self) -> &Blocks {
+        &self.blocks
     }
 
     /// This system stating how many steps it is meant to be derived.
@@ -244,6 +323,17 @@ fn check_productions(
         if p.condition.as_ref().is_some_and(|c| c.slots_used() > slots) {
             return Err(bad("condition uses an unbound parameter"));
         }
+        let blocks = [&p.pre, &p.post];
+        if blocks.iter().any(|b| {
+            expressions(b)
+                .into_iter()
+                .any(|e| e.depth() > MAX_EXPR_DEPTH || e.slots_used() > slots)
+                || parameter_slots(b).any(|s| s as usize >= slots)
+        }) {
+            return Err(bad(
+                "a block uses an unbound parameter or an expression that is too deep",
+            ));
+        }
         if !items_valid(&p.successor, slots, known, 0) {
             return Err(bad(
                 "successor uses an unknown symbol or unbound parameter, or nests too deep",
@@ -254,6 +344,60 @@ fn check_productions(
         }
     }
     Ok(())
+}
+
+/// The block variables `statements` assign, nested ones included.
+fn assigned_slots(statements: &[Statement]) -> impl Iterator<Item = u16> + '_ {
+    flatten(statements).filter_map(|s| match s {
+        Statement::Assign { slot, .. } => Some(*slot),
+        _ => None,
+    })
+}
+
+/// The parameters `statements` assign, nested ones included.
+fn parameter_slots(statements: &[Statement]) -> impl Iterator<Item = u16> + '_ {
+    flatten(statements).filter_map(|s| match s {
+        Statement::SetParameter { slot, .. } => Some(*slot),
+        _ => None,
+    })
+}
+
+/// Every statement, nested ones included.
+fn flatten(statements: &[Statement]) -> impl Iterator<Item = &Statement> + '_ {
+    let mut pending: Vec<&Statement> = statements.iter().rev().collect();
+    std::iter::from_fn(move || {
+        let s = pending.pop()?;
+        match s {
+            Statement::If {
+                then, otherwise, ..
+            } => pending.extend(then.iter().chain(otherwise).rev()),
+            Statement::While { body, .. } | Statement::DoWhile { body, .. } => {
+                pending.extend(body.iter().rev())
+            }
+            _ => {}
+        }
+        Some(s)
+    })
+}
+
+/// Every expression of a successor, in choices too.
+fn successor_expressions(items: &[SuccessorItem]) -> Vec<&Expr> {
+    let mut out = Vec::new();
+    let mut pending: Vec<&SuccessorItem> = items.iter().collect();
+    while let Some(item) = pending.pop() {
+        match item {
+            SuccessorItem::Module(m) => out.extend(&m.args),
+            SuccessorItem::Choice {
+                probability,
+                then,
+                otherwise,
+            } => {
+                out.push(probability);
+                pending.extend(then.iter().chain(otherwise));
+            }
+        }
+    }
+    out
 }
 
 fn items_valid(

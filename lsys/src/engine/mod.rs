@@ -1,6 +1,7 @@
 //! The rewriting engine: a grammar checked and compiled ([`LSystem`](crate::LSystem)),
 //! expression programs, the seeded random stream and derivation.
 
+pub(crate) mod block;
 pub(crate) mod compile;
 pub(crate) mod derive;
 pub(crate) mod eval;

@@ -159,6 +159,14 @@ pub enum Expr {
         /// right context, in order).
         slot: u16,
     },
+    /// A variable of the grammar's statement blocks, by name and slot: one value for the
+    /// whole derivation, set by assignments in blocks (cpfg's variables are global).
+    Global {
+        /// The variable's name.
+        name: String,
+        /// Its index among the grammar's variables.
+        slot: u16,
+    },
     /// `#`: the generation being produced (1 in the first derivation step; 0 in the axiom).
     Generation,
     /// A unary operation.
@@ -200,9 +208,17 @@ impl Expr {
     pub(crate) fn is_constant(&self) -> bool {
         match self {
             Expr::Number(_) | Expr::Constant { .. } => true,
-            Expr::Var { .. } | Expr::Generation => false,
+            Expr::Var { .. } | Expr::Global { .. } | Expr::Generation => false,
             Expr::Call(f, _) if f.is_random() => false,
             _ => self.children().all(Expr::is_constant),
+        }
+    }
+
+    /// Highest slot of a block variable ([`Expr::Global`]) used plus one.
+    pub(crate) fn globals_used(&self) -> usize {
+        match self {
+            Expr::Global { slot, .. } => *slot as usize + 1,
+            _ => self.children().map(Expr::globals_used).max().unwrap_or(0),
         }
     }
 
@@ -233,7 +249,11 @@ impl Drop for Expr {
         }
         if matches!(
             self,
-            Expr::Number(_) | Expr::Generation | Expr::Var { .. } | Expr::Constant { .. }
+            Expr::Number(_)
+                | Expr::Generation
+                | Expr::Var { .. }
+                | Expr::Global { .. }
+                | Expr::Constant { .. }
         ) {
             return;
         }

@@ -2,6 +2,7 @@
 
 use crate::model::alphabet::SymbolId;
 use crate::model::expr::Expr;
+use crate::model::statement::Statement;
 
 /// A module in a predecessor or context: a symbol and the names of its formal parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,8 +50,12 @@ pub struct Production {
     pub predecessor: Pattern,
     /// Right context, may contain `[` and `]` to enter or leave branches. Empty when none.
     pub right: Vec<Pattern>,
+    /// Statements run before the condition is tested (cpfg's block before the condition).
+    pub pre: Vec<Statement>,
     /// The condition; `None` is always true.
     pub condition: Option<Expr>,
+    /// Statements run when the production is applied, before its successor is made.
+    pub post: Vec<Statement>,
     /// What replaces the predecessor.
     pub successor: Vec<SuccessorItem>,
     /// Weight for stochastic choice; `None` makes the production deterministic.

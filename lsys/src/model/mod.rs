@@ -4,4 +4,5 @@
 pub(crate) mod alphabet;
 pub(crate) mod expr;
 pub(crate) mod grammar;
+pub(crate) mod statement;
 pub(crate) mod word;

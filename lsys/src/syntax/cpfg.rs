@@ -159,16 +159,19 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                     p.derivation_length = Some(whole_steps(&cur, at, steps)?);
                 }
                 "axiom:" => {
-                    // The axiom runs on over lines without an arrow.
-                    let mut end = i + 1;
-                    while end < lines.len()
-                        && !(is_blank(lines[end])
-                            || is_directive(lines[end])
-                            || keyword(lines[end]).is_some()
-                            || has_arrow(lines[end]))
-                    {
-                        end += 1;
-                    }
+                    // The axiom runs on over the lines up to the next statement, unless a
+                    // production starts among them (its arrow may come lines later).
+                    let run = i
+                        + 1
+                        + lines[i + 1..]
+                            .iter()
+                            .take_while(|l| !ends_statement(l))
+                            .count();
+                    let end = if lines[i + 1..run].iter().any(|l| has_arrow(l)) {
+                        i + 1
+                    } else {
+                        run
+                    };
                     let joined = Joined::new(&lines[i..end], n);
                     let mut cur = Cursor::new(&joined.chars, n);
                     cur.set_pos(after);
@@ -216,14 +219,21 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                 }
                 "endlsystem" => return Ok(()),
                 "start:" | "end:" | "starteach:" | "endeach:" => {
-                    return Err(unsupported(
-                        n,
-                        indent,
-                        &format!(
-                            "'{}' blocks (C-like statements run around the derivation)",
-                            &line[indent..after].iter().collect::<String>()
-                        ),
-                    ));
+                    // The block runs over as many lines as its braces take.
+                    let end = braces_close(&lines, i);
+                    let joined = Joined::new(&lines[i..end], n);
+                    let mut cur = Cursor::new(&joined.chars, n);
+                    cur.set_pos(after);
+                    let block = p.derivation_block(&mut cur).map_err(|e| joined.locate(e))?;
+                    let slot = match word {
+                        "start:" => &mut p.blocks.start,
+                        "starteach:" => &mut p.blocks.start_each,
+                        "endeach:" => &mut p.blocks.end_each,
+                        _ => &mut p.blocks.end,
+                    };
+                    slot.extend(block);
+                    i = end;
+                    continue;
                 }
                 _ => {
                     return Err(unsupported(
@@ -246,6 +256,28 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
         i = end;
     }
     Ok(())
+}
+
+/// The line after the one where the braces opened at line `i` close (or the end).
+fn braces_close(lines: &[&[char]], i: usize) -> usize {
+    let mut depth = 0i64;
+    let mut opened = false;
+    for (k, line) in lines.iter().enumerate().skip(i) {
+        for &c in line.iter() {
+            match c {
+                '{' => {
+                    depth += 1;
+                    opened = true;
+                }
+                '}' => depth -= 1,
+                _ => {}
+            }
+        }
+        if opened && depth <= 0 {
+            return k + 1;
+        }
+    }
+    lines.len()
 }
 
 fn ends_statement(line: &[char]) -> bool {

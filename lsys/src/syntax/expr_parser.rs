@@ -21,6 +21,10 @@ pub(crate) trait Scope {
     fn degrees(&self) -> bool {
         false
     }
+    /// The slot of a block variable.
+    fn global(&self, _name: &str) -> Option<u16> {
+        None
+    }
 }
 
 /// Parses one expression at the cursor. Stops before any character that cannot continue it.
@@ -233,10 +237,12 @@ impl ExprParser<'_, '_> {
                     Ok(Parsed::leaf(Expr::Var { name, slot }))
                 } else if let Some(value) = self.scope.constant(&name) {
                     Ok(Parsed::leaf(Expr::Constant { name, value }))
+                } else if let Some(slot) = self.scope.global(&name) {
+                    Ok(Parsed::leaf(Expr::Global { name, slot }))
                 } else {
                     Err(self.cur.error_at(
                         start,
-                        format!("unknown name '{name}': not a parameter of this production nor a #define constant"),
+                        format!("unknown name '{name}': not a parameter of this production, a #define constant nor a variable assigned in a block"),
                     ))
                 }
             }

@@ -7,4 +7,5 @@ pub(crate) mod expr_parser;
 pub(crate) mod parser;
 pub(crate) mod preprocessor;
 pub(crate) mod print;
+pub(crate) mod statement_parser;
 pub(crate) mod word_text;

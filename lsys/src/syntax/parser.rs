@@ -7,10 +7,12 @@ use crate::error::{GrammarError, Location, ParseError};
 use crate::model::alphabet::{Alphabet, MAX_NAME_CHARS, POP, PUSH, SymbolId};
 use crate::model::expr::{Expr, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
+use crate::model::statement::Blocks;
 use crate::model::word::Word;
 use crate::syntax::comments::strip_block_comments;
 use crate::syntax::cursor::Cursor;
 use crate::syntax::expr_parser::{Scope, parse_expr};
+use crate::syntax::statement_parser::{assigned_names, parse_block};
 
 /// Longest grammar text accepted, in bytes, so that a parse always finishes quickly.
 pub const MAX_GRAMMAR_BYTES: usize = 1 << 22;
@@ -26,6 +28,8 @@ struct Names<'a> {
     vars: &'a HashMap<String, u16>,
     /// Trigonometry in degrees (cpfg).
     degrees: bool,
+    /// The grammar's block variables, by slot.
+    globals: &'a [String],
 }
 
 impl Scope for Names<'_> {
@@ -37,6 +41,12 @@ impl Scope for Names<'_> {
     }
     fn degrees(&self) -> bool {
         self.degrees
+    }
+    fn global(&self, name: &str) -> Option<u16> {
+        self.globals
+            .iter()
+            .position(|g| g == name)
+            .map(|k| k as u16)
     }
 }
 
@@ -60,6 +70,15 @@ fn strip_line_comments(text: &[char]) -> Vec<char> {
         out.push(if comment { ' ' } else { c });
     }
     out
+}
+
+/// Whether the cursor is at an arrow (`-->`, `->` or `→`), after whitespace.
+fn arrow_next(cur: &mut Cursor<'_>) -> bool {
+    cur.skip_ws();
+    matches!(
+        (cur.peek(), cur.peek_at(1), cur.peek_at(2)),
+        (Some('-'), Some('>'), _) | (Some('-'), Some('-'), Some('>')) | (Some('→'), _, _)
+    )
 }
 
 /// The notations grammar text may be written in.
@@ -113,6 +132,8 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser {
         dialect,
+        globals: assigned_names(&src),
+        blocks: Blocks::default(),
         derivation_length: None,
         consider: None,
         long_names: Vec::new(),
@@ -142,6 +163,7 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
             let src = strip_line_comments(&src);
             let lines = crate::syntax::preprocessor::preprocess(&src)?.lines;
             let src = lines.join(&'\n');
+            p.globals = assigned_names(&src);
             for name in CPFG_LONG_NAMES {
                 p.long_names.push((name.chars().collect(), None));
             }
@@ -184,8 +206,10 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
     // The parser checks everything `from_parts` checks, at the place it happens; should a
     // check only `from_parts` makes ever fail, the error still points at the right line.
     let derivation_length = p.derivation_length;
+    let (globals, blocks) = (p.globals, p.blocks);
     LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
         .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
+        .and_then(|system| system.with_blocks(globals, blocks))
         .map(|system| system.with_derivation_length(derivation_length))
         .map_err(|e| {
             let at = match &e {
@@ -217,6 +241,7 @@ pub(crate) fn parse_modules(
         constants: &HashMap::new(),
         vars: no_vars(),
         degrees: false,
+        globals: &[],
     };
     let mut params = Vec::new();
     for (n, line) in chars.split(|&c| c == '\n').enumerate() {
@@ -312,6 +337,10 @@ const CPFG_LONG_NAMES: &[&str] = &[
 
 pub(crate) struct GrammarParser {
     pub(crate) dialect: Dialect,
+    /// The block variables: every name the text assigns with '='.
+    pub(crate) globals: Vec<String>,
+    /// The blocks run around the derivation.
+    pub(crate) blocks: Blocks,
     /// The derivation length the grammar states (cpfg's `derivation length:`).
     pub(crate) derivation_length: Option<u32>,
     /// cpfg's `consider:` symbols, when given.
@@ -371,6 +400,7 @@ impl GrammarParser {
                     constants: &self.values,
                     vars: no_vars(),
                     degrees: self.dialect == Dialect::Cpfg,
+                    globals: &self.globals,
                 };
                 let value = parse_expr(cur, &scope)?;
                 if !cur.at_end() {
@@ -403,6 +433,23 @@ impl GrammarParser {
                         self.ignore.push(id);
                     }
                 }
+                Ok(())
+            }
+            Some(name @ ("start" | "starteach" | "endeach" | "end")) => {
+                let block = self.derivation_block(cur)?;
+                if !cur.at_end() {
+                    return Err(cur.error(format!(
+                        "expected end of line after the #{name} block, found {}",
+                        cur.describe_next()
+                    )));
+                }
+                let slot = match name {
+                    "start" => &mut self.blocks.start,
+                    "starteach" => &mut self.blocks.start_each,
+                    "endeach" => &mut self.blocks.end_each,
+                    _ => &mut self.blocks.end,
+                };
+                slot.extend(block);
                 Ok(())
             }
             Some("derivation") => {
@@ -467,9 +514,25 @@ impl GrammarParser {
             }
             _ => Err(cur.error_at(
                 at,
-                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#decomposition [depth N]' or '#homomorphism [depth N]'",
+                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#start { ... }' (or #starteach, #endeach, #end), '#decomposition [depth N]' or '#homomorphism [depth N]'",
             )),
         }
+    }
+
+    /// A block run around the derivation (no parameters), at the cursor: `{ ... }`.
+    pub(crate) fn derivation_block(
+        &mut self,
+        cur: &mut Cursor<'_>,
+    ) -> Result<Vec<crate::model::statement::Statement>, ParseError> {
+        cur.eat(':');
+        cur.skip_ws();
+        let scope = Names {
+            constants: &self.values,
+            vars: no_vars(),
+            degrees: self.dialect == Dialect::Cpfg,
+            globals: &self.globals,
+        };
+        parse_block(cur, &scope, no_vars())
     }
 
     /// A constant expression (numbers and `#define`s), then the end of the line.
@@ -480,6 +543,7 @@ impl GrammarParser {
             constants: &self.values,
             vars: no_vars(),
             degrees: self.dialect == Dialect::Cpfg,
+            globals: &self.globals,
         };
         let value = parse_expr(cur, &scope)?;
         if !cur.at_end() {
@@ -504,6 +568,7 @@ impl GrammarParser {
             constants: &self.values,
             vars: no_vars(),
             degrees: self.dialect == Dialect::Cpfg,
+            globals: &self.globals,
         };
         let value = parse_expr(cur, &scope)?;
         if !cur.at_end() {
@@ -692,27 +757,29 @@ impl GrammarParser {
             constants: &self.values,
             vars: &names,
             degrees: self.dialect == Dialect::Cpfg,
+            globals: &self.globals,
         };
-        let unsupported_block = |cur: &mut Cursor<'_>| {
+        // Blocks: `pred : {pre} condition {post} -> successor`, each part optional.
+        let block = |cur: &mut Cursor<'_>| {
             cur.skip_ws();
             if cur.peek() == Some('{') {
-                Err(cur.error(
-                    "unsupported: statement blocks '{ ... }' in productions (C-like statements before or after the condition)",
-                ))
+                parse_block(cur, &scope, &names)
             } else {
-                Ok(())
+                Ok(Vec::new())
             }
         };
-        unsupported_block(cur)?;
+        let mut pre = block(cur)?;
+        let mut post = Vec::new();
         let condition = if cur.eat(':') {
-            unsupported_block(cur)?;
-            if cur.eat('*') {
+            pre.extend(block(cur)?);
+            cur.skip_ws();
+            let condition = if cur.eat('*') || cur.peek() == Some('{') || arrow_next(cur) {
                 None
             } else {
-                let condition = parse_expr(cur, &scope)?;
-                unsupported_block(cur)?;
-                Some(condition)
-            }
+                Some(parse_expr(cur, &scope)?)
+            };
+            post = block(cur)?;
+            condition
         } else {
             None
         };
@@ -732,6 +799,7 @@ impl GrammarParser {
                     constants: &self.values,
                     vars: no_vars(),
                     degrees: self.dialect == Dialect::Cpfg,
+                    globals: &self.globals,
                 },
             )?;
             let w = e.eval_constant(0.0, 0);
@@ -755,7 +823,9 @@ impl GrammarParser {
             left,
             predecessor,
             right,
+            pre,
             condition,
+            post,
             successor,
             weight,
         })
@@ -800,6 +870,7 @@ impl GrammarParser {
                     constants: &self.values,
                     vars: names,
                     degrees: self.dialect == Dialect::Cpfg,
+                    globals: &self.globals,
                 };
                 let probability = parse_expr(cur, &scope)?;
                 cur.expect(')', "')' after the choice's probability")?;
@@ -823,6 +894,7 @@ impl GrammarParser {
                 constants: &self.values,
                 vars: names,
                 degrees: self.dialect == Dialect::Cpfg,
+                globals: &self.globals,
             };
             let mut args = Vec::new();
             if cur.eat('(') {

@@ -6,6 +6,7 @@ use crate::engine::lsystem::LSystem;
 use crate::model::alphabet::Alphabet;
 use crate::model::expr::{BinaryOp, Expr, UnaryOp};
 use crate::model::grammar::{ModuleTemplate, Pattern, Production, SuccessorItem};
+use crate::model::statement::Statement;
 use crate::model::word::Word;
 
 impl BinaryOp {
@@ -82,7 +83,9 @@ impl fmt::Display for Expr {
                 write!(f, "(-{})", -v)
             }
             Expr::Number(v) => write!(f, "{v}"),
-            Expr::Constant { name, .. } | Expr::Var { name, .. } => f.write_str(name),
+            Expr::Constant { name, .. } | Expr::Var { name, .. } | Expr::Global { name, .. } => {
+                f.write_str(name)
+            }
             Expr::Generation => f.write_str("#"),
             Expr::Unary(op, e) => {
                 let sign = if *op == UnaryOp::Neg { "-" } else { "!" };
@@ -240,6 +243,16 @@ impl fmt::Display for LSystem {
             previous = Some(m);
         }
         writeln!(f)?;
+        for (name, block) in [
+            ("start", &self.blocks.start),
+            ("starteach", &self.blocks.start_each),
+            ("endeach", &self.blocks.end_each),
+            ("end", &self.blocks.end),
+        ] {
+            if !block.is_empty() {
+                writeln!(f, "#{name} {}", BlockDisplay(block))?;
+            }
+        }
         write_productions(f, &self.productions, a)?;
         for (name, set) in [
             ("decomposition", &self.decomposition),
@@ -251,6 +264,41 @@ impl fmt::Display for LSystem {
             }
         }
         Ok(())
+    }
+}
+
+/// A block in grammar notation, on one line: `{ x = 1; if (x > 0) { y = 2; } }`.
+struct BlockDisplay<'a>(&'a [Statement]);
+
+impl fmt::Display for BlockDisplay<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("{")?;
+        for s in self.0 {
+            f.write_str(" ")?;
+            match s {
+                Statement::Assign { name, value, .. }
+                | Statement::SetParameter { name, value, .. } => write!(f, "{name} = {value};")?,
+                Statement::Eval(e) => write!(f, "{e};")?,
+                Statement::Seed(e) => write!(f, "srand({e});")?,
+                Statement::If {
+                    condition,
+                    then,
+                    otherwise,
+                } => {
+                    write!(f, "if ({condition}) {}", BlockDisplay(then))?;
+                    if !otherwise.is_empty() {
+                        write!(f, " else {}", BlockDisplay(otherwise))?;
+                    }
+                }
+                Statement::While { condition, body } => {
+                    write!(f, "while ({condition}) {}", BlockDisplay(body))?
+                }
+                Statement::DoWhile { body, condition } => {
+                    write!(f, "do {} while ({condition});", BlockDisplay(body))?
+                }
+            }
+        }
+        f.write_str(" }")
     }
 }
 
@@ -271,8 +319,18 @@ fn write_productions(
         if !p.right.is_empty() {
             write!(f, " > {}", PatternsDisplay(&p.right, a))?;
         }
-        if let Some(c) = &p.condition {
-            write!(f, " : {c}")?;
+        if !p.pre.is_empty() || p.condition.is_some() || !p.post.is_empty() {
+            f.write_str(" :")?;
+            if !p.pre.is_empty() {
+                write!(f, " {}", BlockDisplay(&p.pre))?;
+            }
+            match &p.condition {
+                Some(c) => write!(f, " {c}")?,
+                None => f.write_str(" *")?,
+            }
+            if !p.post.is_empty() {
+                write!(f, " {}", BlockDisplay(&p.post))?;
+            }
         }
         write!(f, " -> {}", ItemsDisplay(&p.successor, a))?;
         if let Some(w) = p.weight {
