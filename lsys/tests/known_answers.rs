@@ -471,3 +471,16 @@ fn cpfg_blocks_over_several_lines() {
     let g = LSystem::parse_dialect(src, sylva_lsys::Dialect::Cpfg).unwrap();
     assert_eq!(g.derive(1, 0).unwrap().to_string(), "f(0.5)S(0.25,2)");
 }
+
+/// C's conditional `c ? a : b`, `%` and `fabs`, as cpfg models write them.
+#[test]
+fn conditional_remainder_and_fabs_evaluate() {
+    let g = LSystem::parse(
+        "axiom: A(7)\nA(x) -> B(x > 5 ? 1 : 2, x % 4, fabs(0 - x), x < 5 ? 1 : x < 9 ? 2 : 3)",
+    )
+    .unwrap();
+    assert_eq!(g.derive(1, 0).unwrap().to_string(), "B(1,3,7,2)");
+    // It prints as select(...), which reads back the same.
+    let again = LSystem::parse(&g.to_string()).unwrap();
+    assert_eq!(again.derive(1, 0).unwrap(), g.derive(1, 0).unwrap());
+}

@@ -154,7 +154,7 @@ pub(crate) fn eval(
             Op::Call(f) => {
                 let n = f.arity();
                 let at = stack.len().saturating_sub(n);
-                let mut args = [0.0; 2];
+                let mut args = [0.0; 3];
                 for (slot, v) in args.iter_mut().zip(&stack[at..]) {
                     *slot = *v;
                 }
@@ -174,6 +174,7 @@ impl BinaryOp {
             BinaryOp::Sub => a - b,
             BinaryOp::Mul => a * b,
             BinaryOp::Div => a / b,
+            BinaryOp::Rem => a % b,
             BinaryOp::Pow => a.powf(b),
             BinaryOp::Lt => truth(a < b),
             BinaryOp::Le => truth(a <= b),
@@ -207,9 +208,18 @@ impl Function {
             Function::Ceil => a.ceil(),
             Function::Min => a.min(b),
             Function::Max => a.max(b),
+            Function::Select => {
+                if a != 0.0 && !a.is_nan() {
+                    b
+                } else {
+                    args.get(2).copied().unwrap_or(0.0)
+                }
+            }
             Function::Uniform => a + (b - a) * rng.unit(),
             Function::Ran => a * rng.unit(),
             Function::Nran => a + b * rng.normal(),
+            Function::Bran => rng.beta(a, b),
+            Function::Biran => rng.binomial(a, b),
         }
     }
 }
@@ -236,6 +246,19 @@ mod tests {
         let mut ops = Vec::new();
         e.compile(&mut ops);
         eval(&ops, (&[x], &[]), 3.0, &mut Random::new(0), &mut Vec::new())
+    }
+
+    /// cpfg's bran(a, b) is a beta draw: its mean is a / (a + b).
+    #[test]
+    fn beta_and_binomial_draws_have_their_means() {
+        let mut rng = Random::new(9);
+        let n = 20_000;
+        let beta: f64 = (0..n).map(|_| rng.beta(5.0, 16.0)).sum::<f64>() / f64::from(n);
+        assert!((beta - 5.0 / 21.0).abs() < 0.005, "{beta}");
+        let small: f64 = (0..n).map(|_| rng.beta(0.5, 0.5)).sum::<f64>() / f64::from(n);
+        assert!((small - 0.5).abs() < 0.01, "{small}");
+        let binomial: f64 = (0..n).map(|_| rng.binomial(10.0, 0.3)).sum::<f64>() / f64::from(n);
+        assert!((binomial - 3.0).abs() < 0.05, "{binomial}");
     }
 
     #[test]

@@ -34,6 +34,8 @@ pub enum BinaryOp {
     Mul,
     /// `/`
     Div,
+    /// `%`: the remainder of a division (C's `fmod`).
+    Rem,
     /// `^`, right-associative power.
     Pow,
     /// `<`
@@ -94,6 +96,14 @@ pub enum Function {
     Ran,
     /// `nran(mean, sd)`: a seeded normal draw (cpfg).
     Nran,
+    /// `bran(a, b)`: a seeded draw from the beta distribution B(a, b) (cpfg).
+    Bran,
+    /// `biran(n, p)`: a seeded binomial draw, successes in `n` trials of probability `p`
+    /// (cpfg).
+    Biran,
+    /// `select(c, a, b)`: `a` when `c` is non-zero, else `b` (C's and cpfg's `c ? a : b`;
+    /// both are evaluated).
+    Select,
 }
 
 pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
@@ -115,6 +125,11 @@ pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
     ("uniform", Function::Uniform, 2),
     ("ran", Function::Ran, 1),
     ("nran", Function::Nran, 2),
+    ("bran", Function::Bran, 2),
+    ("biran", Function::Biran, 2),
+    ("select", Function::Select, 3),
+    // cpfg's C spelling of abs.
+    ("fabs", Function::Abs, 1),
 ];
 
 impl Function {
@@ -130,7 +145,10 @@ impl Function {
 
     /// Whether the function draws from the derivation's random stream.
     pub fn is_random(self) -> bool {
-        matches!(self, Function::Uniform | Function::Ran | Function::Nran)
+        matches!(
+            self,
+            Function::Uniform | Function::Ran | Function::Nran | Function::Bran | Function::Biran
+        )
     }
 }
 

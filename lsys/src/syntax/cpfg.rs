@@ -67,9 +67,7 @@ fn is_blank(line: &[char]) -> bool {
     line.iter().all(|c| c.is_whitespace())
 }
 
-fn is_directive(line: &[char]) -> bool {
-    line.iter().find(|c| !c.is_whitespace()) == Some(&'#')
-}
+use crate::syntax::preprocessor::is_directive;
 
 fn has_arrow(line: &[char]) -> bool {
     line.windows(3).any(|w| w == ['-', '-', '>']) || line.windows(2).any(|w| w == ['-', '>'])

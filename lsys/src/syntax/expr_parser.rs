@@ -34,7 +34,7 @@ pub(crate) fn parse_expr(cur: &mut Cursor<'_>, scope: &dyn Scope) -> Result<Expr
         scope,
         nesting: 0,
     }
-    .or()?;
+    .ternary()?;
     Ok(parsed.expr)
 }
 
@@ -130,6 +130,27 @@ impl ExprParser<'_, '_> {
         }
     }
 
+    /// `c ? a : b` (C's conditional, right-associative), read as `select(c, a, b)`.
+    fn ternary(&mut self) -> Result<Parsed, ParseError> {
+        let at = self.here();
+        let c = self.or()?;
+        self.cur.skip_ws();
+        if self.cur.peek() != Some('?') {
+            return Ok(c);
+        }
+        self.cur.bump();
+        self.nest()?;
+        let a = self.ternary()?;
+        self.cur
+            .expect(':', "':' in a conditional expression (c ? a : b)")?;
+        let b = self.ternary()?;
+        self.nesting -= 1;
+        let depth = c.depth.max(a.depth).max(b.depth);
+        self.node(at, depth, || {
+            Expr::Call(Function::Select, vec![c.expr, a.expr, b.expr])
+        })
+    }
+
     fn or(&mut self) -> Result<Parsed, ParseError> {
         self.chain(Self::and, |p| p.cur.eat_str("||").then_some(BinaryOp::Or))
     }
@@ -177,6 +198,8 @@ impl ExprParser<'_, '_> {
                 Some(BinaryOp::Mul)
             } else if p.cur.eat('/') {
                 Some(BinaryOp::Div)
+            } else if p.cur.eat('%') {
+                Some(BinaryOp::Rem)
             } else {
                 None
             }
@@ -218,7 +241,7 @@ impl ExprParser<'_, '_> {
             Some('(') => {
                 self.cur.bump();
                 self.nest()?;
-                let e = self.or()?;
+                let e = self.ternary()?;
                 self.nesting -= 1;
                 self.cur.expect(')', "')' to close the parenthesis")?;
                 Ok(e)
@@ -270,7 +293,7 @@ impl ExprParser<'_, '_> {
                         format!("function '{name}' takes {arity} argument(s), more given"),
                     ));
                 }
-                let a = self.or()?;
+                let a = self.ternary()?;
                 depth = depth.max(a.depth);
                 args.push(a.expr);
                 if self.cur.eat(')') {

@@ -24,6 +24,28 @@ pub(crate) struct Preprocessed {
     pub(crate) lines: Vec<Vec<char>>,
 }
 
+/// The C preprocessor's directives: a line starting with `#` and one of these is a
+/// directive; any other `#` starts text (cpfg's `#` width module).
+const DIRECTIVES: &[&str] = &[
+    "define", "undef", "ifdef", "ifndef", "if", "elif", "else", "endif", "include", "pragma",
+    "error", "line",
+];
+
+/// Whether `line` is a preprocessor directive.
+pub(crate) fn is_directive(line: &[char]) -> bool {
+    let indent = line.iter().take_while(|c| c.is_whitespace()).count();
+    if line.get(indent) != Some(&'#') {
+        return false;
+    }
+    let rest: String = line[indent + 1..].iter().collect();
+    let word: String = rest
+        .trim_start()
+        .chars()
+        .take_while(|c| is_ident(*c))
+        .collect();
+    DIRECTIVES.contains(&word.as_str())
+}
+
 fn is_ident_start(c: char) -> bool {
     c.is_ascii_alphabetic() || c == '_'
 }
@@ -45,7 +67,7 @@ pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
         let raw = &raw[..];
         let indent = raw.iter().take_while(|c| c.is_whitespace()).count();
         let active = conditions.iter().all(|&c| c);
-        if raw.get(indent) == Some(&'#') {
+        if is_directive(raw) {
             let text: String = raw[indent + 1..].iter().collect();
             let text = text.trim_start();
             let word: String = text.chars().take_while(|c| is_ident(*c)).collect();

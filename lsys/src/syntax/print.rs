@@ -17,6 +17,7 @@ impl BinaryOp {
             BinaryOp::Sub => "-",
             BinaryOp::Mul => "*",
             BinaryOp::Div => "/",
+            BinaryOp::Rem => "%",
             BinaryOp::Pow => "^",
             BinaryOp::Lt => "<",
             BinaryOp::Le => "<=",
@@ -43,7 +44,7 @@ impl BinaryOp {
             | BinaryOp::Eq
             | BinaryOp::Ne => 3,
             BinaryOp::Add | BinaryOp::Sub => 4,
-            BinaryOp::Mul | BinaryOp::Div => 5,
+            BinaryOp::Mul | BinaryOp::Div | BinaryOp::Rem => 5,
             BinaryOp::Pow => 7,
         }
     }
