@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use sylva::lsys::{LSystem, Limits};
-use sylva::turtle::{MeshBuilder, TurtleOptions, interpret};
+use sylva::turtle::{MeshBuilder, SymbolTable, TurtleOptions, interpret};
 
 const USAGE: &str = "usage: cpfg_corpus DIR [--out table.md] [--min-percent P]";
 
@@ -64,7 +64,8 @@ fn try_model(path: &Path) -> Result<(u32, usize, usize), String> {
         .derive_with(steps, 1, &limits)
         .and_then(|w| grammar.interpretation(&w, 1))
         .map_err(|e| format!("derivation: {e}"))?;
-    let options = TurtleOptions::default();
+    let options =
+        TurtleOptions::default().with_symbols(SymbolTable::for_dialect(grammar.dialect()));
     let mut mesh = MeshBuilder::new(&options);
     interpret(&word, &options, &mut mesh).map_err(|e| format!("turtle: {e}"))?;
     let triangles = mesh.finish().triangle_count();

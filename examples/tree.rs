@@ -12,7 +12,7 @@ mod common;
 use std::process::ExitCode;
 
 use sylva::lsys::{LSystem, preset};
-use sylva::turtle::{BranchShape, MeshBuilder, TurtleOptions, interpret, write_obj};
+use sylva::turtle::{BranchShape, MeshBuilder, SymbolTable, TurtleOptions, interpret, write_obj};
 
 const USAGE: &str = "usage: tree [GRAMMAR_FILE | --preset NAME] [--generations N] [--seed S] [--angle DEG] \
                      [--shape cylinder|frustum] [--sides K] [--caps] [--out tree.obj]";
@@ -53,11 +53,17 @@ fn run() -> Result<(), String> {
                 "give a grammar file or --preset, not both\n{USAGE}"
             ));
         }
-        (Some(path), None) => (
-            LSystem::from_file(&path).map_err(|e| e.to_string())?,
-            TurtleOptions::default(),
-            4,
-        ),
+        (Some(path), None) => {
+            let grammar = LSystem::from_file(&path).map_err(|e| e.to_string())?;
+            // cpfg models say how long to derive them, and draw with cpfg's turtle.
+            let steps = grammar.derivation_length().unwrap_or(4);
+            let symbols = SymbolTable::for_dialect(grammar.dialect());
+            (
+                grammar,
+                TurtleOptions::default().with_symbols(symbols),
+                steps,
+            )
+        }
         (None, name) => {
             let name = name.unwrap_or_else(|| "abop-ternary".to_string());
             let p = preset(&name).ok_or_else(|| format!("no preset called '{name}'"))?;

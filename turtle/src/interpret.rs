@@ -71,6 +71,9 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     };
     let mut stack: Vec<State> = Vec::new();
     let mut polygons: Vec<Vec<Vec3>> = Vec::new();
+    // The control points of the generalized cylinder being traced, and the frame it
+    // started with.
+    let mut curve: Option<(Vec<(Vec3, f32)>, Frame)> = None;
     let mut next_id = 0u32;
     sink.begin();
     for (index, module) in word.iter().enumerate() {
@@ -103,7 +106,10 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                         value: f64::from(length),
                     });
                 }
-                if let Some(poly) = polygons.last_mut() {
+                if curve.is_some() {
+                    // Inside a generalized cylinder the turtle only moves; the tube comes
+                    // from the control points.
+                } else if let Some(poly) = polygons.last_mut() {
                     // Inside a polygon, moves trace its outline instead of drawing branches.
                     if poly.is_empty() {
                         poly.push(start.position);
@@ -220,6 +226,61 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                 sink.marker(module.symbol, module.params, &state.frame);
                 stats.markers += 1;
             }
+            Command::Sphere | Command::Disc => {
+                let diameter = arg(0)?.map_or(state.width, |d| d * options.width_unit);
+                let radius = (diameter * 0.5).abs().max(options.min_radius);
+                let faces = if command == Command::Sphere {
+                    crate::shapes::sphere(state.frame.position, radius, &state.frame)
+                } else {
+                    vec![crate::shapes::disc(
+                        state.frame.position,
+                        radius,
+                        &state.frame,
+                    )]
+                };
+                for face in &faces {
+                    sink.polygon(face);
+                }
+                stats.polygons = stats.polygons.saturating_add(faces.len() as u32);
+            }
+            Command::CurveStart => {
+                let radius = (state.width * 0.5).max(options.min_radius);
+                curve = Some((vec![(state.frame.position, radius)], state.frame));
+            }
+            Command::CurvePoint | Command::CurveEnd => {
+                let radius = (state.width * 0.5).max(options.min_radius);
+                if let Some((points, _)) = &mut curve
+                    && points.last().map(|p| p.0) != Some(state.frame.position)
+                    && points.len() < MAX_CURVE_POINTS
+                {
+                    points.push((state.frame.position, radius));
+                }
+                if command == Command::CurveEnd
+                    && let Some((points, frame)) = curve.take()
+                {
+                    let mut parent = state.last;
+                    for (k, piece) in crate::shapes::curve(&points, &frame).iter().enumerate() {
+                        let segment = Segment {
+                            id: next_id,
+                            parent,
+                            continues_parent: k > 0,
+                            frame: piece.frame,
+                            length: piece.length,
+                            start_radius: piece.radii.0,
+                            end_radius: piece.radii.1,
+                            depth: state.depth,
+                        };
+                        sink.segment(&segment);
+                        parent = Some(next_id);
+                        next_id = next_id.saturating_add(1);
+                        stats.segments += 1;
+                    }
+                    if let Some(id) = parent.filter(|_| points.len() > 1) {
+                        sink.axis_end(id);
+                    }
+                }
+            }
+            Command::Ignore => {}
         }
     }
     end_axis(&mut state, sink);
@@ -229,6 +290,9 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     sink.end();
     Ok(stats)
 }
+
+/// Most control points one generalized cylinder keeps: the rest are dropped.
+const MAX_CURVE_POINTS: usize = 1 << 16;
 
 fn angle(param: Option<f32>, default: f32) -> f32 {
     param.map_or(default, f32::to_radians)

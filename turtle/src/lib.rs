@@ -39,6 +39,7 @@ mod interpret;
 mod mesh;
 mod obj;
 mod options;
+mod shapes;
 mod sink;
 mod skeleton;
 mod symbols;

@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use sylva_lsys::Alphabet;
+use sylva_lsys::{Alphabet, Dialect};
 
 /// What the turtle does for one symbol.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -42,6 +42,19 @@ pub enum Command {
     Leaf,
     /// Passed to the sink with its parameters and the current frame, otherwise ignored.
     Marker,
+    /// `@o(d)`: a sphere of diameter `d` (default: the current width) at the turtle.
+    Sphere,
+    /// `@c(d)`: a disc of diameter `d` (default: the current width) across the heading.
+    Disc,
+    /// `@Gs`: start a generalized cylinder at the turtle; draws inside it only move.
+    CurveStart,
+    /// `@Gc`: a control point of the generalized cylinder, at the turtle with its width.
+    CurvePoint,
+    /// `@Ge`: the last control point: the smooth tube through them all is drawn.
+    CurveEnd,
+    /// Does nothing (cpfg's colour commands, `;` and `,`, where the mesh has no colour
+    /// index).
+    Ignore,
 }
 
 /// Direction of a rotation command.
@@ -142,6 +155,36 @@ impl SymbolTable {
     /// What the symbol named `name` means, if anything.
     pub fn get(&self, name: &str) -> Option<Command> {
         self.commands.get(name).copied()
+    }
+
+    /// cpfg's turtle: ABOP's, where `;` and `,` change the colour index (ignored: meshes
+    /// carry materials instead), `#` sets the width like `!`, and `@o`/`@O` spheres, `@c`
+    /// discs and `@Gs`/`@Gc`/`@Ge` generalized cylinders draw.
+    pub fn cpfg() -> Self {
+        let mut table = Self::abop();
+        for (name, command) in [
+            (";", Command::Ignore),
+            (",", Command::Ignore),
+            ("#", Command::Width),
+            ("@o", Command::Sphere),
+            ("@O", Command::Sphere),
+            ("@c", Command::Disc),
+            ("@Gs", Command::CurveStart),
+            ("@Gc", Command::CurvePoint),
+            ("@Gt", Command::Ignore),
+            ("@Ge", Command::CurveEnd),
+        ] {
+            table.set(name, command);
+        }
+        table
+    }
+
+    /// The table of the notation a grammar was read from ([`sylva_lsys::LSystem::dialect`]).
+    pub fn for_dialect(dialect: Dialect) -> Self {
+        match dialect {
+            Dialect::Cpfg => Self::cpfg(),
+            _ => Self::abop(),
+        }
     }
 
     /// The table as a dense array indexed by the alphabet's symbol ids.

@@ -9,6 +9,7 @@ use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
 use crate::model::statement::{Blocks, Statement, expressions};
 use crate::model::word::Word;
+use crate::syntax::parser::Dialect;
 
 /// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
 ///
@@ -32,6 +33,8 @@ pub struct LSystem {
     pub(crate) axiom_word: Word,
     /// How many steps the model is meant to be derived (cpfg's `derivation length`).
     pub(crate) derivation_length: Option<u32>,
+    /// The notation it was read from (which decides what its turtle symbols mean).
+    pub(crate) dialect: Dialect,
     /// The names of the block variables, by slot.
     pub(crate) globals: Vec<String>,
     /// The blocks run around the derivation, and their spans in `compiled.blocks`
@@ -128,6 +131,7 @@ impl LSystem {
             homomorphism: RuleSet::default(),
             compiled_homomorphism: Compiled::default(),
             derivation_length: None,
+            dialect: Dialect::Sylva,
             globals: Vec::new(),
             blocks: Blocks::default(),
             block_spans: [(0, 0); 4],
@@ -189,6 +193,18 @@ impl LSystem {
         self.globals = globals;
         self.blocks = blocks;
         Ok(self)
+    }
+
+    /// The notation the grammar was read from: cpfg's turtle gives some symbols other
+    /// meanings (`;` is a colour there), so a turtle should use that dialect's table.
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// This system marked as read from `dialect`.
+    pub fn with_dialect(mut self, dialect: Dialect) -> LSystem {
+        self.dialect = dialect;
+        self
     }
 
     /// The block variables' names, by slot.

@@ -210,7 +210,11 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
     LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
         .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
         .and_then(|system| system.with_blocks(globals, blocks))
-        .map(|system| system.with_derivation_length(derivation_length))
+        .map(|system| {
+            system
+                .with_derivation_length(derivation_length)
+                .with_dialect(dialect)
+        })
         .map_err(|e| {
             let at = match &e {
                 GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
