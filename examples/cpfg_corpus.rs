@@ -75,6 +75,17 @@ fn try_model(path: &Path) -> Result<(u32, usize, usize), String> {
             word.len()
         ));
     }
+    // Printed in sylva's notation, the model reads back and derives the same word.
+    let printed = grammar.to_string();
+    let again =
+        LSystem::parse(&printed).map_err(|e| format!("printed back, it does not parse: {e}"))?;
+    let word_again = again
+        .derive_with(steps, 1, &limits)
+        .and_then(|w| again.interpretation(&w, 1))
+        .map_err(|e| format!("printed back, its derivation fails: {e}"))?;
+    if word_again.to_string() != word.to_string() {
+        return Err("printed back, it derives another word".to_string());
+    }
     Ok((steps, word.len(), triangles))
 }
 
@@ -132,7 +143,9 @@ fn run() -> Result<(), String> {
         let (verdict, reason) = match &result {
             Ok((steps, modules, triangles)) => (
                 "meshes",
-                format!("{steps} steps, {modules} modules, {triangles} triangles"),
+                format!(
+                    "{steps} steps, {modules} modules, {triangles} triangles; round trip through sylva's notation derives the same word"
+                ),
             ),
             Err(e) if e.contains("unsupported:") => ("refused", e.clone()),
             Err(e) => ("fails", e.clone()),

@@ -139,10 +139,13 @@ impl Alphabet {
         self.names.iter().map(|n| &**n)
     }
 
-    /// Whether any symbol is a name of several characters (then words print with spaces
-    /// between modules).
+    /// Whether any symbol is a name of several characters, or a character sylva's notation
+    /// reserves (then words print with spaces between modules).
     pub fn has_long_names(&self) -> bool {
-        self.names.iter().any(|n| n.chars().nth(1).is_some())
+        self.names
+            .iter()
+            .skip(3)
+            .any(|n| n.chars().nth(1).is_some() || !n.chars().all(Self::is_symbol_char))
     }
 }
 

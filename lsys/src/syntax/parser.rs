@@ -471,7 +471,7 @@ impl GrammarParser {
                 while !cur.at_end() {
                     let at = cur.pos();
                     let mut name = String::new();
-                    while let Some(c) = cur.peek().filter(|c| !c.is_whitespace() && *c != ',') {
+                    while let Some(c) = cur.peek().filter(|c| !c.is_whitespace()) {
                         name.push(c);
                         cur.bump();
                     }
@@ -487,7 +487,10 @@ impl GrammarParser {
                         ));
                     };
                     let chars: Vec<char> = name.chars().collect();
-                    if chars.len() > 1 && !self.long_names.iter().any(|(n, _)| *n == chars) {
+                    // Names of several characters, and single characters the notation
+                    // reserves (cpfg's '#' and ',' modules), are read as declared.
+                    let declared = chars.len() > 1 || !Alphabet::is_symbol_char(chars[0]);
+                    if declared && !self.long_names.iter().any(|(n, _)| *n == chars) {
                         self.long_names.push((chars, Some(id)));
                         self.long_names.sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
                     }

@@ -227,7 +227,13 @@ impl fmt::Display for LSystem {
         if let Some(n) = self.derivation_length {
             writeln!(f, "#derivation {n}")?;
         }
-        let long: Vec<&str> = a.names().filter(|n| n.chars().nth(1).is_some()).collect();
+        // Names of several characters, and single characters sylva's notation reserves
+        // (modules of other dialects), are declared so that they read back.
+        let long: Vec<&str> = a
+            .names()
+            .skip(3)
+            .filter(|n| n.chars().nth(1).is_some() || !n.chars().all(Alphabet::is_symbol_char))
+            .collect();
         if !long.is_empty() {
             writeln!(f, "#module {}", long.join(" "))?;
         }

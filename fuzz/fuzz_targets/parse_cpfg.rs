@@ -1,0 +1,18 @@
+//! Parses arbitrary text as a cpfg `.l` file (preprocessor, multi-line statements, blocks);
+//! a grammar that parses is derived under tight limits and printed back in sylva's notation,
+//! which must parse again.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use sylva_lsys::{Dialect, LSystem, Limits};
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    if let Ok(g) = LSystem::parse_dialect(text, Dialect::Cpfg) {
+        let limits = Limits::default().with_max_modules(20_000).with_max_params(20_000).with_max_generations(8);
+        if let Ok(word) = g.derive_with(8, 1, &limits) {
+            let _ = g.interpretation(&word, 1);
+        }
+        LSystem::parse(&g.to_string()).expect("printed grammar parses back");
+    }
+});
