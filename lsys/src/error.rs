@@ -97,6 +97,17 @@ pub enum DeriveError {
         /// The limit.
         limit: u64,
     },
+    /// The derivation's blocks ran more statements in all than
+    /// [`Limits::max_statements`](crate::Limits::max_statements).
+    #[error(
+        "generation {generation}: the grammar's blocks ran more than {limit} statements in all"
+    )]
+    TooManyStatements {
+        /// The generation being produced.
+        generation: u32,
+        /// The limit in force.
+        limit: u64,
+    },
     /// A decomposition or homomorphism still rewrote modules after its maximum depth of
     /// passes: its productions recurse without end, or the depth is set too low.
     #[error(

@@ -84,6 +84,8 @@
 //! # Feature flags
 //!
 //! - `serde`: `Serialize`/`Deserialize` for [`SymbolId`].
+//! - `proptest`: the `strategies` module, proptest strategies (words over a grammar's
+//!   alphabet, well-formed grammars, parameters) for property tests of your own grammars.
 //!
 //! # Conventions
 //!
@@ -96,6 +98,8 @@ mod engine;
 mod error;
 mod model;
 mod presets;
+#[cfg(feature = "proptest")]
+pub mod strategies;
 mod syntax;
 
 pub use engine::block::MAX_BLOCK_STATEMENTS;

@@ -484,3 +484,29 @@ fn conditional_remainder_and_fabs_evaluate() {
     let again = LSystem::parse(&g.to_string()).unwrap();
     assert_eq!(again.derive(1, 0).unwrap(), g.derive(1, 0).unwrap());
 }
+
+/// Blocks that each end but together would run for ever stop at the derivation's budget.
+#[test]
+fn block_statements_are_bounded_per_derivation() {
+    let g = LSystem::parse("axiom: A\nA : { k = 0; while (k < 200000) { k = k + 1; } } * -> AA")
+        .unwrap();
+    let limits = Limits::DEFAULT.with_max_statements(5_000_000);
+    assert!(matches!(
+        g.derive_with(10, 0, &limits),
+        Err(DeriveError::TooManyStatements {
+            limit: 5_000_000,
+            ..
+        })
+    ));
+}
+
+/// Found by fuzzing: a cpfg production for the width module '#' prints back readably.
+#[test]
+fn a_production_for_cpfg_width_prints_back() {
+    let g = LSystem::parse("Lsystem: 1\nAxiom: L\nL --> +L#\n# --> -L\nendlsystem").unwrap();
+    let again = LSystem::parse(&g.to_string()).unwrap();
+    assert_eq!(
+        again.derive(2, 0).unwrap().to_string(),
+        g.derive(2, 0).unwrap().to_string()
+    );
+}

@@ -98,8 +98,8 @@ fn emit(statements: &[Statement], ops: &mut Vec<Op>, out: &mut Vec<Instruction>,
     }
 }
 
-/// Runs a compiled block. Errors (with the number of statements run) when it runs more
-/// than [`MAX_BLOCK_STATEMENTS`].
+/// Runs a compiled block; returns how many statements it ran. Errors (with that number)
+/// when it would run more than `cap`.
 pub(crate) fn run(
     block: &[Instruction],
     ops: &[Op],
@@ -107,7 +107,8 @@ pub(crate) fn run(
     generation: f64,
     rng: &mut Random,
     stack: &mut Vec<f64>,
-) -> Result<(), u64> {
+    cap: u64,
+) -> Result<u64, u64> {
     let mut pc = 0usize;
     let mut executed = 0u64;
     let value =
@@ -122,7 +123,7 @@ pub(crate) fn run(
         };
     while let Some(&instruction) = block.get(pc) {
         executed += 1;
-        if executed > MAX_BLOCK_STATEMENTS {
+        if executed > cap {
             return Err(executed - 1);
         }
         pc += 1;
@@ -156,5 +157,5 @@ pub(crate) fn run(
             Instruction::Jump(target) => pc = target as usize,
         }
     }
-    Ok(())
+    Ok(executed)
 }

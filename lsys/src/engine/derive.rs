@@ -19,6 +19,9 @@ pub struct Limits {
     pub max_params: usize,
     /// Most generations one call may derive. Default 10,000.
     pub max_generations: u32,
+    /// Most block statements one derivation may run in all (blocks around conditions and
+    /// the derivation together). Default 100 million.
+    pub max_statements: u64,
 }
 
 impl Limits {
@@ -27,6 +30,7 @@ impl Limits {
         max_modules: 10_000_000,
         max_params: 40_000_000,
         max_generations: 10_000,
+        max_statements: 100_000_000,
     };
 
     /// Sets [`Limits::max_modules`].
@@ -38,6 +42,12 @@ impl Limits {
     /// Sets [`Limits::max_params`].
     pub fn with_max_params(mut self, n: usize) -> Self {
         self.max_params = n;
+        self
+    }
+
+    /// Sets [`Limits::max_statements`].
+    pub fn with_max_statements(mut self, n: u64) -> Self {
+        self.max_statements = n;
         self
     }
 
@@ -134,6 +144,8 @@ pub struct Deriver<'g> {
     /// The production whose block before the condition set the parameters now bound, when
     /// `select` chose it.
     bound_for: Option<u32>,
+    /// Block statements run so far in this derivation.
+    statements: u64,
 }
 
 impl<'g> Deriver<'g> {
@@ -152,6 +164,7 @@ impl<'g> Deriver<'g> {
             table: Table::Main,
             fired: 0,
             bound_for: None,
+            statements: 0,
         }
     }
 
@@ -460,18 +473,30 @@ impl<'g> Deriver<'g> {
         if span.0 == span.1 {
             return Ok(());
         }
-        block::run(
+        let left = self.limits.max_statements.saturating_sub(self.statements);
+        let run = block::run(
             &compiled.blocks[span.0 as usize..span.1 as usize],
             &compiled.ops,
             (&mut self.vars, &mut self.globals),
             generation,
             &mut self.rng,
             &mut self.stack,
-        )
-        .map_err(|_| DeriveError::EndlessBlock {
-            generation: generation as u32,
-            limit: MAX_BLOCK_STATEMENTS,
-        })
+            left.min(MAX_BLOCK_STATEMENTS),
+        );
+        match run {
+            Ok(executed) => {
+                self.statements += executed;
+                Ok(())
+            }
+            Err(_) if left < MAX_BLOCK_STATEMENTS => Err(DeriveError::TooManyStatements {
+                generation: generation as u32,
+                limit: self.limits.max_statements,
+            }),
+            Err(_) => Err(DeriveError::EndlessBlock {
+                generation: generation as u32,
+                limit: MAX_BLOCK_STATEMENTS,
+            }),
+        }
     }
 
     /// Runs one of the grammar's derivation blocks: 0 start, 1 start each, 2 end each, 3 end.

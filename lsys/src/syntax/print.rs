@@ -315,6 +315,12 @@ fn write_productions(
     a: &Alphabet,
 ) -> fmt::Result {
     for p in productions {
+        // A line starting with '#' would read as a directive: a label (which the parser
+        // skips) goes first when the production's first module is cpfg's '#'.
+        let first = p.left.first().unwrap_or(&p.predecessor).symbol;
+        if a.name(first).starts_with('#') {
+            f.write_str("p0: ")?;
+        }
         if !p.left.is_empty() {
             write!(f, "{} < ", PatternsDisplay(&p.left, a))?;
         }
