@@ -510,3 +510,41 @@ fn a_production_for_cpfg_width_prints_back() {
         g.derive(2, 0).unwrap().to_string()
     );
 }
+
+/// L-Py's declarative subset: modules of several characters, constants, sections and
+/// Python operators; Python code is refused at its line and column, never misread.
+#[test]
+fn lpy_declarative_models_load_and_python_is_refused() {
+    let src = "# A branching apex
+module Apex, Internode(l)
+ratio = 0.5 ** 2
+Axiom: Apex(1)
+derivation length: 2
+production:
+Apex(x) --> Internode(x) [+Apex(x*ratio)] Apex(x + 1 if False else x)
+interpretation:
+Internode(l) --> F(l)
+endlsystem
+";
+    let refused = LSystem::parse_dialect(src, sylva_lsys::Dialect::LPy).unwrap_err();
+    // Python's conditional expression is Python code sylva does not read.
+    assert_eq!(refused.location.line, 7, "{refused}");
+    let src = src.replace("Apex(x + 1 if False else x)", "Apex(x + (1 and 0))");
+    let g = LSystem::parse_dialect(&src, sylva_lsys::Dialect::LPy).unwrap();
+    assert_eq!(g.derivation_length(), Some(2));
+    let word = g.derive(1, 0).unwrap();
+    assert_eq!(word.to_string(), "Internode(1) [ + Apex(0.25) ] Apex(1)");
+    assert_eq!(
+        g.interpretation(&word, 0).unwrap().to_string(),
+        "F(1) [ + Apex(0.25) ] Apex(1)"
+    );
+    for (python, line) in [
+        ("import math\nAxiom: A\n", 1),
+        ("Axiom: A\nproduction:\nA :\n  produce B\n", 3),
+        ("def f(x):\n  return x\nAxiom: A\n", 1),
+    ] {
+        let err = LSystem::parse_dialect(python, sylva_lsys::Dialect::LPy).unwrap_err();
+        assert!(err.message.starts_with("unsupported: Python code"), "{err}");
+        assert_eq!(err.location.line, line, "{python}: {err}");
+    }
+}

@@ -179,10 +179,28 @@ impl SymbolTable {
         table
     }
 
+    /// L-Py's turtle: ABOP's, where `_` sets the width, `;` and `,` change the colour
+    /// (ignored), and `@O`/`@o` draw spheres.
+    pub fn lpy() -> Self {
+        let mut table = Self::abop();
+        for (name, command) in [
+            ("_", Command::Width),
+            (";", Command::Ignore),
+            (",", Command::Ignore),
+            ("@O", Command::Sphere),
+            ("@o", Command::Sphere),
+            ("@c", Command::Disc),
+        ] {
+            table.set(name, command);
+        }
+        table
+    }
+
     /// The table of the notation a grammar was read from ([`sylva_lsys::LSystem::dialect`]).
     pub fn for_dialect(dialect: Dialect) -> Self {
         match dialect {
             Dialect::Cpfg => Self::cpfg(),
+            Dialect::LPy => Self::lpy(),
             _ => Self::abop(),
         }
     }

@@ -90,13 +90,19 @@ pub enum Dialect {
     /// cpfg's `.l` files (the virtual laboratory): `Lsystem:` ... `endlsystem`, `-->`,
     /// `derivation length:`, `consider:`, trigonometry in degrees, `*` for the empty word.
     Cpfg,
+    /// The declarative subset of L-Py's `.lpy` files (OpenAlea): `module` declarations,
+    /// constants, `Axiom:`, `production:`/`interpretation:`/`decomposition:` sections with
+    /// `-->` productions; Python code is refused.
+    LPy,
 }
 
 impl Dialect {
-    /// The dialect a file's extension names: `.l` is cpfg; anything else sylva's notation.
+    /// The dialect a file's extension names: `.l` is cpfg, `.lpy` L-Py; anything else
+    /// sylva's notation.
     pub fn of_path(path: &std::path::Path) -> Dialect {
         match path.extension().and_then(|e| e.to_str()) {
             Some("l") => Dialect::Cpfg,
+            Some("lpy") => Dialect::LPy,
             _ => Dialect::Sylva,
         }
     }
@@ -170,6 +176,18 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
             p.long_names
                 .sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
             crate::syntax::cpfg::read(&src, &mut p)?;
+        }
+        Dialect::LPy => {
+            // The declarative subset has no statement blocks: a name assigned in Python
+            // code is Python's, not a block variable.
+            p.globals.clear();
+            // L-Py's own modules of several characters ('#' starts a comment there).
+            for name in CPFG_LONG_NAMES.iter().filter(|n| **n != "#") {
+                p.long_names.push((name.chars().collect(), None));
+            }
+            p.long_names
+                .sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
+            crate::syntax::lpy::read(&src, &mut p)?
         }
     }
     if let Some(consider) = p.consider.take() {
@@ -330,8 +348,9 @@ pub(crate) fn long_name_at<T: Copy>(
     })
 }
 
-/// cpfg's modules of several characters: spheres, circles, generalized cylinders, texture
-/// and tropism controls, and the query and communication modules.
+/// cpfg's modules of several characters (L-Py shares most of them): spheres, circles,
+/// generalized cylinders, texture and tropism controls, and the query and communication
+/// modules.
 const CPFG_LONG_NAMES: &[&str] = &[
     // Width and colour: sylva's notation reserves these characters, cpfg draws with them.
     "#", ",", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts", "@Te",

@@ -1,8 +1,9 @@
-//! Loads every cpfg model (`.l` file with an `Lsystem:` line) under a folder, derives its
-//! stated derivation length, meshes it, and prints a Markdown table: model, result, reason.
+//! Loads every cpfg model (`.l` file with an `Lsystem:` line) and L-Py model (`.lpy`) under
+//! a folder, derives its stated derivation length, meshes it, and prints a Markdown table:
+//! model, result, reason.
 //!
 //! ```text
-//! cargo run --release --example cpfg_corpus -- DIR [--out table.md] [--min-percent P]
+//! cargo run --release --example grammar_corpus -- DIR [--out table.md] [--min-percent P]
 //! ```
 //!
 //! `--min-percent P` fails (exit status 1) when fewer than P% of the models that need no
@@ -21,7 +22,7 @@ use std::process::ExitCode;
 use sylva::lsys::{LSystem, Limits};
 use sylva::turtle::{MeshBuilder, SymbolTable, TurtleOptions, interpret};
 
-const USAGE: &str = "usage: cpfg_corpus DIR [--out table.md] [--min-percent P]";
+const USAGE: &str = "usage: grammar_corpus DIR [--out table.md] [--min-percent P]";
 
 /// Most modules a corpus model may derive: enough for the models, small enough that a run
 /// over a hundred of them stays quick.
@@ -96,9 +97,10 @@ fn models(dir: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
         let path = e.path();
         if path.is_dir() {
             models(&path, out)?;
-        } else if path.extension().is_some_and(|x| x == "l")
-            && std::fs::read_to_string(&path)
-                .is_ok_and(|t| t.lines().any(|l| l.trim_start().starts_with("Lsystem:")))
+        } else if path.extension().is_some_and(|x| x == "lpy")
+            || path.extension().is_some_and(|x| x == "l")
+                && std::fs::read_to_string(&path)
+                    .is_ok_and(|t| t.lines().any(|l| l.trim_start().starts_with("Lsystem:")))
         {
             out.push(path);
         }
