@@ -42,6 +42,7 @@
 //! ```
 
 mod branches;
+mod environment;
 mod error;
 mod grid;
 mod grown;
@@ -52,6 +53,7 @@ mod ray;
 mod stand;
 mod voxelise;
 
+pub use environment::LightEnvironment;
 pub use error::GrowthError;
 pub use glam;
 pub use grid::{BRICK, MAX_VOXELS, VoxelGrid};

@@ -85,6 +85,14 @@ pub enum GrammarError {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DeriveError {
+    /// The [`Environment`](crate::Environment) could not answer.
+    #[error("generation {generation}: the environment failed: {message}")]
+    Environment {
+        /// The generation it was asked about.
+        generation: u32,
+        /// What it said.
+        message: String,
+    },
     /// A statement block ran more statements than
     /// [`MAX_BLOCK_STATEMENTS`](crate::MAX_BLOCK_STATEMENTS) in one run: a loop that does
     /// not end.

@@ -232,3 +232,25 @@ fn trees_built_by_hand_are_measured_checked_and_dropped_without_recursion() {
     .unwrap();
     assert_eq!(g.axiom_word().params(0), &[MAX_EXPR_DEPTH as f64]);
 }
+
+/// Found by fuzzing: a keyword alone on its line, in each dialect, is an error or an empty
+/// declaration, never a panic.
+#[test]
+fn bare_dialect_keywords_do_not_panic() {
+    use sylva_lsys::Dialect;
+    for text in [
+        "module",
+        "module ",
+        "Axiom:",
+        "derivation length:",
+        "maximum depth:",
+        "production:",
+        "endlsystem",
+        "group 1",
+        "x =",
+    ] {
+        for dialect in [Dialect::Cpfg, Dialect::LPy, Dialect::Sylva] {
+            let _ = LSystem::parse_dialect(text, dialect);
+        }
+    }
+}

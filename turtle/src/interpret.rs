@@ -280,6 +280,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                     }
                 }
             }
+            Command::Query => sink.query(index, &state.frame),
             Command::Ignore => {}
         }
     }

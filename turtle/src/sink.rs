@@ -61,6 +61,10 @@ pub trait GeometrySink {
     fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {
         let _ = (symbol, params, frame);
     }
+    /// A query module, by its index in the word, and the turtle's frame there.
+    fn query(&mut self, index: usize, frame: &Frame) {
+        let _ = (index, frame);
+    }
     /// Called once after the last module.
     fn end(&mut self) {}
 }
@@ -91,6 +95,9 @@ impl<S: GeometrySink + ?Sized> GeometrySink for &mut S {
     }
     fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {
         (**self).marker(symbol, params, frame);
+    }
+    fn query(&mut self, index: usize, frame: &Frame) {
+        (**self).query(index, frame);
     }
     fn end(&mut self) {
         (**self).end();

@@ -52,6 +52,10 @@ pub enum Command {
     CurvePoint,
     /// `@Ge`: the last control point: the smooth tube through them all is drawn.
     CurveEnd,
+    /// A query module (cpfg's `?P`, `?H`, `?L`, `?U`): the sink is told where the turtle is
+    /// ([`GeometrySink::query`](crate::GeometrySink::query)), so that
+    /// [`Queries`](crate::Queries) can write it into the module's parameters.
+    Query,
     /// Does nothing (cpfg's colour commands, `;` and `,`, where the mesh has no colour
     /// index).
     Ignore,
@@ -173,6 +177,10 @@ impl SymbolTable {
             ("@Gc", Command::CurvePoint),
             ("@Gt", Command::Ignore),
             ("@Ge", Command::CurveEnd),
+            ("?P", Command::Query),
+            ("?H", Command::Query),
+            ("?L", Command::Query),
+            ("?U", Command::Query),
         ] {
             table.set(name, command);
         }

@@ -2,6 +2,7 @@
 
 use crate::engine::block::{self, MAX_BLOCK_STATEMENTS};
 use crate::engine::compile::{CItem, CPattern, CProduction, Compiled, Span};
+use crate::engine::environment::Environment;
 use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
 use crate::engine::random::Random;
@@ -93,6 +94,64 @@ impl LSystem {
         d.run_derivation_block(0, 0)?;
         let axiom = d.decompose(self.axiom_word(), 0)?;
         let word = d.derive_from(axiom, 0, generations)?;
+        d.run_derivation_block(3, generations)?;
+        Ok(word)
+    }
+
+    /// As [`LSystem::derive_with`], with `environment` answering the query and
+    /// communication modules after the axiom and after every step (open L-systems: the
+    /// word's development can depend on where its modules are and what surrounds them).
+    ///
+    /// ```
+    /// use sylva_lsys::{Dialect, LSystem, Limits, Word};
+    /// // Grow while the query module says the apex is below height 3.
+    /// let plant = LSystem::parse_dialect(
+    ///     "Lsystem: 1\nAxiom: A ?P(0,0,0)\nA > ?P(x,y,z) : y < 3 --> F A\nendlsystem",
+    ///     Dialect::Cpfg,
+    /// )?;
+    /// // An environment that knows each F is one unit up (the turtle crate's does this
+    /// // for real turtle geometry).
+    /// let mut height = |word: &mut Word, _generation: u32| {
+    ///     let fs = word.iter().filter(|m| m.name == "F").count() as f64;
+    ///     for i in 0..word.len() {
+    ///         if word.iter().nth(i).is_some_and(|m| m.name == "?P") {
+    ///             word.params_mut(i)[1] = fs;
+    ///         }
+    ///     }
+    ///     Ok(())
+    /// };
+    /// let word = plant.derive_in(10, 0, &Limits::DEFAULT, &mut height)?;
+    /// assert_eq!(word.iter().filter(|m| m.name == "F").count(), 3);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn derive_in(
+        &self,
+        generations: u32,
+        seed: u64,
+        limits: &Limits,
+        environment: &mut dyn Environment,
+    ) -> Result<Word, DeriveError> {
+        if generations > limits.max_generations {
+            return Err(DeriveError::TooManyGenerations {
+                requested: generations,
+                limit: limits.max_generations,
+            });
+        }
+        let mut d = Deriver::new(self, seed, *limits);
+        let ask = |word: &mut Word, generation: u32, env: &mut dyn Environment| {
+            env.respond(word, generation)
+                .map_err(|message| DeriveError::Environment {
+                    generation,
+                    message,
+                })
+        };
+        d.run_derivation_block(0, 0)?;
+        let mut word = d.decompose(self.axiom_word(), 0)?;
+        ask(&mut word, 0, environment)?;
+        for k in 1..=generations {
+            word = d.derive_from(word, k - 1, 1)?;
+            ask(&mut word, k, environment)?;
+        }
         d.run_derivation_block(3, generations)?;
         Ok(word)
     }

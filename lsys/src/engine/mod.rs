@@ -4,6 +4,7 @@
 pub(crate) mod block;
 pub(crate) mod compile;
 pub(crate) mod derive;
+pub(crate) mod environment;
 pub(crate) mod eval;
 pub(crate) mod lsystem;
 pub(crate) mod random;

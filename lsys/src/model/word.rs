@@ -87,6 +87,12 @@ impl Word {
         &self.params[self.offsets[i] as usize..self.offsets[i + 1] as usize]
     }
 
+    /// Parameters of module `i`, to change (an [`Environment`](crate::Environment) answering
+    /// a query module writes them). Panics if `i >= len()`.
+    pub fn params_mut(&mut self, i: usize) -> &mut [f64] {
+        &mut self.params[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
     /// Total number of parameters over all modules.
     pub fn param_count(&self) -> usize {
         self.params.len()

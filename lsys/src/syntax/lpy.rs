@@ -114,7 +114,7 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
         let line = python_operators(line);
         let mut cur = Cursor::new(&line, n);
         if let Some(&word) = keyword {
-            cur.set_pos(indent + word.chars().count());
+            cur.set_pos((indent + word.chars().count()).min(line.len()));
             match word {
                 "axiom:" => p.axiom_line(&mut cur, indent)?,
                 "derivation length:" => {
@@ -146,7 +146,11 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                 }
                 "module " => {
                     // `module A, B(x), Apex`: the names, without their parameter lists.
-                    let text: String = line[indent + word.len()..].iter().collect();
+                    let text: String = line
+                        .get(indent + word.len()..)
+                        .unwrap_or(&[])
+                        .iter()
+                        .collect();
                     let mut names = String::new();
                     let mut depth = 0;
                     for c in text.chars() {
