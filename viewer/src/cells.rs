@@ -465,6 +465,17 @@ mod tests {
         assert_eq!((trees, instances), (whole, placements));
     }
 
+    /// Every drawn cell with where its instances stand.
+    fn placed(cells: &Cells) -> Vec<(CellKey, Vec<[f32; 4]>)> {
+        cells
+            .drawn()
+            .map(|(k, c)| {
+                let all = c.placements.instances.iter().chain(&c.proxies.instances);
+                (k, all.map(|i| i.translation_scale).collect())
+            })
+            .collect()
+    }
+
     /// The camera keeps fine cells near it, coarse ones farther out, none beyond the view
     /// distance; walking away drops what is left behind, and coming back streams the same
     /// cells again.
@@ -483,20 +494,7 @@ mod tests {
             assert!(d <= VIEW_DISTANCE);
             assert_eq!(k.level == Level::Fine, d <= LOD_DISTANCE, "{k:?} at {d}");
         }
-        let snapshot: Vec<(CellKey, Vec<[f32; 4]>)> = cells
-            .drawn()
-            .map(|(k, c)| {
-                (
-                    k,
-                    c.placements
-                        .instances
-                        .iter()
-                        .chain(&c.proxies.instances)
-                        .map(|i| i.translation_scale)
-                        .collect(),
-                )
-            })
-            .collect();
+        let snapshot = placed(&cells);
         let far = cells
             .update(&world, at(1900.0, 1900.0), false, true)
             .expect("update");
@@ -511,20 +509,7 @@ mod tests {
         cells
             .update(&world, at(100.0, 100.0), false, true)
             .expect("update");
-        let again: Vec<(CellKey, Vec<[f32; 4]>)> = cells
-            .drawn()
-            .map(|(k, c)| {
-                (
-                    k,
-                    c.placements
-                        .instances
-                        .iter()
-                        .chain(&c.proxies.instances)
-                        .map(|i| i.translation_scale)
-                        .collect(),
-                )
-            })
-            .collect();
+        let again = placed(&cells);
         assert!(again == snapshot, "a cell streamed again is the same cell");
     }
 

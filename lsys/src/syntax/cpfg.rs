@@ -178,30 +178,16 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                     i = end;
                     continue;
                 }
-                "ignore:" | "consider:" => {
-                    let mut symbols = Vec::new();
-                    while !cur.at_end() {
-                        symbols.push(p.symbol(&mut cur)?);
-                    }
-                    if word == "ignore:" {
-                        p.ignore.extend(symbols);
-                    } else {
-                        p.consider.get_or_insert_with(Vec::new).extend(symbols);
-                    }
-                }
+                "ignore:" | "consider:" => p.context_symbols(&mut cur, word == "consider:")?,
                 "homomorphism" => p.section = Section::Homomorphism,
                 "decomposition" => p.section = Section::Decomposition,
                 "maximum depth:" => {
                     let depth = p.depth(&mut cur)?;
-                    match p.section {
-                        Section::Decomposition => p.rule_sets[0].max_depth = depth,
-                        Section::Homomorphism => p.rule_sets[1].max_depth = depth,
-                        Section::Main => {
-                            return Err(cur.error_at(
-                                indent,
-                                "'maximum depth:' belongs in a homomorphism or decomposition section",
-                            ));
-                        }
+                    if !p.set_max_depth(depth) {
+                        return Err(cur.error_at(
+                            indent,
+                            "'maximum depth:' belongs in a homomorphism or decomposition section",
+                        ));
                     }
                 }
                 // Whether cpfg reports passes beyond the maximum depth; here they are errors.

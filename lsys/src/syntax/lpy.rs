@@ -127,23 +127,9 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                 "decomposition:" => p.section = Section::Decomposition,
                 "maximum depth:" => {
                     let depth = p.depth(&mut cur)?;
-                    match p.section {
-                        Section::Decomposition => p.rule_sets[0].max_depth = depth,
-                        Section::Homomorphism => p.rule_sets[1].max_depth = depth,
-                        Section::Main => {}
-                    }
+                    p.set_max_depth(depth);
                 }
-                "ignore:" | "consider:" => {
-                    let mut symbols = Vec::new();
-                    while !cur.at_end() {
-                        symbols.push(p.symbol(&mut cur)?);
-                    }
-                    if word == "ignore:" {
-                        p.ignore.extend(symbols);
-                    } else {
-                        p.consider.get_or_insert_with(Vec::new).extend(symbols);
-                    }
-                }
+                "ignore:" | "consider:" => p.context_symbols(&mut cur, word == "consider:")?,
                 "module " => {
                     // `module A, B(x), Apex`: the names, without their parameter lists.
                     let text: String = line

@@ -590,30 +590,43 @@ impl GrammarParser {
     pub(crate) fn depth(&mut self, cur: &mut Cursor<'_>) -> Result<u32, ParseError> {
         cur.skip_ws();
         let at = cur.pos();
-        let scope = Names {
-            constants: &self.values,
-            vars: no_vars(),
-            degrees: self.dialect == Dialect::Cpfg,
-            globals: &self.globals,
-        };
-        let value = parse_expr(cur, &scope)?;
-        if !cur.at_end() {
-            return Err(cur.error(format!(
-                "expected end of line after the depth, found {}",
-                cur.describe_next()
-            )));
-        }
-        let depth = value.eval_constant(0.0, 0);
-        if !(value.is_constant()
-            && depth.fract() == 0.0
-            && (0.0..=f64::from(MAX_RULE_DEPTH)).contains(&depth))
-        {
+        let depth = self.constant_value(cur)?;
+        if !(depth.fract() == 0.0 && (0.0..=f64::from(MAX_RULE_DEPTH)).contains(&depth)) {
             return Err(cur.error_at(
                 at,
                 format!("a maximum depth must be a whole number from 0 to {MAX_RULE_DEPTH}"),
             ));
         }
         Ok(depth as u32)
+    }
+
+    /// Sets the maximum depth of the section being read (a decomposition or homomorphism);
+    /// false in the main section, which has none.
+    pub(crate) fn set_max_depth(&mut self, depth: u32) -> bool {
+        match self.section {
+            Section::Decomposition => self.rule_sets[0].max_depth = depth,
+            Section::Homomorphism => self.rule_sets[1].max_depth = depth,
+            Section::Main => return false,
+        }
+        true
+    }
+
+    /// The symbols of an `ignore:` or `consider:` line, to the end of it.
+    pub(crate) fn context_symbols(
+        &mut self,
+        cur: &mut Cursor<'_>,
+        consider: bool,
+    ) -> Result<(), ParseError> {
+        let mut symbols = Vec::new();
+        while !cur.at_end() {
+            symbols.push(self.symbol(cur)?);
+        }
+        if consider {
+            self.consider.get_or_insert_with(Vec::new).extend(symbols);
+        } else {
+            self.ignore.extend(symbols);
+        }
+        Ok(())
     }
 
     /// The module symbol at the cursor, read past: the longest declared name it continues
