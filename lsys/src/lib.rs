@@ -29,8 +29,8 @@
 //! A module is one character (anything but whitespace and `( ) , < > : ? #`) followed by an
 //! optional parameter list, or a name of several characters declared with `#module Apex
 //! Internode` (L-Py's `module`): the text is read by the longest declared name it continues
-//! with, and words of such grammars print with spaces between modules. In predecessors and contexts the parameters are names; in
-//! successors they are expressions.
+//! with, and words of such grammars print with spaces between modules. In predecessors and
+//! contexts the parameters are names; in successors they are expressions.
 //!
 //! **Choosing a production.** The productions of a predecessor are tried in order. Those whose
 //! parameter count, contexts and condition match form the candidates. If the first candidate
@@ -45,7 +45,8 @@
 //! **Expressions** have `+ - * / ^` (power, right-associative), comparisons `< <= > >= == !=`,
 //! `&& || !`, unary minus and parentheses; truth is 1 and falsehood 0. Functions: `sin cos tan
 //! asin acos atan atan2 sqrt exp log abs floor ceil min max` (radians), and the seeded random
-//! draws `uniform(a, b)`, `ran(x)` (uniform in `[0, x)`) and `nran(mean, sd)` (normal).
+//! draws `uniform(a, b)`, `ran(x)` (uniform in `[0, x)`), `nran(mean, sd)` (normal), `bran(a,
+//! b)` (beta) and `biran(n, p)` (binomial); `c ? a : b` (or `select(c, a, b)`) and `%`.
 //! `#` is the age symbol: the generation being produced (1 in the first step, 0 in the axiom),
 //! so `B(#)` records when a module was introduced.
 //!
@@ -60,8 +61,29 @@
 //! Each pass rewrites all modules in parallel; more than `N` passes that still fire (default
 //! 1, at most [`MAX_RULE_DEPTH`]) is a [`DeriveError::TooDeep`].
 //!
+//! **Statement blocks** (cpfg): `A(x) : { x = x + 1; n = n + 1; } x < 5 { y = x * 2; } -> B(y)`.
+//! A block before the condition runs when the production is tried (it may change the
+//! production's own parameters); a block after it runs when the production is applied.
+//! Statements are assignments, `if (c) ... else ...`, `while (c) ...`, `do ... while (c);`,
+//! `srand(seed);` and expressions. Every other name assigned in a block is a block variable,
+//! one value for the whole derivation; `#start { ... }`, `#starteach`, `#endeach` and `#end`
+//! run blocks around the derivation and each step. Runs are bounded
+//! ([`MAX_BLOCK_STATEMENTS`] per block, [`Limits::max_statements`] per derivation).
+//!
 //! **Choices** (a sylva extension): `?(p)<then><otherwise>` in a successor emits `then` with
 //! probability `p` and `otherwise` else, drawn independently each time the production fires.
+//!
+//! # Dialects
+//!
+//! [`LSystem::parse`] reads sylva's notation above, or cpfg's `.l` files when the text has
+//! an `Lsystem:` line; [`LSystem::parse_dialect`] names the [`Dialect`] (cpfg, or the
+//! declarative subset of L-Py's `.lpy` files) and [`LSystem::from_file`] goes by extension.
+//! cpfg files pass through a C preprocessor of their own (`#define` with and without
+//! parameters, `#if`, `#ifdef`); their trigonometry is in degrees. What a dialect has that
+//! the engine does not run (sub-L-systems, string predecessors, arrays, Python code) is
+//! refused with an `unsupported: ...` error at its line and column. Every grammar prints in
+//! sylva's notation and reads back to the same system. [`LSystem::derive_in`] asks an
+//! [`Environment`] to answer query and communication modules between steps.
 //!
 //! # Determinism and limits
 //!
