@@ -17,6 +17,18 @@ impl fmt::Display for Location {
     }
 }
 
+/// ` (production at line L, column C)` when the place is known, else nothing.
+struct At(Option<Location>);
+
+impl fmt::Display for At {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Some(at) => write!(f, " (the production at {at})"),
+            None => Ok(()),
+        }
+    }
+}
+
 /// A grammar or word that could not be parsed.
 ///
 /// Fix the text at [`ParseError::location`]; the message says what the parser expected there.
@@ -97,13 +109,16 @@ pub enum DeriveError {
     /// [`MAX_BLOCK_STATEMENTS`](crate::MAX_BLOCK_STATEMENTS) in one run: a loop that does
     /// not end.
     #[error(
-        "generation {generation}: a statement block ran more than {limit} statements (a loop that never ends?)"
+        "generation {generation}: a statement block ran more than {limit} statements (a loop that never ends?){}",
+        At(*at)
     )]
     EndlessBlock {
         /// The generation being produced.
         generation: u32,
         /// The limit.
         limit: u64,
+        /// Where the production whose block it was stands, when known.
+        at: Option<Location>,
     },
     /// The derivation's blocks ran more statements in all than
     /// [`Limits::max_statements`](crate::Limits::max_statements).
@@ -119,7 +134,8 @@ pub enum DeriveError {
     /// A decomposition or homomorphism still rewrote modules after its maximum depth of
     /// passes: its productions recurse without end, or the depth is set too low.
     #[error(
-        "the {section} still rewrites modules after its maximum depth of {depth} passes (generation {generation}): a production recurses without end, or raise 'maximum depth'"
+        "the {section} still rewrites modules after its maximum depth of {depth} passes (generation {generation}){}: a production recurses without end, or raise 'maximum depth'",
+        At(*at)
     )]
     TooDeep {
         /// `decomposition` or `homomorphism`.
@@ -128,6 +144,9 @@ pub enum DeriveError {
         depth: u32,
         /// The generation being decomposed (0 for the axiom) or interpreted.
         generation: u32,
+        /// Where the production that still fired stands in the grammar text, when the
+        /// grammar was parsed.
+        at: Option<Location>,
     },
     /// The word grew past [`Limits::max_modules`](crate::Limits::max_modules).
     /// Derive fewer generations or raise the limit if the memory is really there.

@@ -325,17 +325,20 @@ fn decomposition_beyond_its_depth_is_an_error() {
         LSystem::parse("axiom: A\nA -> A\n#decomposition depth 3\nA -> B\nB -> C\nC -> D\nD -> E")
             .unwrap();
     let err = g.derive(1, 0).unwrap_err();
+    // The fourth pass would still fire D -> E, at line 7 of the text.
     assert!(
         matches!(
             err,
             DeriveError::TooDeep {
                 section: "decomposition",
                 depth: 3,
-                generation: 0
+                generation: 0,
+                at: Some(sylva_lsys::Location { line: 7, column: 1 }),
             }
         ),
         "{err}"
     );
+    assert!(err.to_string().contains("line 7, column 1"), "{err}");
     // Endless recursion ends at the depth too.
     let endless = LSystem::parse("axiom: A\n#decomposition depth 100\nA -> AA").unwrap();
     assert!(matches!(
@@ -447,10 +450,18 @@ fn statement_blocks_run_around_conditions_and_derivations() {
 #[test]
 fn endless_blocks_are_errors() {
     let g = LSystem::parse("axiom: A\nA : { k = 0; while (1) { k = k + 1; } } * -> B").unwrap();
-    assert!(matches!(
-        g.derive(1, 0),
-        Err(DeriveError::EndlessBlock { generation: 1, .. })
-    ));
+    let err = g.derive(1, 0).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DeriveError::EndlessBlock {
+                generation: 1,
+                at: Some(sylva_lsys::Location { line: 2, column: 1 }),
+                ..
+            }
+        ),
+        "{err}"
+    );
 }
 
 /// cpfg's blocks as vlab models write them: over several lines, `Start:` and a parameter

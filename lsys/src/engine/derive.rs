@@ -205,6 +205,8 @@ pub struct Deriver<'g> {
     bound_for: Option<u32>,
     /// Block statements run so far in this derivation.
     statements: u64,
+    /// The production (in the table in use) applied last.
+    last_fired: Option<u32>,
 }
 
 impl<'g> Deriver<'g> {
@@ -224,7 +226,19 @@ impl<'g> Deriver<'g> {
             fired: 0,
             bound_for: None,
             statements: 0,
+            last_fired: None,
         }
+    }
+
+    /// Production `p` of `table` counted across the grammar's sections.
+    fn global_index(&self, table: Table, p: u32) -> usize {
+        let g = self.grammar;
+        p as usize
+            + match table {
+                Table::Main => 0,
+                Table::Decomposition => g.productions.len(),
+                Table::Homomorphism => g.productions.len() + g.decomposition.productions.len(),
+            }
     }
 
     /// The compiled productions of the table in use.
@@ -276,6 +290,9 @@ impl<'g> Deriver<'g> {
                     section,
                     depth: set.max_depth,
                     generation,
+                    at: self
+                        .last_fired
+                        .and_then(|p| grammar.production_location(self.global_index(table, p))),
                 });
             }
             passes += 1;
@@ -379,6 +396,7 @@ impl<'g> Deriver<'g> {
             match chosen {
                 Some((p, matched)) => {
                     self.fired += 1;
+                    self.last_fired = Some(p);
                     let prod = &c.productions[p as usize];
                     self.check_room(out, prod, generation)?;
                     if let Some(((s0, s1), (p0, p1))) = prod.constant {
@@ -399,7 +417,7 @@ impl<'g> Deriver<'g> {
                         if self.bound_for != Some(p) {
                             self.bind(cur, i, prod, matched);
                         }
-                        self.run_block(c, prod.post, gen_f)?;
+                        self.run_block(c, (prod.post, Some(p)), gen_f)?;
                         cut_seen |= self.emit(prod.successor, out, gen_f, generation)?;
                     }
                 }
@@ -471,7 +489,7 @@ impl<'g> Deriver<'g> {
             let pre = prod.pre.0 != prod.pre.1;
             if pre {
                 self.bind(cur, i, prod, true);
-                self.run_block(c, prod.pre, generation)?;
+                self.run_block(c, (prod.pre, Some(p)), generation)?;
             }
             if let Some((a, b)) = prod.condition {
                 if !pre {
@@ -526,7 +544,7 @@ impl<'g> Deriver<'g> {
     fn run_block(
         &mut self,
         compiled: &'g Compiled,
-        span: Span,
+        (span, production): (Span, Option<u32>),
         generation: f64,
     ) -> Result<(), DeriveError> {
         if span.0 == span.1 {
@@ -554,6 +572,10 @@ impl<'g> Deriver<'g> {
             Err(_) => Err(DeriveError::EndlessBlock {
                 generation: generation as u32,
                 limit: MAX_BLOCK_STATEMENTS,
+                at: production.and_then(|p| {
+                    self.grammar
+                        .production_location(self.global_index(self.table, p))
+                }),
             }),
         }
     }
@@ -564,7 +586,7 @@ impl<'g> Deriver<'g> {
         self.vars.clear();
         self.run_block(
             &grammar.compiled,
-            grammar.block_spans[which],
+            (grammar.block_spans[which], None),
             f64::from(generation),
         )
     }

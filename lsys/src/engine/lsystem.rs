@@ -3,7 +3,7 @@
 use std::sync::Arc;
 
 use crate::engine::compile::{Compiled, Span};
-use crate::error::GrammarError;
+use crate::error::{GrammarError, Location};
 use crate::model::alphabet::{Alphabet, SymbolId};
 use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
@@ -35,6 +35,9 @@ pub struct LSystem {
     pub(crate) derivation_length: Option<u32>,
     /// The notation it was read from (which decides what its turtle symbols mean).
     pub(crate) dialect: Dialect,
+    /// Where each production stands in the text it was parsed from: the main ones, then
+    /// the decomposition's, then the homomorphism's (empty when built from parts).
+    pub(crate) locations: Vec<Location>,
     /// The names of the block variables, by slot.
     pub(crate) globals: Vec<String>,
     /// The blocks run around the derivation, and their spans in `compiled.blocks`
@@ -132,6 +135,7 @@ impl LSystem {
             compiled_homomorphism: Compiled::default(),
             derivation_length: None,
             dialect: Dialect::Sylva,
+            locations: Vec::new(),
             globals: Vec::new(),
             blocks: Blocks::default(),
             block_spans: [(0, 0); 4],
@@ -199,6 +203,19 @@ impl LSystem {
     /// meanings (`;` is a colour there), so a turtle should use that dialect's table.
     pub fn dialect(&self) -> Dialect {
         self.dialect
+    }
+
+    /// Where production `index` stands in the grammar text (counted as in
+    /// [`GrammarError::InvalidProduction`]: main productions, then the decomposition's,
+    /// then the homomorphism's), when the system was parsed.
+    pub fn production_location(&self, index: usize) -> Option<Location> {
+        self.locations.get(index).copied()
+    }
+
+    /// This system with the places of its productions in its text.
+    pub(crate) fn with_locations(mut self, locations: Vec<Location>) -> LSystem {
+        self.locations = locations;
+        self
     }
 
     /// This system marked as read from `dialect`.

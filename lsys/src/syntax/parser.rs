@@ -224,6 +224,7 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
     // The parser checks everything `from_parts` checks, at the place it happens; should a
     // check only `from_parts` makes ever fail, the error still points at the right line.
     let derivation_length = p.derivation_length;
+    let locations = production_at.clone();
     let (globals, blocks) = (p.globals, p.blocks);
     LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
         .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
@@ -232,6 +233,7 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
             system
                 .with_derivation_length(derivation_length)
                 .with_dialect(dialect)
+                .with_locations(locations)
         })
         .map_err(|e| {
             let at = match &e {
