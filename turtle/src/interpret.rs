@@ -5,7 +5,7 @@ use sylva_lsys::Word;
 
 use crate::error::TurtleError;
 use crate::frame::Frame;
-use crate::options::TurtleOptions;
+use crate::options::{Tropism, TurtleOptions};
 use crate::sink::{GeometrySink, Segment};
 use crate::symbols::Command;
 
@@ -40,6 +40,9 @@ struct State {
     /// End radius of `last`, where a continuing frustum starts.
     last_radius: f32,
     depth: u32,
+    /// The tropism in force: the options' at first, changed by tropism modules and kept
+    /// per branch like the rest of the state.
+    tropism: Option<Tropism>,
 }
 
 /// Interprets `word` with the turtle described by `options`, sending geometry to `sink`.
@@ -68,6 +71,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
         same_axis: false,
         last_radius: 0.0,
         depth: 0,
+        tropism: options.tropism,
     };
     let mut stack: Vec<State> = Vec::new();
     let mut polygons: Vec<Vec<Vec3>> = Vec::new();
@@ -141,7 +145,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                 } else {
                     end_axis(&mut state, sink);
                 }
-                if let Some(t) = options.tropism {
+                if let Some(t) = state.tropism {
                     state
                         .frame
                         .bend_towards(t.direction.normalize_or_zero(), t.susceptibility);
@@ -281,6 +285,26 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                 }
             }
             Command::Query => sink.query(index, &state.frame),
+            Command::TropismDirection => {
+                let direction = Vec3::new(
+                    arg(0)?.unwrap_or(0.0),
+                    arg(1)?.unwrap_or(-1.0),
+                    arg(2)?.unwrap_or(0.0),
+                );
+                let susceptibility = state.tropism.map_or(0.0, |t| t.susceptibility);
+                state.tropism = Some(Tropism {
+                    direction,
+                    susceptibility,
+                });
+            }
+            Command::TropismSusceptibility => {
+                let susceptibility = arg(0)?.unwrap_or(0.0);
+                let direction = state.tropism.map_or(Vec3::NEG_Y, |t| t.direction);
+                state.tropism = Some(Tropism {
+                    direction,
+                    susceptibility,
+                });
+            }
             Command::Ignore => {}
         }
     }

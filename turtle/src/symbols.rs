@@ -56,6 +56,12 @@ pub enum Command {
     /// ([`GeometrySink::query`](crate::GeometrySink::query)), so that
     /// [`Queries`](crate::Queries) can write it into the module's parameters.
     Query,
+    /// `@Tp(x, y, z)`: the tropism direction from here on in this branch (default gravity,
+    /// `(0, -1, 0)`), keeping the susceptibility.
+    TropismDirection,
+    /// `@Ts(e)`: the tropism susceptibility from here on in this branch (0 turns tropism
+    /// off), keeping the direction.
+    TropismSusceptibility,
     /// Does nothing (cpfg's colour commands, `;` and `,`, where the mesh has no colour
     /// index).
     Ignore,
@@ -177,6 +183,8 @@ impl SymbolTable {
             ("@Gc", Command::CurvePoint),
             ("@Gt", Command::Ignore),
             ("@Ge", Command::CurveEnd),
+            ("@Tp", Command::TropismDirection),
+            ("@Ts", Command::TropismSusceptibility),
             ("?P", Command::Query),
             ("?H", Command::Query),
             ("?L", Command::Query),
@@ -198,6 +206,8 @@ impl SymbolTable {
             ("@O", Command::Sphere),
             ("@o", Command::Sphere),
             ("@c", Command::Disc),
+            ("@Tp", Command::TropismDirection),
+            ("@Ts", Command::TropismSusceptibility),
         ] {
             table.set(name, command);
         }

@@ -416,3 +416,24 @@ fn rings_do_not_twist_when_the_turtle_rolls() {
         }
     }
 }
+
+/// Tropism set by modules (L-Py's and cpfg's @Tp direction, @Ts susceptibility) bends only
+/// the branch it is set in, from where it is set.
+#[test]
+fn tropism_modules_bend_their_own_branch() {
+    use sylva_lsys::{Dialect, LSystem};
+    use sylva_turtle::{Skeleton, SymbolTable};
+    let plant = LSystem::parse_dialect(
+        "module A\nAxiom: [@Tp(1,0,0) @Ts(0.5) F F F F] [F F F F]\nderivation length: 0\nproduction:\nendlsystem",
+        Dialect::LPy,
+    )
+    .unwrap();
+    let word = plant.derive(0, 0).unwrap();
+    let options = TurtleOptions::default().with_symbols(SymbolTable::for_dialect(Dialect::LPy));
+    let mut skeleton = Skeleton::default();
+    interpret(&word, &options, &mut skeleton).unwrap();
+    let tip = |k: usize| skeleton.bones[k].end;
+    // The first branch leans towards +x; the second, after the bracket, grows straight up.
+    assert!(tip(3).x > 0.5, "{:?}", tip(3));
+    assert!(tip(7).x.abs() < 1e-5, "{:?}", tip(7));
+}

@@ -355,9 +355,9 @@ pub(crate) fn long_name_at<T: Copy>(
 /// modules.
 const CPFG_LONG_NAMES: &[&str] = &[
     // Width and colour: sylva's notation reserves these characters, cpfg draws with them.
-    "#", ",", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts", "@Te",
-    "@Tf", "@Tx", "@R", "@M", "@m", "@H", "@L", "@b", "@Ds", "@De", "@Dd", "@Di", "@s", "@D", "@J",
-    "@I", "@P", "@S", "?P", "?H", "?L", "?U", "?E",
+    "#", ",", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts", "@Tp",
+    "@Te", "@Tf", "@Tx", "@R", "@M", "@m", "@H", "@L", "@b", "@Ds", "@De", "@Dd", "@Di", "@s",
+    "@D", "@J", "@I", "@P", "@S", "?P", "?H", "?L", "?U", "?E",
 ];
 
 pub(crate) struct GrammarParser {
