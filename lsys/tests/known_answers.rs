@@ -559,3 +559,38 @@ endlsystem
         assert_eq!(err.location.line, line, "{python}: {err}");
     }
 }
+
+/// cpfg's sub-L-systems: `?(id, scale) ... $` hands the modules between to L-system `id`,
+/// whose productions rewrite them; the markers belong to the system around them. Worked by
+/// hand: the main apex A makes a leaf L inside sub-L-system 2, where L grows as L -> LX;
+/// outside it L is the main system's (L -> K).
+#[test]
+fn sub_lsystems_rewrite_their_own_modules() {
+    let src = "Lsystem: 1
+derivation length: 2
+Axiom: A L
+A --> F ?(2,0.5) L $ A
+L --> K
+endlsystem
+
+Lsystem: 2
+Axiom: L
+L --> L X
+endlsystem";
+    let g = LSystem::parse(src).unwrap();
+    assert_eq!(g.subsystems().len(), 1);
+    assert_eq!(g.derive(1, 0).unwrap().to_string(), "F ?(2,0.5) L $ A K");
+    assert_eq!(
+        g.derive(2, 0).unwrap().to_string(),
+        "F ?(2,0.5) L X $ F ?(2,0.5) L $ A K"
+    );
+    // In sylva's notation too (`#lsystem 2`): it prints back and derives the same words.
+    let printed = g.to_string();
+    assert!(printed.contains("#lsystem 2"), "{printed}");
+    let again = LSystem::parse(&printed).unwrap();
+    assert_eq!(again.subsystems().len(), 1);
+    assert_eq!(
+        again.derive(2, 0).unwrap().to_string(),
+        g.derive(2, 0).unwrap().to_string()
+    );
+}

@@ -78,6 +78,10 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     // The control points of the generalized cylinder being traced, and the frame it
     // started with.
     let mut curve: Option<(Vec<(Vec3, f32)>, Frame)> = None;
+    // The step, width and scale before each open sub-L-system (cpfg's `?(id, scale)` ...
+    // `$`), and the scale in force: explicit lengths are multiplied by it.
+    let mut sub_scales: Vec<(f32, f32, f32)> = Vec::new();
+    let mut scale = 1.0f32;
     let mut next_id = 0u32;
     sink.begin();
     for (index, module) in word.iter().enumerate() {
@@ -99,7 +103,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
         };
         match command {
             Command::Draw | Command::Move => {
-                let length = arg(0)?.map_or(state.step, |l| l * options.length_unit);
+                let length = arg(0)?.map_or(state.step, |l| l * options.length_unit * scale);
                 let start = state.frame;
                 state.frame.position += state.frame.heading() * length;
                 let reach = state.frame.position.abs().max_element();
@@ -285,6 +289,26 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                 }
             }
             Command::Query => sink.query(index, &state.frame),
+            Command::SubStart => {
+                if sub_scales.len() >= options.max_depth {
+                    return Err(TurtleError::TooDeep {
+                        index,
+                        limit: options.max_depth,
+                    });
+                }
+                let factor = arg(1)?.unwrap_or(1.0);
+                sub_scales.push((state.step, state.width, scale));
+                state.step *= factor;
+                state.width = sanitize_width(state.width * factor);
+                scale *= factor;
+            }
+            Command::SubEnd => {
+                if let Some((step, width, before)) = sub_scales.pop() {
+                    state.step = step;
+                    state.width = width;
+                    scale = before;
+                }
+            }
             Command::TropismDirection => {
                 let direction = Vec3::new(
                     arg(0)?.unwrap_or(0.0),

@@ -62,6 +62,11 @@ pub enum Command {
     /// `@Ts(e)`: the tropism susceptibility from here on in this branch (0 turns tropism
     /// off), keeping the direction.
     TropismSusceptibility,
+    /// `?(id, s)`: cpfg's start of a sub-L-system: lengths and widths are scaled by `s` until
+    /// the matching [`Command::SubEnd`].
+    SubStart,
+    /// `$` in cpfg: the end of a sub-L-system; the scale before it returns.
+    SubEnd,
     /// Does nothing (cpfg's colour commands, `;` and `,`, where the mesh has no colour
     /// index).
     Ignore,
@@ -168,8 +173,9 @@ impl SymbolTable {
     }
 
     /// cpfg's turtle: ABOP's, where `;` and `,` change the colour index (ignored: meshes
-    /// carry materials instead), `#` sets the width like `!`, and `@o`/`@O` spheres, `@c`
-    /// discs and `@Gs`/`@Gc`/`@Ge` generalized cylinders draw.
+    /// carry materials instead), `#` sets the width like `!`, `@o`/`@O` spheres, `@c` discs
+    /// and `@Gs`/`@Gc`/`@Ge` generalized cylinders draw, `@v` rolls to horizontal, and
+    /// `?(id, s)` ... `$` scale a sub-L-system.
     pub fn cpfg() -> Self {
         let mut table = Self::abop();
         for (name, command) in [
@@ -185,6 +191,9 @@ impl SymbolTable {
             ("@Ge", Command::CurveEnd),
             ("@Tp", Command::TropismDirection),
             ("@Ts", Command::TropismSusceptibility),
+            ("@v", Command::RollToHorizontal),
+            ("?", Command::SubStart),
+            ("$", Command::SubEnd),
             ("?P", Command::Query),
             ("?H", Command::Query),
             ("?L", Command::Query),

@@ -437,3 +437,22 @@ fn tropism_modules_bend_their_own_branch() {
     assert!(tip(3).x > 0.5, "{:?}", tip(3));
     assert!(tip(7).x.abs() < 1e-5, "{:?}", tip(7));
 }
+
+/// cpfg's sub-L-systems draw at their scale: `?(id, 0.5) F(2) $ F(2)` draws one unit, then
+/// two; and in cpfg's table `$` is that end, not ABOP's roll (cpfg rolls with `@v`).
+#[test]
+fn cpfg_sub_lsystems_scale_what_they_draw() {
+    use sylva_lsys::{Dialect, LSystem};
+    use sylva_turtle::{Skeleton, SymbolTable};
+    let g = LSystem::parse_dialect(
+        "Lsystem: 1\nAxiom: ?(2,0.5) F(2) $ F(2)\nendlsystem",
+        Dialect::Cpfg,
+    )
+    .unwrap();
+    let word = g.derive(0, 0).unwrap();
+    let options = TurtleOptions::default().with_symbols(SymbolTable::for_dialect(Dialect::Cpfg));
+    let mut skeleton = Skeleton::default();
+    interpret(&word, &options, &mut skeleton).unwrap();
+    let length = |k: usize| skeleton.bones[k].start.distance(skeleton.bones[k].end);
+    assert!((length(0) - 1.0).abs() < 1e-5 && (length(1) - 2.0).abs() < 1e-5);
+}

@@ -7,7 +7,7 @@ use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
 use crate::engine::random::Random;
 use crate::error::DeriveError;
-use crate::model::alphabet::{CUT, POP, PUSH};
+use crate::model::alphabet::{CUT, POP, PUSH, SymbolId};
 use crate::model::word::Word;
 
 /// Bounds that stop a derivation with an error before it exhausts memory or time.
@@ -207,6 +207,8 @@ pub struct Deriver<'g> {
     statements: u64,
     /// The production (in the table in use) applied last.
     last_fired: Option<u32>,
+    /// The sub-L-system whose productions rewrite the module at hand (main: `None`).
+    sub: Option<usize>,
 }
 
 impl<'g> Deriver<'g> {
@@ -227,6 +229,7 @@ impl<'g> Deriver<'g> {
             bound_for: None,
             statements: 0,
             last_fired: None,
+            sub: None,
         }
     }
 
@@ -245,7 +248,10 @@ impl<'g> Deriver<'g> {
     fn compiled(&self) -> &'g Compiled {
         let grammar: &'g LSystem = self.grammar;
         match self.table {
-            Table::Main => &grammar.compiled,
+            Table::Main => match self.sub {
+                Some(k) => &grammar.compiled_subsystems[k],
+                None => &grammar.compiled,
+            },
             Table::Decomposition => &grammar.compiled_decomposition,
             Table::Homomorphism => &grammar.compiled_homomorphism,
         }
@@ -369,13 +375,31 @@ impl<'g> Deriver<'g> {
         let mut cut_seen = false;
         let n = cur.len();
         let mut i = 0;
+        // With sub-L-systems each module is rewritten by the system it stands in.
+        let markers = self
+            .grammar
+            .sub_markers
+            .filter(|_| self.table == Table::Main);
+        let mut enclosing: Vec<Option<usize>> = Vec::new();
+        self.sub = None;
         while i < n {
+            if let Some(markers) = markers
+                && i > 0
+            {
+                // A marker belongs to the system around it: the switch comes after it.
+                self.enter_or_leave(cur, i - 1, markers, &mut enclosing);
+            }
+            let c = if markers.is_some() {
+                self.compiled()
+            } else {
+                c
+            };
             let sym = cur.symbols[i];
             let s = sym.index();
             if !c.rewritten[s] {
                 // A run of modules no production rewrites is copied in bulk.
                 let mut j = i + 1;
-                while j < n && !c.rewritten[cur.symbols[j].index()] {
+                while markers.is_none() && j < n && !c.rewritten[cur.symbols[j].index()] {
                     j += 1;
                 }
                 cut_seen |= copy_run(cur, i, j, out);
@@ -428,6 +452,7 @@ impl<'g> Deriver<'g> {
             }
             i += 1;
         }
+        self.sub = None;
         if out.len() > self.limits.max_modules {
             return Err(DeriveError::TooManyModules {
                 generation,
@@ -577,6 +602,30 @@ impl<'g> Deriver<'g> {
                         .production_location(self.global_index(self.table, p))
                 }),
             }),
+        }
+    }
+
+    /// After module `k`: `?(id, ...)` hands what follows to sub-L-system `id`, `$` gives it
+    /// back to the system around.
+    fn enter_or_leave(
+        &mut self,
+        cur: &Word,
+        k: usize,
+        (start, end): (SymbolId, SymbolId),
+        enclosing: &mut Vec<Option<usize>>,
+    ) {
+        let symbol = cur.symbols[k];
+        if symbol == start
+            && let Some(&id) = cur.params(k).first()
+        {
+            enclosing.push(self.sub);
+            self.sub = self
+                .grammar
+                .subsystems
+                .iter()
+                .position(|(s, _)| f64::from(*s) == id);
+        } else if symbol == end {
+            self.sub = enclosing.pop().flatten();
         }
     }
 

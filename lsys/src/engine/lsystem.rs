@@ -35,6 +35,12 @@ pub struct LSystem {
     pub(crate) derivation_length: Option<u32>,
     /// The notation it was read from (which decides what its turtle symbols mean).
     pub(crate) dialect: Dialect,
+    /// cpfg's sub-L-systems: each id with its productions, compiled. A module `?(id, ...)`
+    /// hands the modules after it, to the matching `$`, to sub-L-system `id`.
+    pub(crate) subsystems: Vec<(u32, Vec<Production>)>,
+    pub(crate) compiled_subsystems: Vec<Compiled>,
+    /// The symbols `?` and `$` when there are sub-L-systems.
+    pub(crate) sub_markers: Option<(SymbolId, SymbolId)>,
     /// Where each production stands in the text it was parsed from: the main ones, then
     /// the decomposition's, then the homomorphism's (empty when built from parts).
     pub(crate) locations: Vec<Location>,
@@ -57,6 +63,7 @@ impl PartialEq for LSystem {
             && self.homomorphism == other.homomorphism
             && self.derivation_length == other.derivation_length
             && self.globals == other.globals
+            && self.subsystems == other.subsystems
             && self.blocks == other.blocks
     }
 }
@@ -135,6 +142,9 @@ impl LSystem {
             compiled_homomorphism: Compiled::default(),
             derivation_length: None,
             dialect: Dialect::Sylva,
+            subsystems: Vec::new(),
+            compiled_subsystems: Vec::new(),
+            sub_markers: None,
             locations: Vec::new(),
             globals: Vec::new(),
             blocks: Blocks::default(),
@@ -203,6 +213,46 @@ impl LSystem {
     /// meanings (`;` is a colour there), so a turtle should use that dialect's table.
     pub fn dialect(&self) -> Dialect {
         self.dialect
+    }
+
+    /// This system with sub-L-systems (cpfg): each id with its productions. In a derived
+    /// word, the modules after a module `?(id, ...)` up to its matching `$` are rewritten by
+    /// sub-L-system `id`'s productions (the `?` and `$` themselves by the enclosing system's);
+    /// an id without productions of its own leaves them to the enclosing system. Errors when
+    /// a production is invalid, or when the alphabet has no `?` and `$` to mark them.
+    pub fn with_subsystems(
+        mut self,
+        subsystems: Vec<(u32, Vec<Production>)>,
+    ) -> Result<LSystem, GrammarError> {
+        if subsystems.is_empty() {
+            return Ok(self);
+        }
+        let alphabet = self.alphabet.clone();
+        let (Some(start), Some(end)) = (alphabet.id_of("?"), alphabet.id_of("$")) else {
+            return Err(GrammarError::InvalidBlock(
+                "sub-L-systems need the modules '?' and '$' in the grammar".to_string(),
+            ));
+        };
+        let known = |s: SymbolId| s.index() < alphabet.len();
+        let mut first = self.productions.len()
+            + self.decomposition.productions.len()
+            + self.homomorphism.productions.len();
+        for (_, productions) in &subsystems {
+            check_productions(productions, first, &known)?;
+            first += productions.len();
+        }
+        self.compiled_subsystems = subsystems
+            .iter()
+            .map(|(_, p)| Compiled::new(&alphabet, &self.ignore, p))
+            .collect();
+        self.subsystems = subsystems;
+        self.sub_markers = Some((start, end));
+        Ok(self)
+    }
+
+    /// The sub-L-systems, by id, with their productions.
+    pub fn subsystems(&self) -> &[(u32, Vec<Production>)] {
+        &self.subsystems
     }
 
     /// Where production `index` stands in the grammar text (counted as in

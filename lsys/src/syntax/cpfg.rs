@@ -123,6 +123,8 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
         .map(|l| l.strip_suffix(&['\r']).unwrap_or(l))
         .collect();
     let mut lsystems = 0;
+    // After `endlsystem` only another `Lsystem:` is read.
+    let mut ended = false;
     let mut i = 0;
     while i < lines.len() {
         let line = lines[i];
@@ -137,19 +139,31 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
             i += 1;
             continue;
         }
-        if let Some((word, after)) = keyword(line) {
+        let found = keyword(line);
+        if ended && found.is_none_or(|(word, _)| word != "lsystem:") {
+            i += 1;
+            continue;
+        }
+        if let Some((word, after)) = found {
             let mut cur = Cursor::new(line, n);
             cur.set_pos(after);
+            // A sub-L-system's axiom and derivation length are its own business: the main
+            // system's derivation hands it modules.
+            if p.subsystem.is_some() && (word == "axiom:" || word == "derivation length:") {
+                i += 1;
+                continue;
+            }
             match word {
                 "lsystem:" => {
+                    // The first L-system is the main one; each later one is a sub-L-system
+                    // that `?(id, scale) ... $` hands modules to.
+                    let at = cur.pos();
+                    let id = p.constant_value(&mut cur)?;
+                    let id = whole_steps(&cur, at, id)?;
                     lsystems += 1;
-                    if lsystems > 1 {
-                        return Err(unsupported(
-                            n,
-                            indent,
-                            "sub-L-systems (a second 'Lsystem:' in one file)",
-                        ));
-                    }
+                    ended = false;
+                    p.section = Section::Main;
+                    p.subsystem = if lsystems == 1 { None } else { Some(id) };
                 }
                 "derivation length:" => {
                     let at = cur.pos();
@@ -201,7 +215,7 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                         "ring L-systems (a circular word for contexts)",
                     ));
                 }
-                "endlsystem" => return Ok(()),
+                "endlsystem" => ended = true,
                 "start:" | "end:" | "starteach:" | "endeach:" => {
                     // The block runs over as many lines as its braces take.
                     let end = braces_close(&lines, i);
@@ -236,7 +250,7 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
         let mut cur = Cursor::new(&joined.chars, n);
         let at = cur.location();
         let production = p.production(&mut cur).map_err(|e| joined.locate(e))?;
-        p.productions.push((production, at, p.section));
+        p.add_production(production, at);
         i = end;
     }
     Ok(())

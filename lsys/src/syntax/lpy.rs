@@ -174,7 +174,7 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
         if lower.contains("-->") || lower.contains("->") {
             let at = cur.location();
             let production = p.production(&mut cur)?;
-            p.productions.push((production, at, p.section));
+            p.add_production(production, at);
             continue;
         }
         return Err(unsupported(n, indent, "Python code"));

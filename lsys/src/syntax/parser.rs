@@ -138,6 +138,8 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser {
         dialect,
+        subsystem: None,
+        sub_productions: Vec::new(),
         globals: assigned_names(&src),
         blocks: Blocks::default(),
         derivation_length: None,
@@ -224,11 +226,28 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
     // The parser checks everything `from_parts` checks, at the place it happens; should a
     // check only `from_parts` makes ever fail, the error still points at the right line.
     let derivation_length = p.derivation_length;
-    let locations = production_at.clone();
+    let mut subsystems: Vec<(u32, Vec<Production>)> = Vec::new();
+    let mut locations = production_at.clone();
+    let mut sub_productions = std::mem::take(&mut p.sub_productions);
+    // Grouped by id in order of first appearance; productions keep their order.
+    let mut ids: Vec<u32> = Vec::new();
+    for (id, _, _) in &sub_productions {
+        if !ids.contains(id) {
+            ids.push(*id);
+        }
+    }
+    for id in ids {
+        let (mine, rest): (Vec<_>, Vec<_>) =
+            sub_productions.into_iter().partition(|(k, _, _)| *k == id);
+        sub_productions = rest;
+        locations.extend(mine.iter().map(|(_, _, at)| *at));
+        subsystems.push((id, mine.into_iter().map(|(_, p, _)| p).collect()));
+    }
     let (globals, blocks) = (p.globals, p.blocks);
     LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
         .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
         .and_then(|system| system.with_blocks(globals, blocks))
+        .and_then(|system| system.with_subsystems(subsystems))
         .map(|system| {
             system
                 .with_derivation_length(derivation_length)
@@ -354,14 +373,19 @@ pub(crate) fn long_name_at<T: Copy>(
 /// generalized cylinders, texture and tropism controls, and the query and communication
 /// modules.
 const CPFG_LONG_NAMES: &[&str] = &[
-    // Width and colour: sylva's notation reserves these characters, cpfg draws with them.
-    "#", ",", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts", "@Tp",
-    "@Te", "@Tf", "@Tx", "@R", "@M", "@m", "@H", "@L", "@b", "@Ds", "@De", "@Dd", "@Di", "@s",
-    "@D", "@J", "@I", "@P", "@S", "?P", "?H", "?L", "?U", "?E",
+    // Width and colour: sylva's notation reserves these characters, cpfg draws with them;
+    // '?' opens a sub-L-system.
+    "#", ",", "?", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts",
+    "@Tp", "@Te", "@Tf", "@Tx", "@R", "@M", "@m", "@H", "@L", "@b", "@Ds", "@De", "@Dd", "@Di",
+    "@s", "@D", "@J", "@I", "@P", "@S", "?P", "?H", "?L", "?U", "?E",
 ];
 
 pub(crate) struct GrammarParser {
     pub(crate) dialect: Dialect,
+    /// The sub-L-system whose productions are being read (`None`: the main system).
+    pub(crate) subsystem: Option<u32>,
+    /// Sub-L-systems' productions, by id, with where each starts.
+    pub(crate) sub_productions: Vec<(u32, Production, Location)>,
     /// The block variables: every name the text assigns with '='.
     pub(crate) globals: Vec<String>,
     /// The blocks run around the derivation.
@@ -408,7 +432,7 @@ impl GrammarParser {
         }
         let at = cur.location();
         let production = self.production(cur)?;
-        self.productions.push((production, at, self.section));
+        self.add_production(production, at);
         Ok(())
     }
 
@@ -475,6 +499,20 @@ impl GrammarParser {
                     _ => &mut self.blocks.end,
                 };
                 slot.extend(block);
+                Ok(())
+            }
+            Some("lsystem") => {
+                // `#lsystem N`: the productions after it are sub-L-system N's; `#lsystem`
+                // alone returns to the main system.
+                cur.skip_ws();
+                let at = cur.pos();
+                self.subsystem = if cur.at_end() {
+                    None
+                } else {
+                    let id = self.constant_value(cur)?;
+                    Some(whole_steps(cur, at, id)?)
+                };
+                self.section = Section::Main;
                 Ok(())
             }
             Some("derivation") => {
@@ -629,6 +667,16 @@ impl GrammarParser {
             self.ignore.extend(symbols);
         }
         Ok(())
+    }
+
+    /// Files a production under the section (and sub-L-system) being read.
+    pub(crate) fn add_production(&mut self, production: Production, at: Location) {
+        match self.subsystem {
+            Some(id) if self.section == Section::Main => {
+                self.sub_productions.push((id, production, at));
+            }
+            _ => self.productions.push((production, at, self.section)),
+        }
     }
 
     /// The module symbol at the cursor, read past: the longest declared name it continues

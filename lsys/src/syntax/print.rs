@@ -270,6 +270,10 @@ impl fmt::Display for LSystem {
                 write_productions(f, &set.productions, a)?;
             }
         }
+        for (id, productions) in &self.subsystems {
+            writeln!(f, "#lsystem {id}")?;
+            write_productions(f, productions, a)?;
+        }
         Ok(())
     }
 }
