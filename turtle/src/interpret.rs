@@ -7,7 +7,7 @@ use crate::error::TurtleError;
 use crate::frame::Frame;
 use crate::options::{Tropism, TurtleOptions};
 use crate::sink::{GeometrySink, Segment};
-use crate::symbols::Command;
+use crate::symbols::{Command, Sign};
 
 /// Largest distance from the origin the turtle may reach.
 const MAX_COORDINATE: f32 = 1e9;
@@ -43,6 +43,8 @@ struct State {
     /// The tropism in force: the options' at first, changed by tropism modules and kept
     /// per branch like the rest of the state.
     tropism: Option<Tropism>,
+    /// The colour index (cpfg's and L-Py's `;` and `,`).
+    colour: u32,
 }
 
 /// Interprets `word` with the turtle described by `options`, sending geometry to `sink`.
@@ -72,6 +74,7 @@ pub fn interpret<S: GeometrySink + ?Sized>(
         last_radius: 0.0,
         depth: 0,
         tropism: options.tropism,
+        colour: 0,
     };
     let mut stack: Vec<State> = Vec::new();
     let mut polygons: Vec<Vec<Vec3>> = Vec::new();
@@ -181,6 +184,9 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                     return Err(TurtleError::UnbalancedPop { index });
                 };
                 end_axis(&mut state, sink);
+                if saved.colour != state.colour {
+                    sink.colour(saved.colour);
+                }
                 state = saved;
             }
             Command::Width => {
@@ -289,6 +295,17 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                 }
             }
             Command::Query => sink.query(index, &state.frame),
+            Command::Colour(sign) => {
+                let colour = match arg(0)? {
+                    Some(n) => n.max(0.0).min(u32::MAX as f32) as u32,
+                    None if sign == Sign::Positive => state.colour.saturating_add(1),
+                    None => state.colour.saturating_sub(1),
+                };
+                if colour != state.colour {
+                    state.colour = colour;
+                    sink.colour(colour);
+                }
+            }
             Command::SubStart => {
                 if sub_scales.len() >= options.max_depth {
                     return Err(TurtleError::TooDeep {

@@ -95,6 +95,11 @@ pub struct Mesh {
     pub bark: Vec<u32>,
     /// Triangles of polygons and leaves.
     pub leaves: Vec<u32>,
+    /// The colour index of each bark triangle (cpfg's and L-Py's `;` and `,`); empty when the
+    /// turtle never changed colour.
+    pub bark_colours: Vec<u32>,
+    /// The colour index of each leaf triangle; empty when the turtle never changed colour.
+    pub leaf_colours: Vec<u32>,
 }
 
 impl Mesh {
@@ -192,6 +197,9 @@ pub struct MeshBuilder {
     ends: Vec<RingEnd>,
     /// Bracket depth of the last segment drawn: leaves and polygons sit one deeper.
     depth: u32,
+    /// The turtle's colour index, and whether it ever changed (then triangles get colours).
+    colour: u32,
+    coloured: bool,
 }
 
 impl MeshBuilder {
@@ -211,12 +219,28 @@ impl MeshBuilder {
             circle,
             ends: Vec::new(),
             depth: 0,
+            colour: 0,
+            coloured: false,
         }
     }
 
     /// Takes the mesh out, leaving the builder empty.
     pub fn finish(&mut self) -> Mesh {
+        self.paint();
         std::mem::take(&mut self.mesh)
+    }
+
+    /// Gives the triangles added since the last colour change the colour in force.
+    fn paint(&mut self) {
+        if self.coloured {
+            let colour = self.colour;
+            self.mesh
+                .bark_colours
+                .resize(self.mesh.bark.len() / 3, colour);
+            self.mesh
+                .leaf_colours
+                .resize(self.mesh.leaves.len() / 3, colour);
+        }
     }
 
     fn ring(
@@ -316,6 +340,8 @@ impl GeometrySink for MeshBuilder {
     fn begin(&mut self) {
         self.ends.clear();
         self.depth = 0;
+        self.paint();
+        self.colour = 0;
     }
 
     fn segment(&mut self, s: &Segment) {
@@ -364,6 +390,19 @@ impl GeometrySink for MeshBuilder {
         if self.caps && self.shape == BranchShape::Cylinder {
             self.cap(end, &ring, s.end_radius, true, wind);
         }
+    }
+
+    fn colour(&mut self, index: u32) {
+        if index != self.colour {
+            // The first change gives every earlier triangle colour 0.
+            self.coloured = true;
+            self.paint();
+            self.colour = index;
+        }
+    }
+
+    fn end(&mut self) {
+        self.paint();
     }
 
     fn axis_end(&mut self, id: u32) {

@@ -5,7 +5,8 @@ use std::io::{self, Write};
 use crate::mesh::Mesh;
 
 /// Writes `mesh` as OBJ with normals and texture coordinates, in two groups `bark` and
-/// `leaves`.
+/// `leaves`; where the turtle changed colour, each run of triangles names its colour index
+/// as material `colour_N` (`usemtl`).
 ///
 /// ```
 /// let mut out = Vec::new();
@@ -29,12 +30,22 @@ pub fn write_obj<W: Write>(mesh: &Mesh, out: W) -> io::Result<()> {
     for v in &mesh.vertices {
         writeln!(w, "vt {} {}", v.uv[0], v.uv[1])?;
     }
-    for (name, indices) in [("bark", &mesh.bark), ("leaves", &mesh.leaves)] {
+    for (name, indices, colours) in [
+        ("bark", &mesh.bark, &mesh.bark_colours),
+        ("leaves", &mesh.leaves, &mesh.leaf_colours),
+    ] {
         if indices.is_empty() {
             continue;
         }
         writeln!(w, "g {name}")?;
-        for t in indices.chunks_exact(3) {
+        let mut current = None;
+        for (k, t) in indices.chunks_exact(3).enumerate() {
+            if let Some(&colour) = colours.get(k)
+                && current != Some(colour)
+            {
+                writeln!(w, "usemtl colour_{colour}")?;
+                current = Some(colour);
+            }
             let [a, b, c] = [t[0] + 1, t[1] + 1, t[2] + 1];
             writeln!(w, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
         }

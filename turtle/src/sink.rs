@@ -61,6 +61,11 @@ pub trait GeometrySink {
     fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {
         let _ = (symbol, params, frame);
     }
+    /// The turtle's colour index changed (cpfg's and L-Py's `;` and `,`, or a `]` returning
+    /// to another); what follows has this colour. It starts at 0.
+    fn colour(&mut self, index: u32) {
+        let _ = index;
+    }
     /// A query module, by its index in the word, and the turtle's frame there.
     fn query(&mut self, index: usize, frame: &Frame) {
         let _ = (index, frame);
@@ -98,6 +103,9 @@ impl<S: GeometrySink + ?Sized> GeometrySink for &mut S {
     }
     fn query(&mut self, index: usize, frame: &Frame) {
         (**self).query(index, frame);
+    }
+    fn colour(&mut self, index: u32) {
+        (**self).colour(index);
     }
     fn end(&mut self) {
         (**self).end();

@@ -62,13 +62,15 @@ pub enum Command {
     /// `@Ts(e)`: the tropism susceptibility from here on in this branch (0 turns tropism
     /// off), keeping the direction.
     TropismSusceptibility,
+    /// `;(n)` / `,(n)`: set the colour index to `n`; without a parameter, the next or the
+    /// previous index (cpfg, L-Py). Meshes record it per triangle.
+    Colour(Sign),
     /// `?(id, s)`: cpfg's start of a sub-L-system: lengths and widths are scaled by `s` until
     /// the matching [`Command::SubEnd`].
     SubStart,
     /// `$` in cpfg: the end of a sub-L-system; the scale before it returns.
     SubEnd,
-    /// Does nothing (cpfg's colour commands, `;` and `,`, where the mesh has no colour
-    /// index).
+    /// Does nothing (cpfg's `@Gt`).
     Ignore,
 }
 
@@ -172,15 +174,15 @@ impl SymbolTable {
         self.commands.get(name).copied()
     }
 
-    /// cpfg's turtle: ABOP's, where `;` and `,` change the colour index (ignored: meshes
-    /// carry materials instead), `#` sets the width like `!`, `@o`/`@O` spheres, `@c` discs
+    /// cpfg's turtle: ABOP's, where `;` and `,` change the colour index (recorded per
+    /// triangle in the mesh), `#` sets the width like `!`, `@o`/`@O` spheres, `@c` discs
     /// and `@Gs`/`@Gc`/`@Ge` generalized cylinders draw, `@v` rolls to horizontal, and
     /// `?(id, s)` ... `$` scale a sub-L-system.
     pub fn cpfg() -> Self {
         let mut table = Self::abop();
         for (name, command) in [
-            (";", Command::Ignore),
-            (",", Command::Ignore),
+            (";", Command::Colour(Sign::Positive)),
+            (",", Command::Colour(Sign::Negative)),
             ("#", Command::Width),
             ("@o", Command::Sphere),
             ("@O", Command::Sphere),
@@ -204,14 +206,14 @@ impl SymbolTable {
         table
     }
 
-    /// L-Py's turtle: ABOP's, where `_` sets the width, `;` and `,` change the colour
-    /// (ignored), and `@O`/`@o` draw spheres.
+    /// L-Py's turtle: ABOP's, where `_` sets the width, `;` and `,` change the colour index,
+    /// and `@O`/`@o` draw spheres.
     pub fn lpy() -> Self {
         let mut table = Self::abop();
         for (name, command) in [
             ("_", Command::Width),
-            (";", Command::Ignore),
-            (",", Command::Ignore),
+            (";", Command::Colour(Sign::Positive)),
+            (",", Command::Colour(Sign::Negative)),
             ("@O", Command::Sphere),
             ("@o", Command::Sphere),
             ("@c", Command::Disc),

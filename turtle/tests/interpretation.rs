@@ -456,3 +456,37 @@ fn cpfg_sub_lsystems_scale_what_they_draw() {
     let length = |k: usize| skeleton.bones[k].start.distance(skeleton.bones[k].end);
     assert!((length(0) - 1.0).abs() < 1e-5 && (length(1) - 2.0).abs() < 1e-5);
 }
+
+/// cpfg's colour index reaches the mesh: each triangle records the index in force where it
+/// was drawn, and a branch's colour ends with the branch.
+#[test]
+fn colour_indices_are_recorded_per_triangle() {
+    use sylva_lsys::{Dialect, LSystem};
+    use sylva_turtle::SymbolTable;
+    let g = LSystem::parse_dialect(
+        "Lsystem: 1\nAxiom: F ;(2) F [;(5) F] F ; F\nendlsystem",
+        Dialect::Cpfg,
+    )
+    .unwrap();
+    let word = g.derive(0, 0).unwrap();
+    let options = TurtleOptions::default().with_symbols(SymbolTable::for_dialect(Dialect::Cpfg));
+    let mut builder = MeshBuilder::new(&options);
+    interpret(&word, &options, &mut builder).unwrap();
+    let coloured = builder.finish();
+    assert_eq!(coloured.bark_colours.len(), coloured.bark.len() / 3);
+    // Runs of one colour in drawing order.
+    let mut runs: Vec<u32> = Vec::new();
+    for &c in &coloured.bark_colours {
+        if runs.last() != Some(&c) {
+            runs.push(c);
+        }
+    }
+    assert_eq!(runs, [0, 2, 5, 2, 3]);
+    let mut obj = Vec::new();
+    write_obj(&coloured, &mut obj).unwrap();
+    let obj = String::from_utf8(obj).unwrap();
+    assert!(obj.contains("usemtl colour_5"), "{obj}");
+    // A grammar that never changes colour leaves the lists empty.
+    let plain = mesh("F[+F]F", &TurtleOptions::default());
+    assert!(plain.bark_colours.is_empty() && plain.leaf_colours.is_empty());
+}
