@@ -37,6 +37,7 @@ mod hash;
 mod heightmap;
 mod io;
 mod mesh;
+mod raycast;
 mod smooth;
 
 pub use diamond_square::DiamondSquare;
@@ -47,4 +48,5 @@ pub use glam;
 pub use heightmap::{HeightStats, Heightmap, MAX_LEVELS};
 pub use io::HeightRange;
 pub use mesh::{TerrainMesh, TerrainVertex};
+pub use raycast::RayHit;
 pub use smooth::{EdgeMode, MAX_SIGMA};
