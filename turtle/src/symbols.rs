@@ -74,6 +74,17 @@ pub enum Command {
     Ignore,
 }
 
+/// What cpfg and L-Py both mean beyond ABOP: colour indices, spheres, discs and tropism.
+const VLAB_COMMON: &[(&str, Command)] = &[
+    (";", Command::Colour(Sign::Positive)),
+    (",", Command::Colour(Sign::Negative)),
+    ("@o", Command::Sphere),
+    ("@O", Command::Sphere),
+    ("@c", Command::Disc),
+    ("@Tp", Command::TropismDirection),
+    ("@Ts", Command::TropismSusceptibility),
+];
+
 /// Direction of a rotation command.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Sign {
@@ -179,20 +190,12 @@ impl SymbolTable {
     /// and `@Gs`/`@Gc`/`@Ge` generalized cylinders draw, `@v` rolls to horizontal, and
     /// `?(id, s)` ... `$` scale a sub-L-system.
     pub fn cpfg() -> Self {
-        let mut table = Self::abop();
-        for (name, command) in [
-            (";", Command::Colour(Sign::Positive)),
-            (",", Command::Colour(Sign::Negative)),
+        Self::abop().with(VLAB_COMMON).with(&[
             ("#", Command::Width),
-            ("@o", Command::Sphere),
-            ("@O", Command::Sphere),
-            ("@c", Command::Disc),
             ("@Gs", Command::CurveStart),
             ("@Gc", Command::CurvePoint),
             ("@Gt", Command::Ignore),
             ("@Ge", Command::CurveEnd),
-            ("@Tp", Command::TropismDirection),
-            ("@Ts", Command::TropismSusceptibility),
             ("@v", Command::RollToHorizontal),
             ("?", Command::SubStart),
             ("$", Command::SubEnd),
@@ -200,29 +203,23 @@ impl SymbolTable {
             ("?H", Command::Query),
             ("?L", Command::Query),
             ("?U", Command::Query),
-        ] {
-            table.set(name, command);
-        }
-        table
+        ])
     }
 
     /// L-Py's turtle: ABOP's, where `_` sets the width, `;` and `,` change the colour index,
     /// and `@O`/`@o` draw spheres.
     pub fn lpy() -> Self {
-        let mut table = Self::abop();
-        for (name, command) in [
-            ("_", Command::Width),
-            (";", Command::Colour(Sign::Positive)),
-            (",", Command::Colour(Sign::Negative)),
-            ("@O", Command::Sphere),
-            ("@o", Command::Sphere),
-            ("@c", Command::Disc),
-            ("@Tp", Command::TropismDirection),
-            ("@Ts", Command::TropismSusceptibility),
-        ] {
-            table.set(name, command);
+        Self::abop()
+            .with(VLAB_COMMON)
+            .with(&[("_", Command::Width)])
+    }
+
+    /// This table with `entries` set.
+    fn with(mut self, entries: &[(&str, Command)]) -> Self {
+        for &(name, command) in entries {
+            self.set(name, command);
         }
-        table
+        self
     }
 
     /// The table of the notation a grammar was read from ([`sylva_lsys::LSystem::dialect`]).

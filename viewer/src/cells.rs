@@ -353,7 +353,7 @@ impl Cells {
         // Keep what is wanted, what stands in for a wanted cell not here yet, and what is
         // within reach of its level plus a margin.
         let wanted_keys: BTreeMap<CellKey, f32> = wanted.iter().map(|&(d, k)| (k, d)).collect();
-        let standing_in: Vec<CellKey> = wanted
+        let standing_in: std::collections::BTreeSet<CellKey> = wanted
             .iter()
             .filter(|(_, k)| !self.resident.contains_key(k))
             .map(|(_, k)| k.other_level())

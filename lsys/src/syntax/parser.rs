@@ -50,6 +50,19 @@ impl Scope for Names<'_> {
     }
 }
 
+impl GrammarParser {
+    /// The names an expression of this grammar sees, with `vars` as the production's
+    /// parameters.
+    fn names<'a>(&'a self, vars: &'a HashMap<String, u16>) -> Names<'a> {
+        Names {
+            constants: &self.values,
+            vars,
+            degrees: self.dialect == Dialect::Cpfg,
+            globals: &self.globals,
+        }
+    }
+}
+
 /// No formal parameters: the scope of `#define`, weights and the axiom.
 fn no_vars() -> &'static HashMap<String, u16> {
     static EMPTY: std::sync::OnceLock<HashMap<String, u16>> = std::sync::OnceLock::new();
@@ -445,12 +458,7 @@ impl GrammarParser {
                 let Some(name) = cur.ident() else {
                     return Err(cur.error("expected a constant name after #define"));
                 };
-                let scope = Names {
-                    constants: &self.values,
-                    vars: no_vars(),
-                    degrees: self.dialect == Dialect::Cpfg,
-                    globals: &self.globals,
-                };
+                let scope = self.names(no_vars());
                 let value = parse_expr(cur, &scope)?;
                 if !cur.at_end() {
                     return Err(cur.error(format!(
@@ -558,12 +566,11 @@ impl GrammarParser {
                 Ok(())
             }
             Some(name @ ("decomposition" | "homomorphism")) => {
-                let (section, set) = if name == "decomposition" {
-                    (Section::Decomposition, 0)
+                self.section = if name == "decomposition" {
+                    Section::Decomposition
                 } else {
-                    (Section::Homomorphism, 1)
+                    Section::Homomorphism
                 };
-                self.section = section;
                 cur.skip_ws();
                 let depth = if cur.at_end() {
                     DEFAULT_MAX_DEPTH
@@ -575,7 +582,7 @@ impl GrammarParser {
                     }
                     self.depth(cur)?
                 };
-                self.rule_sets[set].max_depth = depth;
+                self.set_max_depth(depth);
                 Ok(())
             }
             _ => Err(cur.error_at(
@@ -592,12 +599,7 @@ impl GrammarParser {
     ) -> Result<Vec<crate::model::statement::Statement>, ParseError> {
         cur.eat(':');
         cur.skip_ws();
-        let scope = Names {
-            constants: &self.values,
-            vars: no_vars(),
-            degrees: self.dialect == Dialect::Cpfg,
-            globals: &self.globals,
-        };
+        let scope = self.names(no_vars());
         parse_block(cur, &scope, no_vars())
     }
 
@@ -605,12 +607,7 @@ impl GrammarParser {
     pub(crate) fn constant_value(&mut self, cur: &mut Cursor<'_>) -> Result<f64, ParseError> {
         cur.skip_ws();
         let at = cur.pos();
-        let scope = Names {
-            constants: &self.values,
-            vars: no_vars(),
-            degrees: self.dialect == Dialect::Cpfg,
-            globals: &self.globals,
-        };
+        let scope = self.names(no_vars());
         let value = parse_expr(cur, &scope)?;
         if !cur.at_end() {
             return Err(cur.error(format!(
@@ -842,12 +839,7 @@ impl GrammarParser {
         } else {
             Vec::new()
         };
-        let scope = Names {
-            constants: &self.values,
-            vars: &names,
-            degrees: self.dialect == Dialect::Cpfg,
-            globals: &self.globals,
-        };
+        let scope = self.names(&names);
         // Blocks: `pred : {pre} condition {post} -> successor`, each part optional.
         let block = |cur: &mut Cursor<'_>| {
             cur.skip_ws();
@@ -882,15 +874,7 @@ impl GrammarParser {
         let weight = if cur.eat(':') {
             cur.skip_ws();
             let at = cur.pos();
-            let e = parse_expr(
-                cur,
-                &Names {
-                    constants: &self.values,
-                    vars: no_vars(),
-                    degrees: self.dialect == Dialect::Cpfg,
-                    globals: &self.globals,
-                },
-            )?;
+            let e = parse_expr(cur, &self.names(no_vars()))?;
             let w = e.eval_constant(0.0, 0);
             if !e.is_constant() || !w.is_finite() || w < 0.0 {
                 return Err(cur.error_at(
@@ -955,12 +939,7 @@ impl GrammarParser {
             if !long && c == '?' {
                 cur.bump();
                 cur.expect('(', "'(' after '?'")?;
-                let scope = Names {
-                    constants: &self.values,
-                    vars: names,
-                    degrees: self.dialect == Dialect::Cpfg,
-                    globals: &self.globals,
-                };
+                let scope = self.names(names);
                 let probability = parse_expr(cur, &scope)?;
                 cur.expect(')', "')' after the choice's probability")?;
                 let mut branch = |cur: &mut Cursor<'_>| -> Result<Vec<SuccessorItem>, ParseError> {
@@ -979,12 +958,7 @@ impl GrammarParser {
                 continue;
             }
             let symbol = self.symbol(cur)?;
-            let scope = Names {
-                constants: &self.values,
-                vars: names,
-                degrees: self.dialect == Dialect::Cpfg,
-                globals: &self.globals,
-            };
+            let scope = self.names(names);
             let mut args = Vec::new();
             if cur.eat('(') {
                 loop {
