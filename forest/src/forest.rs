@@ -13,6 +13,7 @@ use sylva_base::hash::{mix, unit_f32 as unit};
 
 use crate::density::{Candidate, DensityModel, Rect};
 use crate::error::ForestError;
+use crate::paint::{PaintLayer, check_layer};
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
 
@@ -71,6 +72,9 @@ pub struct ForestConfig {
     pub spacing_factor: f32,
     /// Seedlings proposed per patch.
     pub seedlings_per_patch: u32,
+    /// A painted forest's layer: where each species grows (see [`PaintLayer`]); `None` grows
+    /// every species everywhere by weight.
+    pub paint: Option<Arc<PaintLayer>>,
 }
 
 impl ForestConfig {
@@ -84,6 +88,7 @@ impl ForestConfig {
             scale_variation: 0.1,
             spacing_factor: 1.0,
             seedlings_per_patch: 8,
+            paint: None,
         }
     }
 }
@@ -186,6 +191,9 @@ impl ForestBuilder {
                 "scale variation {} must be in [0, 1)",
                 config.scale_variation
             )));
+        }
+        if let Some(layer) = &config.paint {
+            check_layer(config.species.len(), layer)?;
         }
         let canopies = config
             .species
@@ -305,10 +313,25 @@ impl ForestBuilder {
         &mut self.density
     }
 
-    /// The trees of `region` on `terrain`: a pure function of (seed, region), seamless between
-    /// adjacent regions. Trees outside the terrain's bounds are dropped.
+    /// The trees of `region` on `terrain`: a pure function of (seed, paint layer, region),
+    /// seamless between adjacent regions. Trees outside the terrain's bounds are dropped.
     pub fn trees(&self, terrain: &dyn HeightField, region: Rect) -> Vec<CompactTree> {
-        self.trees_with(&self.density, terrain, region)
+        match &self.config.paint {
+            Some(layer) => self.trees_with(&self.density.painted(layer), terrain, region),
+            None => self.trees_with(&self.density, terrain, region),
+        }
+    }
+
+    /// This builder with another paint layer (or none), sharing its caches: cheap, so a
+    /// painting tool can hand each edit's layer to streaming and export. An error when the
+    /// layer does not have one channel per species.
+    pub fn with_paint(&self, paint: Option<Arc<PaintLayer>>) -> Result<ForestBuilder, ForestError> {
+        if let Some(layer) = &paint {
+            check_layer(self.config.species.len(), layer)?;
+        }
+        let mut builder = self.clone();
+        builder.config.paint = paint;
+        Ok(builder)
     }
 
     /// As [`ForestBuilder::trees`] with another density model.
@@ -367,6 +390,11 @@ impl ForestBuilder {
                 })
             })
             .collect()
+    }
+
+    /// Sets the paint layer, already checked against the species (by a canvas).
+    pub(crate) fn set_paint(&mut self, layer: Arc<PaintLayer>) {
+        self.config.paint = Some(layer);
     }
 
     /// Builds the forest of `region` on `terrain`.

@@ -39,6 +39,7 @@ mod density;
 mod error;
 mod forest;
 mod gltf;
+mod paint;
 mod patch;
 mod species;
 mod stand;
@@ -55,6 +56,11 @@ pub use forest::{
 pub use gltf::{
     CHUNK_BYTES, GlbStats, GltfOptions, MAX_NODE_PLACEMENTS, write_glb, write_shared_geometry,
     write_stand_glb,
+};
+pub use paint::{
+    Brush, BrushAction, Change, FULL, ForestPainter, MASK_TEXT_KEY, MAX_BRUSH_RADIUS,
+    MAX_PAINT_VALUES, MAX_UNDO, PAINT_TILE_PATCHES, PaintCanvas, PaintLayer, PaintedDensity,
+    StrokeReport, load_masks, mask_file_name, save_masks,
 };
 pub use patch::{PatchDensity, PatchSpecies};
 pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};

@@ -56,7 +56,9 @@ struct Canopy {
     present: bool,
 }
 
-const RINGS: i64 = 3;
+/// How far, in patches, a patch's trees look: a seedling looks at canopy trees one ring away,
+/// whose fate depends on their own neighbours' moves, which depend on theirs.
+pub(crate) const RINGS: i64 = 3;
 /// Side, in patches, of the blocks a large region is processed in.
 const BLOCK: i64 = 128;
 const TRIES: u64 = 16;
@@ -127,16 +129,25 @@ impl PatchDensity {
     }
 
     /// Canopy trees of the patches in `[i0, i1] x [j0, j1]`, conflicts resolved; row-major.
-    fn canopies(&self, seed: u64, i0: i64, i1: i64, j0: i64, j1: i64) -> Vec<Canopy> {
+    fn canopies<C: Composition + ?Sized>(
+        &self,
+        composition: &C,
+        seed: u64,
+        (i0, i1, j0, j1): (i64, i64, i64, i64),
+    ) -> Vec<Canopy> {
         let w = (i1 - i0 + 1) as usize;
         let at = |i: i64, j: i64| ((j - j0) as usize) * w + (i - i0) as usize;
         let original: Vec<Canopy> = (j0..=j1)
             .flat_map(|j| (i0..=i1).map(move |i| (i, j)))
-            .map(|(i, j)| Canopy {
-                position: self.spot(seed, i, j, 0),
-                species: self.pick_species(hash(seed, i, j, 1)),
-                priority: hash(seed, i, j, 2),
-                present: true,
+            .map(|(i, j)| {
+                let position = self.spot(seed, i, j, 0);
+                let species = composition.choose(self, position, hash(seed, i, j, 1));
+                Canopy {
+                    position,
+                    species: species.unwrap_or(0),
+                    priority: hash(seed, i, j, 2),
+                    present: species.is_some(),
+                }
             })
             .collect();
         let neighbours = |i: i64, j: i64| {
@@ -153,15 +164,22 @@ impl PatchDensity {
         for j in j0 + 1..j1 {
             for i in i0 + 1..i1 {
                 let t = original[at(i, j)];
-                if !neighbours(i, j).any(|(a, b)| {
-                    let n = &original[at(a, b)];
-                    n.priority > t.priority && clash(&t, t.position, n)
-                }) {
+                if !t.present
+                    || !neighbours(i, j).any(|(a, b)| {
+                        let n = &original[at(a, b)];
+                        n.priority > t.priority && clash(&t, t.position, n)
+                    })
+                {
                     continue;
                 }
+                // A painted tree moves only where its species may stand.
+                let draw = hash(seed, i, j, 1);
                 let spot = (1..=TRIES)
                     .map(|k| self.spot(seed, i, j, 2 + k))
-                    .find(|&p| neighbours(i, j).all(|(a, b)| !clash(&t, p, &original[at(a, b)])));
+                    .find(|&p| {
+                        composition.choose(self, p, draw) == Some(t.species)
+                            && neighbours(i, j).all(|(a, b)| !clash(&t, p, &original[at(a, b)]))
+                    });
                 let m = &mut moved[at(i, j)];
                 match spot {
                     Some(p) => m.position = p,
@@ -190,6 +208,35 @@ impl PatchDensity {
 
 impl DensityModel for PatchDensity {
     fn candidates(&self, region: Rect, seed: u64, out: &mut Vec<Candidate>) {
+        self.candidates_by(&ByWeight, region, seed, out);
+    }
+}
+
+/// Which species, if any, may stand at a spot: the species weights everywhere, or a paint
+/// layer's mix at the spot.
+pub(crate) trait Composition {
+    /// The species of a tree proposed at `p`, drawn from `draw`, or `None` for no tree.
+    fn choose(&self, density: &PatchDensity, p: Vec2, draw: u64) -> Option<usize>;
+}
+
+/// Every spot takes a tree, its species drawn by the species' weights.
+struct ByWeight;
+
+impl Composition for ByWeight {
+    fn choose(&self, density: &PatchDensity, _: Vec2, draw: u64) -> Option<usize> {
+        Some(density.pick_species(draw))
+    }
+}
+
+impl PatchDensity {
+    /// The candidates of `region` with species (and presence) decided by `composition`.
+    pub(crate) fn candidates_by<C: Composition + ?Sized>(
+        &self,
+        composition: &C,
+        region: Rect,
+        seed: u64,
+        out: &mut Vec<Candidate>,
+    ) {
         let usable_patch = self.patch.is_finite() && self.patch > 0.0;
         if region.is_empty() || !usable_patch || !self.species.iter().any(|s| s.weight > 0.0) {
             return;
@@ -211,6 +258,7 @@ impl DensityModel for PatchDensity {
                     // Each block emits the trees of its own patches, so none is lost or
                     // doubled at block borders.
                     self.candidates_in(
+                        composition,
                         region,
                         seed,
                         out,
@@ -222,14 +270,13 @@ impl DensityModel for PatchDensity {
             }
             return;
         }
-        self.candidates_in(region, seed, out, (ri0, ri1, rj0, rj1));
+        self.candidates_in(composition, region, seed, out, (ri0, ri1, rj0, rj1));
     }
-}
 
-impl PatchDensity {
     /// Candidates of `region`, whose patches are `cells` = (i0, i1, j0, j1) inclusive.
-    fn candidates_in(
+    fn candidates_in<C: Composition + ?Sized>(
         &self,
+        composition: &C,
         region: Rect,
         seed: u64,
         out: &mut Vec<Candidate>,
@@ -237,7 +284,7 @@ impl PatchDensity {
     ) {
         let (ri0, ri1, rj0, rj1) = cells;
         let (i0, i1, j0, j1) = (ri0 - RINGS, ri1 + RINGS, rj0 - RINGS, rj1 + RINGS);
-        let canopies = self.canopies(seed, i0, i1, j0, j1);
+        let canopies = self.canopies(composition, seed, (i0, i1, j0, j1));
         let w = (i1 - i0 + 1) as usize;
         let at = |i: i64, j: i64| ((j - j0) as usize) * w + (i - i0) as usize;
         for j in rj0..=rj1 {
@@ -257,7 +304,10 @@ impl PatchDensity {
                     if !region.contains(p) {
                         continue;
                     }
-                    let species = self.pick_species(hash(seed, i, j, 2000 + k));
+                    let Some(species) = composition.choose(self, p, hash(seed, i, j, 2000 + k))
+                    else {
+                        continue;
+                    };
                     let nearest = (-1..=1)
                         .flat_map(|dj| (-1..=1).map(move |di| (i + di, j + dj)))
                         .map(|(a, b)| canopies[at(a, b)])

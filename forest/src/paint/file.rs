@@ -1,0 +1,241 @@
+//! Paint layers on disk: one 16-bit grayscale PNG mask per species, in one directory.
+//!
+//! The format: a directory holding `<species name>.png` for each painted species (the name
+//! with every character other than letters, digits, `-`, `_` and `.` turned into `_`; see
+//! [`mask_file_name`]). Each mask is a 16-bit grayscale PNG of the layer's `width x depth`
+//! cells; a pixel is that species' density in the cell, 0 (none) to 65535 (full); the
+//! image's first row is the layer's lowest z, its first column the lowest x. The masks
+//! stretch over the terrain's rectangle; a `tEXt` chunk [`MASK_TEXT_KEY`] holds that
+//! rectangle (`min_x min_z max_x max_z`) and, when present, must match the terrain's. A
+//! species without a file has no trees painted; every file must name a species.
+
+use std::collections::BTreeMap;
+use std::io::BufWriter;
+use std::path::Path;
+
+use crate::density::Rect;
+use crate::error::ForestError;
+use crate::paint::layer::{MAX_PAINT_VALUES, PaintLayer};
+
+/// The PNG text key holding the rectangle a mask covers.
+pub const MASK_TEXT_KEY: &str = "sylva:paint";
+
+/// The file name of a species' mask.
+///
+/// ```
+/// assert_eq!(sylva_forest::mask_file_name("kenwood-leafy"), "kenwood-leafy.png");
+/// assert_eq!(sylva_forest::mask_file_name("white oak/old"), "white_oak_old.png");
+/// ```
+pub fn mask_file_name(species: &str) -> String {
+    let stem: String = species
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("{stem}.png")
+}
+
+fn file_names(species: &[&str]) -> Result<Vec<String>, ForestError> {
+    let names: Vec<String> = species.iter().map(|s| mask_file_name(s)).collect();
+    for (i, a) in names.iter().enumerate() {
+        if let Some(j) = names[..i].iter().position(|b| b == a) {
+            return Err(ForestError::BadParameter(format!(
+                "species '{}' and '{}' would share the mask file {a}; rename one",
+                species[j], species[i]
+            )));
+        }
+    }
+    Ok(names)
+}
+
+fn io_error(path: &Path, e: impl std::fmt::Display) -> ForestError {
+    ForestError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    }
+}
+
+/// Writes one mask per species of `layer` into `dir` (created if missing); `species` names
+/// the layer's channels in order. Species with nothing painted get a file too, so a saved
+/// layer reads back exactly.
+pub fn save_masks(layer: &PaintLayer, species: &[&str], dir: &Path) -> Result<(), ForestError> {
+    if species.len() != layer.species() {
+        return Err(ForestError::BadParameter(format!(
+            "{} species names for a layer of {} species",
+            species.len(),
+            layer.species()
+        )));
+    }
+    let names = file_names(species)?;
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    let b = layer.bounds();
+    for (s, name) in names.iter().enumerate() {
+        let path = dir.join(name);
+        let file = std::fs::File::create(&path).map_err(|e| io_error(&path, e))?;
+        let mut encoder = png::Encoder::new(
+            BufWriter::new(file),
+            layer.width() as u32,
+            layer.depth() as u32,
+        );
+        encoder.set_color(png::ColorType::Grayscale);
+        encoder.set_depth(png::BitDepth::Sixteen);
+        encoder
+            .add_text_chunk(
+                MASK_TEXT_KEY.to_string(),
+                format!("{} {} {} {}", b.min.x, b.min.y, b.max.x, b.max.y),
+            )
+            .map_err(|e| io_error(&path, e))?;
+        let mut writer = encoder.write_header().map_err(|e| io_error(&path, e))?;
+        let data: Vec<u8> = layer
+            .channel(s)
+            .into_iter()
+            .flat_map(u16::to_be_bytes)
+            .collect();
+        writer
+            .write_image_data(&data)
+            .map_err(|e| io_error(&path, e))?;
+        writer.finish().map_err(|e| io_error(&path, e))?;
+    }
+    Ok(())
+}
+
+/// One mask read: its size and values.
+struct Mask {
+    width: usize,
+    depth: usize,
+    values: Vec<u16>,
+}
+
+fn read_mask(path: &Path, bounds: Rect, species: usize) -> Result<Mask, ForestError> {
+    let file = std::fs::File::open(path).map_err(|e| io_error(path, e))?;
+    let decoder = png::Decoder::new(std::io::BufReader::new(file));
+    let mut reader = decoder.read_info().map_err(|e| io_error(path, e))?;
+    let info = reader.info();
+    if info.color_type != png::ColorType::Grayscale || info.bit_depth != png::BitDepth::Sixteen {
+        return Err(io_error(
+            path,
+            format!(
+                "a mask must be a 16-bit grayscale PNG, this is {:?} at {} bits",
+                info.color_type, info.bit_depth as u8
+            ),
+        ));
+    }
+    let (width, depth) = (info.width as usize, info.height as usize);
+    if width * depth * species > MAX_PAINT_VALUES {
+        return Err(io_error(
+            path,
+            format!("a mask of {width} x {depth} for {species} species is too large"),
+        ));
+    }
+    if let Some(text) = info
+        .uncompressed_latin1_text
+        .iter()
+        .find(|t| t.keyword == MASK_TEXT_KEY)
+    {
+        let v: Vec<f32> = text
+            .text
+            .split_whitespace()
+            .filter_map(|s| s.parse().ok())
+            .collect();
+        let want = [bounds.min.x, bounds.min.y, bounds.max.x, bounds.max.y];
+        let tolerance = 1e-3 * (bounds.max - bounds.min).max_element().max(1.0);
+        if v.len() != 4 || v.iter().zip(want).any(|(a, b)| (a - b).abs() > tolerance) {
+            return Err(io_error(
+                path,
+                format!(
+                    "the mask covers {} but the terrain covers {} {} {} {} (min x, min z, max x, max z)",
+                    text.text, want[0], want[1], want[2], want[3]
+                ),
+            ));
+        }
+    }
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| io_error(path, "image too large"))?;
+    let mut buf = vec![0u8; size];
+    reader.next_frame(&mut buf).map_err(|e| io_error(path, e))?;
+    let values = buf[..width * depth * 2]
+        .chunks_exact(2)
+        .map(|b| u16::from_be_bytes([b[0], b[1]]))
+        .collect();
+    Ok(Mask {
+        width,
+        depth,
+        values,
+    })
+}
+
+/// Reads the masks in `dir` as a layer over `bounds` (the terrain's rectangle) for
+/// `species` (the forest's species names, in order). Errors, naming the file, when a mask is
+/// not 16-bit grayscale, the masks differ in size, a mask's stored rectangle is not the
+/// terrain's, a file names no species, or no species has a mask.
+pub fn load_masks(dir: &Path, species: &[&str], bounds: Rect) -> Result<PaintLayer, ForestError> {
+    let names = file_names(species)?;
+    let entries = std::fs::read_dir(dir).map_err(|e| io_error(dir, e))?;
+    let mut found: BTreeMap<usize, std::path::PathBuf> = BTreeMap::new();
+    for entry in entries {
+        let path = entry.map_err(|e| io_error(dir, e))?.path();
+        if path.extension().and_then(|e| e.to_str()) != Some("png") {
+            continue;
+        }
+        let file = path
+            .file_name()
+            .and_then(|f| f.to_str())
+            .unwrap_or_default();
+        match names.iter().position(|n| n == file) {
+            Some(s) => {
+                found.insert(s, path);
+            }
+            None => {
+                return Err(io_error(
+                    &path,
+                    format!(
+                        "this mask names no species of the forest (expected {})",
+                        names.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    if found.is_empty() {
+        return Err(io_error(
+            dir,
+            format!(
+                "no masks here (expected one or more of {})",
+                names.join(", ")
+            ),
+        ));
+    }
+    let mut layer: Option<PaintLayer> = None;
+    for (&s, path) in &found {
+        let mask = read_mask(path, bounds, species.len())?;
+        let layer = match &mut layer {
+            Some(l) => l,
+            None => layer.insert(PaintLayer::with_cells(
+                bounds,
+                mask.width,
+                mask.depth,
+                species.len(),
+            )?),
+        };
+        if (mask.width, mask.depth) != (layer.width(), layer.depth()) {
+            return Err(io_error(
+                path,
+                format!(
+                    "this mask is {} x {}, the others {} x {}; a layer's masks share one size",
+                    mask.width,
+                    mask.depth,
+                    layer.width(),
+                    layer.depth()
+                ),
+            ));
+        }
+        layer.set_channel(s, &mask.values)?;
+    }
+    layer.ok_or_else(|| io_error(dir, "no masks"))
+}
