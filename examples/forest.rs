@@ -22,6 +22,10 @@
 //! proxies, fine tiles of branch instances). `--tile c_X_Y` or `--tile f_X_Y` writes that tile
 //! alone (the same bytes as the whole run writes for it) and `--tileset-only` the root files
 //! alone, so that tiles can be jobs on many machines.
+//!
+//! `--paint DIR` grows a painted forest: the 16-bit PNG masks in DIR (one per species, named
+//! after it, as the paint example and the viewer's painting tool save them) decide where each
+//! species grows; everything else (spacing, seedlings, export) is as for a generated forest.
 
 mod common;
 
@@ -32,39 +36,17 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 use sylva::forest::{
     ForestBuilder, ForestConfig, GltfOptions, Level, PlacementBlock, Rect, Species, TileId,
-    TileScheme, TileStats, TilesetOptions, tile_path, write_glb, write_tile, write_tileset,
+    TileScheme, TileStats, TilesetOptions, load_masks, tile_path, write_glb, write_tile,
+    write_tileset,
 };
 use sylva::instancing::Assembler;
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{DiamondSquare, EdgeMode, HeightRange, Heightmap};
+use sylva::terrain::{HeightField, HeightRange, Heightmap};
 
 const USAGE: &str = "usage: forest [--area METRES | --trees N | --terrain HEIGHTS.png|.raw [--spacing M] [--height-range LO,HI]] \
                      [--density TREES_PER_HA] [--species FILE]... [--budget-mb MB] [--seed S] [--out forest.glb] \
                      [--heightmap forest_height.png] [--tiles DIR [--tile-size M] [--tile c_X_Y|f_X_Y | --tileset-only] \
-                     [--origin LON,LAT]] [--no-instancing] [--stats]";
-
-const DEFAULT_SPECIES: [(&str, &str); 5] = [
-    (
-        "examples/species/oak.species",
-        include_str!("species/oak.species"),
-    ),
-    (
-        "examples/species/birch.species",
-        include_str!("species/birch.species"),
-    ),
-    (
-        "examples/species/spruce.species",
-        include_str!("species/spruce.species"),
-    ),
-    (
-        "examples/species/pine.species",
-        include_str!("species/pine.species"),
-    ),
-    (
-        "examples/species/hazel.species",
-        include_str!("species/hazel.species"),
-    ),
-];
+                     [--origin LON,LAT]] [--no-instancing] [--paint MASKS_DIR] [--stats]";
 
 struct Args {
     area: Option<f32>,
@@ -85,6 +67,7 @@ struct Args {
     tileset_only: bool,
     origin: (f64, f64),
     no_instancing: bool,
+    paint: Option<String>,
 }
 
 fn parse() -> Result<Args, String> {
@@ -107,6 +90,7 @@ fn parse() -> Result<Args, String> {
         tileset_only: false,
         origin: (8.54, 47.37),
         no_instancing: false,
+        paint: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -135,6 +119,7 @@ fn parse() -> Result<Args, String> {
             "--tile" => a.tile = Some(common::parse_value("--tile", it.next())?),
             "--tileset-only" => a.tileset_only = true,
             "--no-instancing" => a.no_instancing = true,
+            "--paint" => a.paint = Some(common::parse_value("--paint", it.next())?),
             "--origin" => {
                 let v: String = common::parse_value("--origin", it.next())?;
                 let pair = v
@@ -188,14 +173,14 @@ fn phase<T>(quiet: bool, message: &str, work: impl FnOnce() -> T) -> (T, Duratio
 fn run() -> Result<(), String> {
     let args = parse()?;
     let species = if args.species.is_empty() {
-        DEFAULT_SPECIES
-            .iter()
-            .map(|(path, text)| Species::parse_file(text, Path::new(path)))
-            .collect::<Result<Vec<_>, _>>()
+        common::default_species()?
     } else {
-        args.species.iter().map(Species::from_file).collect()
-    }
-    .map_err(|e| e.to_string())?;
+        args.species
+            .iter()
+            .map(Species::from_file)
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| e.to_string())?
+    };
     let mut config = ForestConfig::new(species);
     config.seed = args.seed;
     config.budget = args
@@ -238,14 +223,7 @@ fn run() -> Result<(), String> {
             let mesh = map.mesh(1).map_err(|e| e.to_string())?;
             return Ok((map, mesh));
         }
-        let ds = DiamondSquare::new(257)
-            .with_seed(args.seed)
-            .with_spacing(side / 256.0)
-            .with_roughness(0.75)
-            .with_amplitude(side * 0.06);
-        let mut map = ds.generate().map_err(|e| e.to_string())?;
-        map.smooth(2.0, EdgeMode::Mirror)
-            .map_err(|e| e.to_string())?;
+        let map = common::default_terrain(args.seed, side)?;
         let mesh = map.mesh(1).map_err(|e| e.to_string())?;
         Ok((map, mesh))
     });
@@ -257,6 +235,21 @@ fn run() -> Result<(), String> {
     };
 
     let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+    // A painted forest: the masks stretch over the terrain and decide where each species grows.
+    if let Some(dir) = &args.paint {
+        let names: Vec<&str> = builder
+            .config()
+            .species
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        let (lo, hi) = map.bounds();
+        let layer =
+            load_masks(Path::new(dir), &names, Rect::new(lo, hi)).map_err(|e| e.to_string())?;
+        builder = builder
+            .with_paint(Some(layer.into()))
+            .map_err(|e| e.to_string())?;
+    }
     if let Some(dir) = &args.tiles {
         return write_tiles(&args, &builder, &map, region, Path::new(dir));
     }

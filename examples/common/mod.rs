@@ -41,3 +41,52 @@ pub(crate) fn finish(result: Result<(), String>) -> std::process::ExitCode {
         }
     }
 }
+
+/// The forest example's five species (oak, birch, spruce, pine, hazel), read from the species
+/// files compiled in, so the examples run from any folder.
+pub(crate) fn default_species() -> Result<Vec<sylva::forest::Species>, String> {
+    const FILES: [(&str, &str); 5] = [
+        (
+            "examples/species/oak.species",
+            include_str!("../species/oak.species"),
+        ),
+        (
+            "examples/species/birch.species",
+            include_str!("../species/birch.species"),
+        ),
+        (
+            "examples/species/spruce.species",
+            include_str!("../species/spruce.species"),
+        ),
+        (
+            "examples/species/pine.species",
+            include_str!("../species/pine.species"),
+        ),
+        (
+            "examples/species/hazel.species",
+            include_str!("../species/hazel.species"),
+        ),
+    ];
+    FILES
+        .iter()
+        .map(|(path, text)| {
+            sylva::forest::Species::parse_file(text, std::path::Path::new(path))
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
+/// The forest example's terrain: smoothed diamond-square, 257 samples a side over `side`
+/// metres, relief 6% of the side.
+pub(crate) fn default_terrain(seed: u64, side: f32) -> Result<sylva::terrain::Heightmap, String> {
+    use sylva::terrain::{DiamondSquare, EdgeMode};
+    let ds = DiamondSquare::new(257)
+        .with_seed(seed)
+        .with_spacing(side / 256.0)
+        .with_roughness(0.75)
+        .with_amplitude(side * 0.06);
+    let mut map = ds.generate().map_err(|e| e.to_string())?;
+    map.smooth(2.0, EdgeMode::Mirror)
+        .map_err(|e| e.to_string())?;
+    Ok(map)
+}
