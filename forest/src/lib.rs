@@ -47,6 +47,7 @@ mod stream;
 mod texture;
 mod tiles;
 mod variety;
+mod walk;
 
 pub use density::{Candidate, DensityModel, Rect};
 pub use error::ForestError;
@@ -74,3 +75,4 @@ pub use tiles::{
     write_tile, write_tileset,
 };
 pub use variety::{tree_tint, tree_wind};
+pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};

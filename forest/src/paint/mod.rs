@@ -8,6 +8,7 @@ mod file;
 mod layer;
 mod painter;
 
+pub(crate) use brush::distance_to_segment;
 pub use brush::{Brush, BrushAction, MAX_BRUSH_RADIUS};
 pub use canvas::{Change, MAX_UNDO, PaintCanvas};
 pub use file::{MASK_TEXT_KEY, load_masks, mask_file_name, save_masks};
