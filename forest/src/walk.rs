@@ -261,10 +261,10 @@ impl GuidedWalk {
         let positive = [o.step, o.influence, o.arrival, o.turn, o.deviation]
             .iter()
             .all(|v| v.is_finite() && *v > 0.0);
-        if !positive
-            || !(o.repulsion.is_finite() && o.repulsion >= 0.0)
-            || !(o.body.is_finite() && o.body >= 0.0)
-            || !(o.margin.is_finite() && o.margin >= 0.0)
+        let non_negative = [o.repulsion, o.body, o.margin]
+            .iter()
+            .all(|v| v.is_finite() && *v >= 0.0);
+        if !(positive && non_negative)
             || o.step > 10.0
         {
             return Err(ForestError::BadParameter(format!(
