@@ -93,6 +93,12 @@ impl PatchDensity {
         }
     }
 
+    /// How far (metres) a tree's fate reaches: a change to what grows at one spot (a paint
+    /// stroke) can change trees up to this far from it, and no farther.
+    pub fn reach(&self) -> f32 {
+        (RINGS as f32 + 1.0) * self.patch
+    }
+
     /// A species index drawn by weight; only called when some weight is positive, so the
     /// index is always in range.
     fn pick_species(&self, h: u64) -> usize {

@@ -117,8 +117,7 @@ impl Trunks for TrunkGrid {
 /// walker comes near them, so a walk through a world of millions of trees holds only the
 /// trunks around it.
 pub struct ForestTrunks<'a> {
-    builder: &'a ForestBuilder,
-    terrain: &'a dyn HeightField,
+    trees: Box<dyn FnMut(Rect) -> Vec<CompactTree> + 'a>,
     radius: Box<dyn Fn(&CompactTree) -> f32 + 'a>,
     squares: HashMap<(i64, i64), Vec<(Vec2, f32)>>,
 }
@@ -126,48 +125,54 @@ pub struct ForestTrunks<'a> {
 /// Side of the squares [`ForestTrunks`] generates.
 const TRUNK_SQUARE: f32 = 50.0;
 
+/// Most squares [`ForestTrunks`] keeps (a long walk forgets the oldest).
+const MAX_TRUNK_SQUARES: usize = 4096;
+
 impl<'a> ForestTrunks<'a> {
-    /// The trunks of `builder`'s forest on `terrain`, each of radius `radius(tree)`.
+    /// Trunks from `trees`, which gives the trees of a rectangle (as
+    /// [`ForestBuilder::trees`] does), each of radius `radius(tree)`.
     pub fn new(
-        builder: &'a ForestBuilder,
-        terrain: &'a dyn HeightField,
+        trees: impl FnMut(Rect) -> Vec<CompactTree> + 'a,
         radius: impl Fn(&CompactTree) -> f32 + 'a,
     ) -> Self {
         ForestTrunks {
-            builder,
-            terrain,
+            trees: Box::new(trees),
             radius: Box::new(radius),
             squares: HashMap::new(),
         }
     }
 
-    /// A radius for each tree: `canopy` metres for canopy trees, `seedling` for seedlings,
-    /// times the tree's scale.
+    /// The trunks of `builder`'s forest on `terrain`: `canopy` metres across for canopy
+    /// trees, `seedling` for seedlings, times each tree's scale.
     pub fn by_maturity(
         builder: &'a ForestBuilder,
         terrain: &'a dyn HeightField,
         canopy: f32,
         seedling: f32,
     ) -> Self {
-        let variants = builder.variants();
-        ForestTrunks::new(builder, terrain, move |t: &CompactTree| {
-            let young = variants
-                .get(usize::from(t.variant))
-                .is_some_and(|v| v.seedling);
-            t.scale * if young { seedling } else { canopy }
-        })
+        let young: Vec<bool> = builder.variants().iter().map(|v| v.seedling).collect();
+        ForestTrunks::new(
+            move |rect| builder.trees(terrain, rect),
+            move |t: &CompactTree| {
+                let seedling_form = young.get(usize::from(t.variant)).copied().unwrap_or(false);
+                t.scale * if seedling_form { seedling } else { canopy }
+            },
+        )
+    }
+
+    /// Forgets the trunks generated so far (after the forest changed, as painting does).
+    pub fn forget(&mut self) {
+        self.squares.clear();
     }
 
     fn square(&mut self, key: (i64, i64)) -> &[(Vec2, f32)] {
-        let (builder, terrain, radius) = (self.builder, self.terrain, &self.radius);
-        // Far squares are forgotten so a long walk keeps a bounded set.
-        if self.squares.len() > 4096 {
+        if self.squares.len() >= MAX_TRUNK_SQUARES {
             self.squares.clear();
         }
+        let (trees, radius) = (&mut self.trees, &self.radius);
         self.squares.entry(key).or_insert_with(|| {
             let min = Vec2::new(key.0 as f32, key.1 as f32) * TRUNK_SQUARE;
-            builder
-                .trees(terrain, Rect::new(min, min + TRUNK_SQUARE))
+            trees(Rect::new(min, min + TRUNK_SQUARE))
                 .iter()
                 .map(|t| (Vec2::new(t.position[0], t.position[2]), radius(t)))
                 .collect()

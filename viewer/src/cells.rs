@@ -129,10 +129,12 @@ pub(crate) struct Cell {
     pub(crate) sphere: (Vec3, f32),
     /// Trees in the cell.
     pub(crate) trees: usize,
+    /// The version of the forest (see `World::repaint`) it was generated from.
+    pub(crate) version: u64,
 }
 
 impl Cell {
-    fn new(world: &World, placements: Runs, proxies: Runs, trees: usize) -> Cell {
+    fn new(world: &World, placements: Runs, proxies: Runs, trees: usize, version: u64) -> Cell {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         let mut bound = |runs: &Runs, spheres: &mut dyn Iterator<Item = (Vec3, f32)>| {
             for (k, sphere) in spheres.enumerate() {
@@ -155,6 +157,7 @@ impl Cell {
             proxies,
             sphere,
             trees,
+            version,
         }
     }
 
@@ -205,17 +208,19 @@ impl World {
                 variants,
             )
         };
+        let (forest, version) = self.forest();
         if key.level == Level::Coarse {
-            let trees = self.builder.trees(&self.heightmap, rect);
+            let trees = forest.trees(&self.heightmap, rect);
             return Ok(Cell::new(
                 self,
                 Runs::default(),
                 proxies(&trees),
                 trees.len(),
+                version,
             ));
         }
         let (mut tagged, mut trees) = (Vec::new(), Vec::new());
-        self.builder
+        forest
             .stream(&self.heightmap, rect, &mut |block: &PlacementBlock| {
                 for p in &block.placements {
                     let Some(group) = self
@@ -250,7 +255,13 @@ impl World {
             })
             .map_err(|e| e.to_string())?;
         let placements = Runs::gather(tagged, self.groups.len());
-        Ok(Cell::new(self, placements, proxies(&trees), trees.len()))
+        Ok(Cell::new(
+            self,
+            placements,
+            proxies(&trees),
+            trees.len(),
+            version,
+        ))
     }
 
     /// The cells a camera at `eye` wants, nearest first: fine within [`LOD_DISTANCE`] (or
@@ -313,7 +324,14 @@ pub(crate) struct Cells {
     /// the order cells arrived in).
     drawn: Vec<CellKey>,
     loader: Option<Loader>,
+    /// The forest's repaints: each version and the rectangle whose trees it changed; a cell
+    /// of an older version over such a rectangle (one the loader was making while the
+    /// painting tool painted) is stale.
+    repaints: Vec<(u64, Rect)>,
 }
+
+/// Most repaints remembered (the loader holds at most a few cells in hand).
+const MAX_REPAINTS: usize = 1024;
 
 impl Cells {
     /// Streams the cells around `eye`: generates those missing (waiting for them all with
@@ -346,8 +364,11 @@ impl Cells {
                 .loader
                 .get_or_insert_with(|| Loader::new(world.clone()));
             for (k, cell) in loader.ask(missing) {
-                self.resident.insert(k, cell?);
-                generated += 1;
+                let cell = cell?;
+                if !self.stale(k, &cell, world.side) {
+                    self.resident.insert(k, cell);
+                    generated += 1;
+                }
             }
         }
         // Keep what is wanted, what stands in for a wanted cell not here yet, and what is
@@ -396,6 +417,39 @@ impl Cells {
         Ok(streamed)
     }
 
+    fn stale(&self, key: CellKey, cell: &Cell, side: f32) -> bool {
+        let rect = key.rect(side);
+        self.repaints
+            .iter()
+            .any(|(v, r)| *v > cell.version && !rect.intersect(r).is_empty())
+    }
+
+    /// The forest was repainted to `version` over `region`: the resident cells over it are
+    /// generated again now (so a stroke shows at once, with no hole while they come).
+    pub(crate) fn repaint(
+        &mut self,
+        world: &World,
+        region: Rect,
+        version: u64,
+    ) -> Result<usize, String> {
+        self.repaints.push((version, region));
+        if self.repaints.len() > MAX_REPAINTS {
+            self.repaints.remove(0);
+        }
+        let touched: Vec<CellKey> = self
+            .resident
+            .keys()
+            .filter(|k| !k.rect(world.side).intersect(&region).is_empty())
+            .copied()
+            .collect();
+        let made: Vec<(CellKey, Result<Cell, String>)> =
+            touched.par_iter().map(|&k| (k, world.cell(k))).collect();
+        for (k, cell) in made {
+            self.resident.insert(k, cell?);
+        }
+        Ok(touched.len())
+    }
+
     /// The cells a frame draws, in key order.
     pub(crate) fn drawn(&self) -> impl Iterator<Item = (CellKey, &Cell)> {
         self.drawn
@@ -417,6 +471,7 @@ mod tests {
                 trees: None,
                 species: default_species().expect("bundled species")[..2].to_vec(),
                 budget: 4 << 20,
+                paint: None,
             })
             .expect("world builds"),
         )
@@ -430,7 +485,8 @@ mod tests {
         let mut whole = 0usize;
         let mut placements = 0usize;
         world
-            .builder
+            .forest()
+            .0
             .stream(
                 &world.heightmap,
                 Rect::new(Vec2::ZERO, Vec2::splat(250.0)),

@@ -44,6 +44,7 @@ fn default_scene() -> Scene {
         trees: None,
         species: scene::default_species().expect("bundled species"),
         budget: 32 << 20,
+        paint: None,
     })
     .expect("default scene builds")
 }
@@ -163,6 +164,7 @@ fn wind_sways_trees_and_still_air_does_not() {
         trees: None,
         species: vec![birch],
         budget: 4 << 20,
+        paint: None,
     })
     .expect("birch stand builds");
     let size = (160, 90);
@@ -207,6 +209,7 @@ fn a_view_streamed_again_is_the_same_picture() {
         trees: None,
         species: vec![species[1].clone(), species[2].clone()],
         budget: 12 << 20,
+        paint: None,
     })
     .expect("world builds");
     let size = (160, 90);

@@ -31,8 +31,10 @@ mod coverage;
 mod cull;
 #[cfg(test)]
 mod golden;
+mod guide;
 mod loader;
 mod offscreen;
+mod painting;
 mod render;
 mod scene;
 mod shadow;
@@ -46,6 +48,7 @@ use scene::{Camera, Scene, SceneOptions};
 
 struct Args {
     scene: SceneOptions,
+    scene_seed: u64,
     camera: Option<Camera>,
     screenshot: Option<String>,
     size: (u32, u32),
@@ -54,10 +57,14 @@ struct Args {
     walk: f32,
     wind: f32,
     time: f32,
+    tour: u32,
+    tour_spacing: f32,
+    paint: Option<std::path::PathBuf>,
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
-                     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M]] [--wind S] [--time T]]";
+                     [--paint MASKS_DIR] [--camera x,z,yaw,pitch[,height]] \
+                     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M] | --tour N [--tour-spacing M]] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -74,6 +81,9 @@ fn parse() -> Result<Args, String> {
     let mut walk = 0.0f32;
     let mut wind = 1.0f32;
     let mut time = 0.0f32;
+    let mut tour = 0u32;
+    let mut tour_spacing = 0.5f32;
+    let mut paint: Option<std::path::PathBuf> = None;
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
         match a.as_str() {
@@ -103,6 +113,9 @@ fn parse() -> Result<Args, String> {
             "--walk" => walk = flags.value("--walk")?,
             "--wind" => wind = flags.value("--wind")?,
             "--time" => time = flags.value("--time")?,
+            "--tour" => tour = flags.value("--tour")?,
+            "--tour-spacing" => tour_spacing = flags.value("--tour-spacing")?,
+            "--paint" => paint = Some(flags.value::<String>("--paint")?.into()),
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -114,6 +127,17 @@ fn parse() -> Result<Args, String> {
         return Err(format!(
             "--walk {walk}: expected metres per frame, -1000 to 1000"
         ));
+    }
+    if tour > 100_000 {
+        return Err(format!("--tour {tour}: expected at most 100000 frames"));
+    }
+    if !(tour_spacing > 0.0 && tour_spacing <= 100.0) {
+        return Err(format!(
+            "--tour-spacing {tour_spacing}: expected metres between frames, above 0 and at most 100"
+        ));
+    }
+    if tour > 0 && screenshot.is_none() {
+        return Err(format!("--tour renders headless: give --screenshot PATH (frames go to PATH_0000.png ...)\n{USAGE}"));
     }
     if !time.is_finite() {
         return Err(format!("--time {time}: expected a number of seconds"));
@@ -144,12 +168,14 @@ fn parse() -> Result<Args, String> {
         (None, true) => scene::default_species()?,
     };
     Ok(Args {
+        scene_seed: seed,
         scene: SceneOptions {
             seed,
             side,
             trees,
             species,
             budget: budget_mb.max(1) << 20,
+            paint: paint.clone(),
         },
         camera,
         screenshot,
@@ -159,6 +185,9 @@ fn parse() -> Result<Args, String> {
         walk,
         wind,
         time,
+        tour,
+        tour_spacing,
+        paint,
     })
 }
 
@@ -191,6 +220,17 @@ fn run() -> Result<(), String> {
                 pollster::block_on(offscreen::Offscreen::new(&scene, args.size.0, args.size.1))?;
             offscreen.wind = args.wind;
             offscreen.time = args.time;
+            if args.tour > 0 {
+                let pitch = if args.camera.is_some() { camera.pitch } else { -0.05 };
+                let tour = Tour {
+                    frames: args.tour,
+                    spacing: args.tour_spacing,
+                    seed: args.scene_seed,
+                    size: args.size,
+                    pitch,
+                };
+                return tour.run(&mut scene, &mut offscreen, camera, &path, mode);
+            }
             let (pixels, stats) = offscreen.frame(&mut scene, &camera, mode)?;
             let first_ms = t.elapsed().as_secs_f64() * 1e3;
             let s = stats.streamed;
@@ -228,16 +268,7 @@ fn run() -> Result<(), String> {
                 );
             }
             let adapter = &offscreen.adapter;
-            let file = std::fs::File::create(&path).map_err(|e| format!("{path}: {e}"))?;
-            let mut encoder =
-                png::Encoder::new(std::io::BufWriter::new(file), args.size.0, args.size.1);
-            encoder.set_color(png::ColorType::Rgba);
-            encoder.set_depth(png::BitDepth::Eight);
-            let mut writer = encoder.write_header().map_err(|e| format!("{path}: {e}"))?;
-            writer
-                .write_image_data(&pixels)
-                .map_err(|e| format!("{path}: {e}"))?;
-            writer.finish().map_err(|e| format!("{path}: {e}"))?;
+            write_png(&path, args.size, &pixels)?;
             println!(
                 "wrote {path} ({}x{}) on {adapter}: {} draw calls, {} instances, {} triangles; first frame {first_ms:.0} ms{}",
                 args.size.0,
@@ -257,8 +288,90 @@ fn run() -> Result<(), String> {
             }
             Ok(())
         }
-        None => window::run(scene, args.camera, args.frames),
+        None => window::run(
+            scene,
+            args.camera,
+            args.frames,
+            args.paint.unwrap_or_else(|| "paint_masks".into()),
+        ),
     }
+}
+
+/// Writes RGBA pixels as an 8-bit PNG.
+fn write_png(path: &str, size: (u32, u32), pixels: &[u8]) -> Result<(), String> {
+    let file = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(|e| format!("{path}: {e}"))?;
+    writer
+        .write_image_data(pixels)
+        .map_err(|e| format!("{path}: {e}"))?;
+    writer.finish().map_err(|e| format!("{path}: {e}"))
+}
+
+/// `PATH` with the frame number before its extension: `tour.png` -> `tour_0007.png`.
+fn numbered(path: &str, frame: u32) -> String {
+    match path.rsplit_once('.') {
+        Some((stem, ext)) if !ext.contains('/') => format!("{stem}_{frame:04}.{ext}"),
+        _ => format!("{path}_{frame:04}.png"),
+    }
+}
+
+/// A headless tour: `frames` frames along a guided walk from the camera's position,
+/// `spacing` metres apart, each written as a numbered PNG.
+struct Tour {
+    frames: u32,
+    spacing: f32,
+    seed: u64,
+    size: (u32, u32),
+    pitch: f32,
+}
+
+impl Tour {
+fn run(
+    &self,
+    scene: &mut Scene,
+    offscreen: &mut offscreen::Offscreen,
+    camera: Camera,
+    path: &str,
+    mode: render::Mode,
+) -> Result<(), String> {
+    let start = sylva::terrain::glam::Vec2::new(camera.x, camera.z);
+    let mut guide = guide::Guide::new(&scene.world, start, self.seed)?;
+    let pitch = self.pitch;
+    let mut times = Vec::new();
+    for frame in 0..self.frames {
+        if frame > 0 {
+            guide.advance(self.spacing, 0.0);
+        }
+        let t = Instant::now();
+        let (pixels, stats) = offscreen.frame(scene, &guide.camera(0.0, pitch), mode)?;
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        let file = numbered(path, frame);
+        write_png(&file, self.size, &pixels)?;
+        let c = guide.camera(0.0, pitch);
+        println!(
+            "wrote {file}: camera {:.1},{:.1},{:.0},{:.0}; {} instances, {} triangles",
+            c.x,
+            c.z,
+            c.yaw.to_degrees(),
+            c.pitch.to_degrees(),
+            stats.instances,
+            stats.triangles
+        );
+    }
+    times.sort_by(f64::total_cmp);
+    println!(
+        "tour of {} frames {} m apart on {}: {}; median frame {:.0} ms",
+        self.frames,
+        self.spacing,
+        offscreen.adapter,
+        guide.summary(),
+        times[times.len() / 2]
+    );
+    Ok(())
+}
 }
 
 fn main() -> ExitCode {

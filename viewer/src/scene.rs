@@ -2,10 +2,11 @@
 //! refer to), the cells streamed in around the camera, and the camera.
 
 use bytemuck::{Pod, Zeroable};
-use std::sync::Arc;
+use std::sync::{Arc, PoisonError, RwLock};
 
 use sylva::forest::{
-    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, Species, tree_proxy,
+    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, PaintLayer, Rect, Species,
+    load_masks, tree_proxy,
 };
 use sylva::instancing::Span;
 
@@ -59,10 +60,13 @@ pub(crate) struct Proxy {
     pub(crate) sphere: (Vec3, f32),
 }
 
-/// What never changes while the camera moves: the forest's recipe, the terrain, and the
-/// geometry every placement refers to. Shared with the thread that generates cells.
+/// What never changes while the camera moves: the forest's recipe (but for the painting
+/// tool's layer), the terrain, and the geometry every placement refers to. Shared with the
+/// thread that generates cells.
 pub(crate) struct World {
-    pub(crate) builder: ForestBuilder,
+    /// The forest's recipe and how many times it has been repainted (cells remember the
+    /// version they were generated from); swapped whole when the painting tool paints.
+    forest: RwLock<(Arc<ForestBuilder>, u64)>,
     pub(crate) heightmap: Heightmap,
     pub(crate) side: f32,
     pub(crate) variants: Vec<VariantGeometry>,
@@ -93,6 +97,8 @@ pub(crate) struct SceneOptions {
     pub(crate) trees: Option<u32>,
     pub(crate) species: Vec<Species>,
     pub(crate) budget: usize,
+    /// A painted forest's masks (`sylva_forest::load_masks`), if any.
+    pub(crate) paint: Option<std::path::PathBuf>,
 }
 
 pub(crate) const DEFAULT_SPECIES: [(&str, &str); 5] = [
@@ -134,7 +140,7 @@ impl World {
         let mut config = ForestConfig::new(options.species);
         config.seed = options.seed;
         config.budget = options.budget;
-        let builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
+        let mut builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
         let side = match options.trees {
             Some(n) => (n as f32).sqrt() * builder.density().patch,
             None => options.side,
@@ -154,6 +160,19 @@ impl World {
         heightmap
             .smooth(2.0, EdgeMode::Mirror)
             .map_err(|e| e.to_string())?;
+        if let Some(dir) = &options.paint {
+            let names: Vec<&str> = builder
+                .config()
+                .species
+                .iter()
+                .map(|s| s.name.as_str())
+                .collect();
+            let (lo, hi) = heightmap.bounds();
+            let layer = load_masks(dir, &names, Rect::new(lo, hi)).map_err(|e| e.to_string())?;
+            builder = builder
+                .with_paint(Some(Arc::new(layer)))
+                .map_err(|e| e.to_string())?;
+        }
         let species = &builder.config().species;
         let mut groups = Vec::new();
         let mut group_of = Vec::new();
@@ -214,7 +233,7 @@ impl World {
             .collect();
         let seedling = builder.variants().iter().map(|v| v.seedling).collect();
         Ok(World {
-            builder,
+            forest: RwLock::new((Arc::new(builder), 0)),
             heightmap,
             side,
             variants,
@@ -223,6 +242,26 @@ impl World {
             proxies,
             seedling,
         })
+    }
+}
+
+impl World {
+    /// The forest's recipe as it stands, and its version.
+    pub(crate) fn forest(&self) -> (Arc<ForestBuilder>, u64) {
+        let guard = self.forest.read().unwrap_or_else(PoisonError::into_inner);
+        (Arc::clone(&guard.0), guard.1)
+    }
+
+    /// Paints the forest with `layer` from now on; returns the new version.
+    pub(crate) fn repaint(&self, layer: Arc<PaintLayer>) -> Result<u64, String> {
+        let (builder, _) = self.forest();
+        let painted = builder
+            .with_paint(Some(layer))
+            .map_err(|e| e.to_string())?;
+        let mut guard = self.forest.write().unwrap_or_else(PoisonError::into_inner);
+        guard.1 += 1;
+        guard.0 = Arc::new(painted);
+        Ok(guard.1)
     }
 }
 

@@ -11,8 +11,13 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
+use crate::guide::Guide;
+use crate::painting::{Painting, pick};
 use crate::render::{Mode, Renderer, View, targets};
 use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
+use sylva::terrain::glam::Vec2;
+use winit::event::Modifiers;
+use winit::keyboard::Key;
 
 struct Gpu {
     window: Arc<Window>,
@@ -39,11 +44,34 @@ struct App {
     /// Close after this many frames (0: run until closed), printing frame times.
     max_frames: u32,
     frame_times: Vec<f64>,
+    /// The painting tool, once P has been pressed, and whether it is on.
+    painting: Option<Painting>,
+    paint_mode: bool,
+    /// Where the painting tool saves its masks.
+    save_to: std::path::PathBuf,
+    /// The guided walk, while G has it on; `look` turns the view from its way.
+    guide: Option<Guide>,
+    guides: u64,
+    look: f32,
+    cursor: (f32, f32),
+    /// The right button is down: mouse motion looks around while painting.
+    looking: bool,
+    modifiers: Modifiers,
 }
 
 /// Opens the window and runs until it closes. Errors (no display, no adapter, a lost device)
 /// come back as messages.
-pub(crate) fn run(scene: Scene, camera: Option<Camera>, max_frames: u32) -> Result<(), String> {
+///
+/// Keys: P paints (then 1 to 9 pick the species, E erases, T turns trees into the species,
+/// `[` `]` size the brush, `-` `=` set its strength, Ctrl+Z undo, Ctrl+Y redo, Ctrl+S saves
+/// the masks to `save_to`; the left button paints, the right one looks around); G walks
+/// guided (the mouse looks around, A and D lean left and right, Shift hurries).
+pub(crate) fn run(
+    scene: Scene,
+    camera: Option<Camera>,
+    max_frames: u32,
+    save_to: std::path::PathBuf,
+) -> Result<(), String> {
     let event_loop = EventLoop::new().map_err(|e| {
         format!("cannot open a window ({e}); on a machine without a display, render headless with --screenshot PATH")
     })?;
@@ -61,6 +89,15 @@ pub(crate) fn run(scene: Scene, camera: Option<Camera>, max_frames: u32) -> Resu
         lost: Arc::new(AtomicBool::new(false)),
         max_frames,
         frame_times: Vec::new(),
+        painting: None,
+        paint_mode: false,
+        save_to,
+        guide: None,
+        guides: 0,
+        look: 0.0,
+        cursor: (0.0, 0.0),
+        looking: false,
+        modifiers: Modifiers::default(),
     };
     event_loop
         .run_app(&mut app)
@@ -112,13 +149,17 @@ impl App {
     }
 
     fn walk(&mut self, dt: f32) {
-        let speed = if self.keys.contains(&KeyCode::ShiftLeft)
-            || self.keys.contains(&KeyCode::ShiftRight)
-        {
-            20.0
-        } else {
-            5.0
-        };
+        let hurry = self.keys.contains(&KeyCode::ShiftLeft)
+            || self.keys.contains(&KeyCode::ShiftRight);
+        if let Some(guide) = &mut self.guide {
+            // Led: a walking pace; the walker may only lean a little off the way.
+            let lean = f32::from(u8::from(self.keys.contains(&KeyCode::KeyD)))
+                - f32::from(u8::from(self.keys.contains(&KeyCode::KeyA)));
+            guide.advance(if hurry { 5.6 } else { 1.4 } * dt, lean);
+            self.camera = guide.camera(self.look, self.camera.pitch);
+            return;
+        }
+        let speed = if hurry { 20.0 } else { 5.0 };
         let (s, c) = self.camera.yaw.sin_cos();
         let mut step = [0.0f32; 2];
         for (key, dx, dz) in [
@@ -209,8 +250,13 @@ impl App {
                 event_loop.exit();
             }
         }
+        let mode = match (&self.painting, self.paint_mode, &self.guide) {
+            (Some(p), true, _) => format!("{}; ", p.status()),
+            (_, _, Some(_)) => "guided walk (G to stop); ".to_string(),
+            _ => String::new(),
+        };
         gpu.window.set_title(&format!(
-            "sylva: {} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
+            "sylva: {mode}{} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
             stats.draws,
             stats.instances,
             stats.triangles as f64 / 1e6,
@@ -223,6 +269,71 @@ impl App {
                 String::new()
             }
         ));
+    }
+
+    /// Where the cursor points on the terrain.
+    fn under_cursor(&self) -> Option<sylva::terrain::glam::Vec3> {
+        let gpu = self.gpu.as_ref()?;
+        let size = (gpu.config.width as f32, gpu.config.height as f32);
+        let (view_proj, eye) = self.camera.view_proj(&self.scene, size.0 / size.1.max(1.0));
+        pick(&self.scene, view_proj, eye, self.cursor, size)
+    }
+
+    /// A key while painting: the tool's keys go to it.
+    fn paint_key(&mut self, event: &winit::event::KeyEvent) -> bool {
+        let (Some(painting), true) = (&mut self.painting, self.paint_mode) else {
+            return false;
+        };
+        let Key::Character(text) = &event.logical_key else {
+            return false;
+        };
+        let state = self.modifiers.state();
+        let key = text.to_lowercase();
+        let used = painting.key(
+            &mut self.scene,
+            &key,
+            state.control_key(),
+            state.shift_key(),
+        );
+        if painting.take_changed()
+            && let Some(guide) = &mut self.guide
+        {
+            guide.forget_trunks();
+        }
+        used
+    }
+
+    /// P: the painting tool on or off (the cursor is freed to paint).
+    fn toggle_painting(&mut self) {
+        if self.painting.is_none() {
+            match Painting::new(&self.scene, self.save_to.clone()) {
+                Ok(p) => self.painting = Some(p),
+                Err(e) => {
+                    eprintln!("cannot paint: {e}");
+                    return;
+                }
+            }
+        }
+        self.paint_mode = !self.paint_mode;
+        if self.paint_mode {
+            self.capture(false);
+        }
+    }
+
+    /// G: the guided walk on or off.
+    fn toggle_guide(&mut self) {
+        if self.guide.take().is_some() {
+            return;
+        }
+        self.guides += 1;
+        let start = Vec2::new(self.camera.x, self.camera.z);
+        match Guide::new(&self.scene.world, start, self.guides) {
+            Ok(g) => {
+                self.look = 0.0;
+                self.guide = Some(g);
+            }
+            Err(e) => eprintln!("cannot walk guided here: {e}"),
+        }
     }
 
     fn capture(&mut self, on: bool) {
@@ -277,11 +388,18 @@ impl ApplicationHandler for App {
                     }
                 }
             }
+            WindowEvent::ModifiersChanged(m) => self.modifiers = m,
             WindowEvent::KeyboardInput { event, .. } => {
                 if let PhysicalKey::Code(code) = event.physical_key {
                     if event.state == ElementState::Pressed {
-                        if code == KeyCode::Escape {
-                            self.capture(false);
+                        if !event.repeat && self.paint_key(&event) {
+                            return;
+                        }
+                        match code {
+                            KeyCode::Escape => self.capture(false),
+                            KeyCode::KeyP if !event.repeat => self.toggle_painting(),
+                            KeyCode::KeyG if !event.repeat => self.toggle_guide(),
+                            _ => {}
                         }
                         self.keys.insert(code);
                     } else {
@@ -289,11 +407,36 @@ impl ApplicationHandler for App {
                     }
                 }
             }
-            WindowEvent::MouseInput {
-                state: ElementState::Pressed,
-                button: MouseButton::Left,
-                ..
-            } => self.capture(true),
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = (position.x as f32, position.y as f32);
+                if self.paint_mode {
+                    let point = self.under_cursor();
+                    if let Some(p) = &mut self.painting {
+                        p.drag(&mut self.scene, point);
+                        if p.take_changed()
+                            && let Some(guide) = &mut self.guide
+                        {
+                            guide.forget_trunks();
+                        }
+                    }
+                }
+            }
+            WindowEvent::MouseInput { state, button, .. } => match (button, state) {
+                (MouseButton::Left, ElementState::Pressed) if self.paint_mode => {
+                    let point = self.under_cursor();
+                    if let Some(p) = &mut self.painting {
+                        p.press(&mut self.scene, point);
+                    }
+                }
+                (MouseButton::Left, ElementState::Released) => {
+                    if let Some(p) = &mut self.painting {
+                        p.release();
+                    }
+                }
+                (MouseButton::Left, ElementState::Pressed) => self.capture(true),
+                (MouseButton::Right, s) => self.looking = s == ElementState::Pressed,
+                _ => {}
+            },
             WindowEvent::RedrawRequested => self.redraw(event_loop),
             _ => {}
         }
@@ -301,9 +444,13 @@ impl ApplicationHandler for App {
 
     fn device_event(&mut self, _event_loop: &ActiveEventLoop, _id: DeviceId, event: DeviceEvent) {
         if let DeviceEvent::MouseMotion { delta } = event
-            && self.captured
+            && (self.captured || self.looking)
         {
-            self.camera.yaw += delta.0 as f32 * 0.003;
+            if self.guide.is_some() {
+                self.look += delta.0 as f32 * 0.003;
+            } else {
+                self.camera.yaw += delta.0 as f32 * 0.003;
+            }
             self.camera.pitch = (self.camera.pitch - delta.1 as f32 * 0.003).clamp(-1.5, 1.5);
         }
     }

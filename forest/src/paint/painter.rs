@@ -15,7 +15,6 @@ use crate::forest::{Forest, ForestBuilder};
 use crate::paint::brush::Brush;
 use crate::paint::canvas::{Change, PaintCanvas};
 use crate::paint::layer::PaintLayer;
-use crate::patch::RINGS;
 
 /// Side of the painter's tiles of trees, in density patches: small, so a stroke regenerates
 /// little beyond its own reach.
@@ -194,7 +193,7 @@ impl<T: HeightField + Sync> ForestPainter<T> {
     /// The rectangle whose trees a change of `cells` may alter: a tree's fate reads the
     /// layer at spots up to `RINGS` patches away, and spots lie inside their own patches.
     pub fn reach(&self, cells: Rect) -> Rect {
-        let margin = (RINGS as f32 + 1.0) * self.builder.density().patch;
+        let margin = self.builder.density().reach();
         Rect::new(cells.min - margin, cells.max + margin)
     }
 

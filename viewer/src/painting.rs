@@ -1,0 +1,216 @@
+//! The painting tool (Carey report 4.8): a species as the brush, trees painted onto the terrain
+//! under the cursor, the streamed cells under each stroke generated again at once.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use sylva::forest::{
+    Brush, BrushAction, Change, PaintCanvas, PaintLayer, Rect, save_masks,
+};
+use sylva::terrain::HeightField;
+use sylva::terrain::glam::{Mat4, Vec2, Vec3, Vec4};
+
+use crate::cells::VIEW_DISTANCE;
+use crate::scene::Scene;
+
+/// Largest layer side in cells: a bigger world gets coarser cells.
+const MAX_LAYER_CELLS: f32 = 2048.0;
+
+/// The tool's state: the canvas, the brush, and what the last edit cost.
+pub(crate) struct Painting {
+    canvas: PaintCanvas,
+    brush: Brush,
+    /// The species the brush paints with (index and name).
+    species: usize,
+    names: Vec<String>,
+    /// Where Ctrl+S saves the masks.
+    save_to: PathBuf,
+    /// Whether a stroke is under way (the button is down).
+    stroking: bool,
+    /// Milliseconds of the last edit (layer, forest and cells), and a message for the title.
+    pub(crate) last_ms: f64,
+    pub(crate) message: String,
+    /// The density model's reach beyond a change, metres.
+    reach: f32,
+    changed: bool,
+}
+
+/// Where the ray through pixel `(x, y)` of a `width x height` view meets the terrain.
+pub(crate) fn pick(
+    scene: &Scene,
+    view_proj: Mat4,
+    eye: Vec3,
+    (x, y): (f32, f32),
+    (width, height): (f32, f32),
+) -> Option<Vec3> {
+    let ndc = Vec2::new(2.0 * x / width - 1.0, 1.0 - 2.0 * y / height);
+    let inverse = view_proj.inverse();
+    let far = inverse * Vec4::new(ndc.x, ndc.y, 1.0, 1.0);
+    let near = inverse * Vec4::new(ndc.x, ndc.y, 0.0, 1.0);
+    let direction = (far.truncate() / far.w - near.truncate() / near.w).normalize_or_zero();
+    scene
+        .world
+        .heightmap
+        .raycast(eye, direction, VIEW_DISTANCE * 1.2)
+        .map(|hit| hit.point)
+}
+
+impl Painting {
+    /// The tool over `scene`'s world: starting from the layer it was painted with, or from a
+    /// layer that grows the generated forest everywhere. Masks save to `save_to`.
+    pub(crate) fn new(scene: &Scene, save_to: PathBuf) -> Result<Painting, String> {
+        let (forest, _) = scene.world.forest();
+        let (lo, hi) = scene.world.heightmap.bounds();
+        let bounds = Rect::new(lo, hi);
+        let layer = match &forest.config().paint {
+            Some(layer) => PaintLayer::clone(layer),
+            None => {
+                let cell = ((hi.x - lo.x).max(hi.y - lo.y) / MAX_LAYER_CELLS).max(1.0);
+                let weights: Vec<f32> = forest.config().species.iter().map(|s| s.weight).collect();
+                PaintLayer::filled(bounds, cell, &weights).map_err(|e| e.to_string())?
+            }
+        };
+        let canvas = PaintCanvas::for_forest(&forest, layer).map_err(|e| e.to_string())?;
+        let names = forest.config().species.iter().map(|s| s.name.clone()).collect();
+        Ok(Painting {
+            canvas,
+            brush: Brush::new(BrushAction::Add { species: 0 }, 12.0),
+            species: 0,
+            names,
+            save_to,
+            stroking: false,
+            last_ms: 0.0,
+            message: String::new(),
+            reach: forest.density().reach(),
+            changed: false,
+        })
+    }
+
+    /// The brush and the last edit, for the window's title.
+    pub(crate) fn status(&self) -> String {
+        let action = match self.brush.action {
+            BrushAction::Add { .. } => format!("add {}", self.names[self.species]),
+            BrushAction::Species { .. } => format!("turn to {}", self.names[self.species]),
+            BrushAction::Erase => "erase".into(),
+        };
+        let (undo, redo) = self.canvas.history();
+        format!(
+            "painting: {action}, radius {:.0} m, strength {:.1}; {:.1} ms; undo {undo}, redo {redo}{}",
+            self.brush.radius,
+            self.brush.strength,
+            self.last_ms,
+            if self.message.is_empty() {
+                String::new()
+            } else {
+                format!("; {}", self.message)
+            }
+        )
+    }
+
+    /// Picks the species (1 to 9: add it), the action (E erase, T turn trees into the
+    /// species or back to adding), the radius (`[` `]`), the strength (`-` `=`); undo (Ctrl+Z), redo (Ctrl+Y or
+    /// Ctrl+Shift+Z), save (Ctrl+S). Returns whether the key was the tool's.
+    pub(crate) fn key(&mut self, scene: &mut Scene, key: &str, ctrl: bool, shift: bool) -> bool {
+        self.message.clear();
+        match (key, ctrl) {
+            ("z", true) if shift => self.edit(scene, |c| c.redo()),
+            ("z", true) => self.edit(scene, |c| c.undo()),
+            ("y", true) => self.edit(scene, |c| c.redo()),
+            ("s", true) => {
+                let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
+                self.message = match save_masks(self.canvas.layer(), &names, &self.save_to) {
+                    Ok(()) => format!("masks saved to {}", self.save_to.display()),
+                    Err(e) => format!("not saved: {e}"),
+                };
+            }
+            (digit, false) if digit.len() == 1 && ("1"..="9").contains(&digit) => {
+                let s = digit.parse::<usize>().unwrap_or(1) - 1;
+                if s < self.names.len() {
+                    self.species = s;
+                    self.brush.action = match self.brush.action {
+                        BrushAction::Species { .. } => BrushAction::Species { species: s },
+                        _ => BrushAction::Add { species: s },
+                    };
+                } else {
+                    self.message = format!("no species {digit}: {} loaded", self.names.len());
+                }
+            }
+            ("e", false) => self.brush.action = BrushAction::Erase,
+            ("t", false) => {
+                self.brush.action = match self.brush.action {
+                    BrushAction::Species { .. } => BrushAction::Add {
+                        species: self.species,
+                    },
+                    _ => BrushAction::Species {
+                        species: self.species,
+                    },
+                }
+            }
+            ("[", false) => self.brush.radius = (self.brush.radius / 1.25).max(1.0),
+            ("]", false) => self.brush.radius = (self.brush.radius * 1.25).min(200.0),
+            ("-", false) => self.brush.strength = (self.brush.strength - 0.1).max(0.1),
+            ("=", false) => self.brush.strength = (self.brush.strength + 0.1).min(1.0),
+            _ => return false,
+        }
+        true
+    }
+
+    /// The button went down over `point` (or over the sky: nothing happens).
+    pub(crate) fn press(&mut self, scene: &mut Scene, point: Option<Vec3>) {
+        self.message.clear();
+        if let Err(e) = self.canvas.begin_stroke(self.brush) {
+            self.message = e.to_string();
+            return;
+        }
+        self.stroking = true;
+        self.drag(scene, point);
+    }
+
+    /// The cursor moved to `point` with the button down.
+    pub(crate) fn drag(&mut self, scene: &mut Scene, point: Option<Vec3>) {
+        let Some(p) = point.filter(|_| self.stroking) else {
+            return;
+        };
+        let start = Instant::now();
+        match self.canvas.stroke_to(Vec2::new(p.x, p.z)) {
+            Ok(Some(change)) => self.show(scene, change, start),
+            Ok(None) => {}
+            Err(e) => self.message = e.to_string(),
+        }
+    }
+
+    /// The button came up: the stroke can be undone.
+    pub(crate) fn release(&mut self) {
+        if self.stroking {
+            self.canvas.end_stroke();
+            self.stroking = false;
+        }
+    }
+
+    fn edit(&mut self, scene: &mut Scene, edit: impl FnOnce(&mut PaintCanvas) -> Option<Change>) {
+        let start = Instant::now();
+        match edit(&mut self.canvas) {
+            Some(change) => self.show(scene, change, start),
+            None => self.message = "nothing to undo or redo".into(),
+        }
+    }
+
+    /// Whether the last edit changed the forest (the walk's trunks must be generated again).
+    pub(crate) fn take_changed(&mut self) -> bool {
+        std::mem::take(&mut self.changed)
+    }
+
+    /// Hands the layer to the world and generates the cells under the change again.
+    fn show(&mut self, scene: &mut Scene, change: Change, start: Instant) {
+        let region = Rect::new(change.region.min - self.reach, change.region.max + self.reach);
+        let shown = scene
+            .world
+            .repaint(self.canvas.shared_layer())
+            .and_then(|version| scene.cells.repaint(&scene.world, region, version));
+        if let Err(e) = shown {
+            self.message = e;
+        }
+        self.changed = true;
+        self.last_ms = start.elapsed().as_secs_f64() * 1e3;
+    }
+}
