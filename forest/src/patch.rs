@@ -101,7 +101,7 @@ impl PatchDensity {
 
     /// A species index drawn by weight; only called when some weight is positive, so the
     /// index is always in range.
-    fn pick_species(&self, h: u64) -> usize {
+    pub(crate) fn pick_species(&self, h: u64) -> usize {
         let weight = |s: &PatchSpecies| s.weight.max(0.0);
         let total: f32 = self.species.iter().map(weight).sum();
         let mut u = unit(h) * total;

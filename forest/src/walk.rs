@@ -269,9 +269,7 @@ impl GuidedWalk {
         let non_negative = [o.repulsion, o.body, o.margin]
             .iter()
             .all(|v| v.is_finite() && *v >= 0.0);
-        if !(positive && non_negative)
-            || o.step > 10.0
-        {
+        if !(positive && non_negative) || o.step > 10.0 {
             return Err(ForestError::BadParameter(format!(
                 "walk options out of range: {options:?}"
             )));

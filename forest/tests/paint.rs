@@ -333,3 +333,35 @@ proptest! {
         );
     }
 }
+
+#[test]
+fn a_full_layer_in_the_species_proportions_grows_the_generated_forest() {
+    let builder = common::builder(12);
+    let weights: Vec<f32> = builder.config().species.iter().map(|s| s.weight).collect();
+    let layer = PaintLayer::filled(bounds(), 1.0, &weights).unwrap();
+    let unpainted = builder.trees(&ground(), bounds());
+    let painted = ForestPainter::new(builder, ground(), layer).unwrap();
+    let painted = sorted(painted.trees().copied());
+    let unpainted = sorted(unpainted.into_iter());
+    // Only a tree whose draw falls within a rounding step of a share's boundary may differ.
+    let same = painted
+        .iter()
+        .zip(&unpainted)
+        .filter(|(a, b)| a == b)
+        .count();
+    println!("{same} of {} trees the same", unpainted.len());
+    assert_eq!(painted.len(), unpainted.len());
+    assert!(same + 2 >= unpainted.len(), "{same} of {}", unpainted.len());
+    // Past the layer's edge trees grow as unpainted; an empty layer over half the terrain
+    // keeps nothing on that half.
+    let half = Rect::new(Vec2::splat(-SIDE), Vec2::new(0.0, SIDE));
+    let builder = common::builder(12);
+    let empty =
+        ForestPainter::new(builder, ground(), PaintLayer::new(half, 1.0, 2).unwrap()).unwrap();
+    assert!(empty.trees().all(|t| t.position[0] >= 0.0));
+    let far = |t: &&CompactTree| t.position[0] > 20.0;
+    assert_eq!(
+        empty.trees().filter(far).count(),
+        unpainted.iter().filter(far).count()
+    );
+}

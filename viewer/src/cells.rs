@@ -532,6 +532,64 @@ mod tests {
             .collect()
     }
 
+    /// After a stroke the cells under it are generated again from the painted forest, and a
+    /// cell the loader made from the layer before is dropped: the cells are then exactly those
+    /// of a world painted with the final layer from the start.
+    #[test]
+    fn repainted_cells_are_the_painted_worlds_cells() {
+        use sylva::forest::{Brush, BrushAction, PaintCanvas, PaintLayer};
+        use sylva::terrain::HeightField;
+        let painted = world(700.0);
+        let world = world(700.0);
+        let eye = Vec3::new(350.0, 20.0, 350.0);
+        let mut cells = Cells::default();
+        cells.update(&world, eye, false, true).expect("update");
+        let before = placed(&cells);
+        let (forest, _) = world.forest();
+        let (lo, hi) = world.heightmap.bounds();
+        let bounds = Rect::new(lo, hi);
+        let weights: Vec<f32> = forest.config().species.iter().map(|s| s.weight).collect();
+        let layer = PaintLayer::filled(bounds, 2.0, &weights).expect("layer");
+        let mut canvas = PaintCanvas::for_forest(&forest, layer).expect("canvas");
+        let version = world.repaint(canvas.shared_layer()).expect("repaint");
+        cells.repaint(&world, bounds, version).expect("cells");
+        // A full layer in the species' shares grows the generated forest.
+        assert_eq!(placed(&cells), before);
+        let stale = world
+            .cell(CellKey {
+                x: 3,
+                z: 3,
+                level: Level::Fine,
+            })
+            .expect("cell");
+        let change = canvas
+            .stroke(
+                Brush::new(BrushAction::Erase, 30.0),
+                &[Vec2::new(330.0, 340.0), Vec2::new(380.0, 360.0)],
+            )
+            .expect("stroke")
+            .expect("a change");
+        let version = world.repaint(canvas.shared_layer()).expect("repaint");
+        let reach = forest.density().reach();
+        let region = Rect::new(change.region.min - reach, change.region.max + reach);
+        let regenerated = cells.repaint(&world, region, version).expect("cells");
+        assert!(regenerated >= 2, "{regenerated}");
+        assert!(cells.stale(
+            CellKey {
+                x: 3,
+                z: 3,
+                level: Level::Fine
+            },
+            &stale,
+            world.side
+        ));
+        painted.repaint(canvas.shared_layer()).expect("repaint");
+        let mut fresh = Cells::default();
+        fresh.update(&painted, eye, false, true).expect("update");
+        assert_eq!(placed(&cells), placed(&fresh));
+        assert_ne!(placed(&cells), before);
+    }
+
     /// The camera keeps fine cells near it, coarse ones farther out, none beyond the view
     /// distance; walking away drops what is left behind, and coming back streams the same
     /// cells again.

@@ -122,3 +122,37 @@ impl Guide {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Scene, SceneOptions, default_species};
+
+    /// A guided walk through a real streamed world keeps clear of every trunk, keeps moving and
+    /// keeps the camera at eye height on the terrain.
+    #[test]
+    fn the_guide_leads_the_camera_around_the_trunks() {
+        let scene = Scene::build(SceneOptions {
+            seed: 6,
+            side: 300.0,
+            trees: None,
+            species: default_species().expect("bundled species")[..2].to_vec(),
+            budget: 4 << 20,
+            paint: None,
+        })
+        .expect("scene builds");
+        let mut guide = Guide::new(&scene.world, Vec2::splat(150.0), 3).expect("guide");
+        for _ in 0..40 {
+            guide.advance(5.0, 0.0);
+        }
+        assert!(guide.least_gap >= -1e-4, "{}", guide.summary());
+        assert!(
+            guide.walked > 190.0 && guide.stood < 10,
+            "{}",
+            guide.summary()
+        );
+        let camera = guide.camera(0.3, -0.1);
+        assert!((0.0..=300.0).contains(&camera.x) && (0.0..=300.0).contains(&camera.z));
+        assert_eq!((camera.height, camera.pitch), (1.7, -0.1));
+    }
+}

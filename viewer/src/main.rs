@@ -137,7 +137,9 @@ fn parse() -> Result<Args, String> {
         ));
     }
     if tour > 0 && screenshot.is_none() {
-        return Err(format!("--tour renders headless: give --screenshot PATH (frames go to PATH_0000.png ...)\n{USAGE}"));
+        return Err(format!(
+            "--tour renders headless: give --screenshot PATH (frames go to PATH_0000.png ...)\n{USAGE}"
+        ));
     }
     if !time.is_finite() {
         return Err(format!("--time {time}: expected a number of seconds"));
@@ -221,7 +223,11 @@ fn run() -> Result<(), String> {
             offscreen.wind = args.wind;
             offscreen.time = args.time;
             if args.tour > 0 {
-                let pitch = if args.camera.is_some() { camera.pitch } else { -0.05 };
+                let pitch = if args.camera.is_some() {
+                    camera.pitch
+                } else {
+                    -0.05
+                };
                 let tour = Tour {
                     frames: args.tour,
                     spacing: args.tour_spacing,
@@ -329,49 +335,49 @@ struct Tour {
 }
 
 impl Tour {
-fn run(
-    &self,
-    scene: &mut Scene,
-    offscreen: &mut offscreen::Offscreen,
-    camera: Camera,
-    path: &str,
-    mode: render::Mode,
-) -> Result<(), String> {
-    let start = sylva::terrain::glam::Vec2::new(camera.x, camera.z);
-    let mut guide = guide::Guide::new(&scene.world, start, self.seed)?;
-    let pitch = self.pitch;
-    let mut times = Vec::new();
-    for frame in 0..self.frames {
-        if frame > 0 {
-            guide.advance(self.spacing, 0.0);
+    fn run(
+        &self,
+        scene: &mut Scene,
+        offscreen: &mut offscreen::Offscreen,
+        camera: Camera,
+        path: &str,
+        mode: render::Mode,
+    ) -> Result<(), String> {
+        let start = sylva::terrain::glam::Vec2::new(camera.x, camera.z);
+        let mut guide = guide::Guide::new(&scene.world, start, self.seed)?;
+        let pitch = self.pitch;
+        let mut times = Vec::new();
+        for frame in 0..self.frames {
+            if frame > 0 {
+                guide.advance(self.spacing, 0.0);
+            }
+            let t = Instant::now();
+            let (pixels, stats) = offscreen.frame(scene, &guide.camera(0.0, pitch), mode)?;
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            let file = numbered(path, frame);
+            write_png(&file, self.size, &pixels)?;
+            let c = guide.camera(0.0, pitch);
+            println!(
+                "wrote {file}: camera {:.1},{:.1},{:.0},{:.0}; {} instances, {} triangles",
+                c.x,
+                c.z,
+                c.yaw.to_degrees(),
+                c.pitch.to_degrees(),
+                stats.instances,
+                stats.triangles
+            );
         }
-        let t = Instant::now();
-        let (pixels, stats) = offscreen.frame(scene, &guide.camera(0.0, pitch), mode)?;
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-        let file = numbered(path, frame);
-        write_png(&file, self.size, &pixels)?;
-        let c = guide.camera(0.0, pitch);
+        times.sort_by(f64::total_cmp);
         println!(
-            "wrote {file}: camera {:.1},{:.1},{:.0},{:.0}; {} instances, {} triangles",
-            c.x,
-            c.z,
-            c.yaw.to_degrees(),
-            c.pitch.to_degrees(),
-            stats.instances,
-            stats.triangles
+            "tour of {} frames {} m apart on {}: {}; median frame {:.0} ms",
+            self.frames,
+            self.spacing,
+            offscreen.adapter,
+            guide.summary(),
+            times[times.len() / 2]
         );
+        Ok(())
     }
-    times.sort_by(f64::total_cmp);
-    println!(
-        "tour of {} frames {} m apart on {}: {}; median frame {:.0} ms",
-        self.frames,
-        self.spacing,
-        offscreen.adapter,
-        guide.summary(),
-        times[times.len() / 2]
-    );
-    Ok(())
-}
 }
 
 fn main() -> ExitCode {

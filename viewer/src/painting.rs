@@ -4,14 +4,16 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use sylva::forest::{
-    Brush, BrushAction, Change, PaintCanvas, PaintLayer, Rect, save_masks,
-};
+use sylva::forest::{Brush, BrushAction, Change, PaintCanvas, PaintLayer, Rect, save_masks};
 use sylva::terrain::HeightField;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::cells::VIEW_DISTANCE;
+#[cfg(test)]
+use crate::scene::Camera;
 use crate::scene::Scene;
+#[cfg(test)]
+use sylva::forest::mask_file_name;
 
 /// Largest layer side in cells: a bigger world gets coarser cells.
 const MAX_LAYER_CELLS: f32 = 2048.0;
@@ -57,8 +59,9 @@ pub(crate) fn pick(
 
 impl Painting {
     /// The tool over `scene`'s world: starting from the layer it was painted with, or from a
-    /// layer that grows the generated forest everywhere. Masks save to `save_to`.
-    pub(crate) fn new(scene: &Scene, save_to: PathBuf) -> Result<Painting, String> {
+    /// layer that grows the generated forest everywhere (handed to the world at once, so
+    /// every cell comes from the layer the strokes edit). Masks save to `save_to`.
+    pub(crate) fn new(scene: &mut Scene, save_to: PathBuf) -> Result<Painting, String> {
         let (forest, _) = scene.world.forest();
         let (lo, hi) = scene.world.heightmap.bounds();
         let bounds = Rect::new(lo, hi);
@@ -71,7 +74,16 @@ impl Painting {
             }
         };
         let canvas = PaintCanvas::for_forest(&forest, layer).map_err(|e| e.to_string())?;
-        let names = forest.config().species.iter().map(|s| s.name.clone()).collect();
+        if forest.config().paint.is_none() {
+            let version = scene.world.repaint(canvas.shared_layer())?;
+            scene.cells.repaint(&scene.world, bounds, version)?;
+        }
+        let names = forest
+            .config()
+            .species
+            .iter()
+            .map(|s| s.name.clone())
+            .collect();
         Ok(Painting {
             canvas,
             brush: Brush::new(BrushAction::Add { species: 0 }, 12.0),
@@ -202,7 +214,10 @@ impl Painting {
 
     /// Hands the layer to the world and generates the cells under the change again.
     fn show(&mut self, scene: &mut Scene, change: Change, start: Instant) {
-        let region = Rect::new(change.region.min - self.reach, change.region.max + self.reach);
+        let region = Rect::new(
+            change.region.min - self.reach,
+            change.region.max + self.reach,
+        );
         let shown = scene
             .world
             .repaint(self.canvas.shared_layer())
@@ -212,5 +227,104 @@ impl Painting {
         }
         self.changed = true;
         self.last_ms = start.elapsed().as_secs_f64() * 1e3;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{SceneOptions, default_species};
+
+    fn scene() -> Scene {
+        Scene::build(SceneOptions {
+            seed: 2,
+            side: 400.0,
+            trees: None,
+            species: default_species().expect("bundled species")[..2].to_vec(),
+            budget: 4 << 20,
+            paint: None,
+        })
+        .expect("scene builds")
+    }
+
+    /// The ray through a pixel meets the terrain on that pixel's line of sight.
+    #[test]
+    fn the_cursor_picks_the_ground_it_shows() {
+        let scene = scene();
+        let camera = Camera::parse("120,150,30,-25,40").expect("camera");
+        let size = (640.0, 360.0);
+        let (view_proj, eye) = camera.view_proj(&scene, size.0 / size.1);
+        // The centre pixel looks along the camera's forward direction.
+        let hit = pick(&scene, view_proj, eye, (320.0, 180.0), size).expect("ground in view");
+        let along = (hit - eye).normalize();
+        assert!(
+            along.dot(camera.forward()) > 0.9999,
+            "{along} vs {}",
+            camera.forward()
+        );
+        assert!((hit.y - scene.ground(hit.x, hit.z)).abs() < 1e-2);
+        // Any pixel's hit projects back onto that pixel.
+        for (x, y) in [(10.0, 300.0), (600.0, 250.0), (320.0, 350.0)] {
+            let hit = pick(&scene, view_proj, eye, (x, y), size).expect("ground");
+            let clip = view_proj * hit.extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            let pixel = ((ndc.x + 1.0) * 0.5 * size.0, (1.0 - ndc.y) * 0.5 * size.1);
+            assert!(
+                (pixel.0 - x).abs() < 0.2 && (pixel.1 - y).abs() < 0.2,
+                "{pixel:?}"
+            );
+        }
+        // The sky picks nothing.
+        let up = Camera::parse("120,150,30,40").expect("camera");
+        let (view_proj, eye) = up.view_proj(&scene, size.0 / size.1);
+        assert_eq!(pick(&scene, view_proj, eye, (320.0, 10.0), size), None);
+    }
+
+    /// Erasing under the cursor clears the trees there from the streamed cells; undo brings
+    /// them back; bad keys and strokes off the terrain leave a message and the forest as it
+    /// was.
+    #[test]
+    fn strokes_show_in_the_cells_and_undo() {
+        let mut scene = scene();
+        let eye = Vec3::new(200.0, 10.0, 200.0);
+        scene.stream(eye, false, true).expect("stream");
+        let trees = |scene: &Scene| scene.cells.drawn().map(|(_, c)| c.trees).sum::<usize>();
+        let before = trees(&scene);
+        let dir = std::env::temp_dir().join(format!("sylva-viewer-paint-{}", std::process::id()));
+        let mut painting = Painting::new(&mut scene, dir.clone()).expect("painting");
+        assert_eq!(trees(&scene), before);
+        assert!(painting.key(&mut scene, "e", false, false));
+        assert!(painting.key(&mut scene, "]", false, false));
+        painting.press(&mut scene, Some(Vec3::new(200.0, 0.0, 200.0)));
+        painting.drag(&mut scene, Some(Vec3::new(240.0, 0.0, 210.0)));
+        painting.release();
+        assert!(painting.take_changed());
+        let erased = trees(&scene);
+        assert!(erased < before, "{erased} of {before}");
+        assert!(painting.status().contains("erase"), "{}", painting.status());
+        assert!(painting.key(&mut scene, "z", true, false));
+        assert_eq!(trees(&scene), before);
+        assert!(painting.key(&mut scene, "y", true, false));
+        assert_eq!(trees(&scene), erased);
+        assert!(painting.key(&mut scene, "9", false, false));
+        assert!(
+            painting.message.contains("no species 9"),
+            "{}",
+            painting.message
+        );
+        painting.press(&mut scene, Some(Vec3::new(5000.0, 0.0, 5000.0)));
+        assert!(
+            painting.message.contains("misses the terrain"),
+            "{}",
+            painting.message
+        );
+        painting.release();
+        assert_eq!(trees(&scene), erased);
+        assert!(painting.key(&mut scene, "s", true, false));
+        assert!(
+            dir.join(mask_file_name(&default_species().expect("species")[0].name))
+                .exists()
+        );
+        let _ = std::fs::remove_dir_all(dir);
     }
 }

@@ -255,9 +255,7 @@ impl World {
     /// Paints the forest with `layer` from now on; returns the new version.
     pub(crate) fn repaint(&self, layer: Arc<PaintLayer>) -> Result<u64, String> {
         let (builder, _) = self.forest();
-        let painted = builder
-            .with_paint(Some(layer))
-            .map_err(|e| e.to_string())?;
+        let painted = builder.with_paint(Some(layer)).map_err(|e| e.to_string())?;
         let mut guard = self.forest.write().unwrap_or_else(PoisonError::into_inner);
         guard.1 += 1;
         guard.0 = Arc::new(painted);

@@ -149,8 +149,8 @@ impl App {
     }
 
     fn walk(&mut self, dt: f32) {
-        let hurry = self.keys.contains(&KeyCode::ShiftLeft)
-            || self.keys.contains(&KeyCode::ShiftRight);
+        let hurry =
+            self.keys.contains(&KeyCode::ShiftLeft) || self.keys.contains(&KeyCode::ShiftRight);
         if let Some(guide) = &mut self.guide {
             // Led: a walking pace; the walker may only lean a little off the way.
             let lean = f32::from(u8::from(self.keys.contains(&KeyCode::KeyD)))
@@ -306,7 +306,7 @@ impl App {
     /// P: the painting tool on or off (the cursor is freed to paint).
     fn toggle_painting(&mut self) {
         if self.painting.is_none() {
-            match Painting::new(&self.scene, self.save_to.clone()) {
+            match Painting::new(&mut self.scene, self.save_to.clone()) {
                 Ok(p) => self.painting = Some(p),
                 Err(e) => {
                     eprintln!("cannot paint: {e}");

@@ -1,7 +1,7 @@
 //! The paint layer: how densely each species grows, cell by cell, over the terrain.
 
 use glam::Vec2;
-use sylva_base::hash::mix;
+use sylva_base::hash::unit_f32 as unit;
 
 use crate::density::Rect;
 use crate::error::ForestError;
@@ -21,7 +21,8 @@ pub const FULL: u16 = u16::MAX;
 /// use, a tree the density model proposes in a cell is kept with probability equal to the
 /// cell's total density (at most 1) and takes species `s` with probability `value_s /
 /// total`; so an empty layer grows nothing, and painted trees still keep the density model's
-/// spacing and seedling rules.
+/// spacing and seedling rules. Spots beyond the layer are as unpainted (they matter only to
+/// the trees near its edge, through spacing).
 ///
 /// ```
 /// use sylva_forest::{PaintLayer, Rect};
@@ -271,28 +272,36 @@ pub(crate) fn quantize_mix(fractions: impl Iterator<Item = f32>) -> Vec<u16> {
 }
 
 impl Composition for PaintLayer {
-    fn choose(&self, _: &PatchDensity, p: Vec2, draw: u64) -> Option<usize> {
-        let values = self.get(self.cell_at(p)?);
+    fn choose(&self, density: &PatchDensity, p: Vec2, draw: u64) -> Option<usize> {
+        // Beyond the layer (past the terrain's edge, where no tree is kept) spots are as
+        // unpainted, so trees near the edge see the neighbours a generated forest's see.
+        let Some(cell) = self.cell_at(p) else {
+            return Some(density.pick_species(draw));
+        };
+        let values = self.get(cell);
         let total: u64 = values.iter().map(|&v| u64::from(v)).sum();
         // Kept with probability total / FULL (always at FULL or more).
         if total == 0 || (total < u64::from(FULL) && draw & 0xffff >= total) {
             return None;
         }
-        // The species by its share of the cell, from independent bits of the draw.
-        let mut pick = ((mix(draw) >> 32) * total) >> 32;
+        // The species by its share of the cell, from the draw's top bits as the unpainted
+        // model draws it (so a full layer in the species' proportions grows the same forest,
+        // up to the shares' rounding); presence used the low bits, independent of these.
+        let mut pick = unit(draw) * total as f32;
         for (s, &v) in values.iter().enumerate() {
-            if pick < u64::from(v) {
+            if pick < f32::from(v) {
                 return Some(s);
             }
-            pick -= u64::from(v);
+            pick -= f32::from(v);
         }
-        None
+        values.iter().rposition(|&v| v > 0)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use sylva_base::hash::mix;
 
     fn layer() -> PaintLayer {
         PaintLayer::new(Rect::new(Vec2::ZERO, Vec2::new(10.0, 6.0)), 1.0, 2).unwrap()

@@ -77,12 +77,13 @@ pub struct ForestPainter<T> {
 
 impl<T: HeightField + Sync> ForestPainter<T> {
     /// A painter of `builder`'s species on `terrain`, starting from `layer` (one channel per
-    /// species, covering the terrain or part of it); grows the whole forest once.
+    /// species, covering the terrain or part of it: beyond it trees grow as unpainted);
+    /// grows the whole forest once.
     pub fn new(builder: ForestBuilder, terrain: T, layer: PaintLayer) -> Result<Self, ForestError> {
         let canvas = PaintCanvas::for_forest(&builder, layer)?;
         let (lo, hi) = terrain.bounds();
-        let region = canvas.layer().bounds().intersect(&Rect::new(lo, hi));
-        if region.is_empty() {
+        let region = Rect::new(lo, hi);
+        if region.is_empty() || region.intersect(&canvas.layer().bounds()).is_empty() {
             return Err(ForestError::BadParameter(
                 "the paint layer does not overlap the terrain".into(),
             ));
