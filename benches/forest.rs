@@ -1,13 +1,16 @@
 //! The main job's figures: creating and placing every instance transform of a streamed
 //! forest of 10^4, 10^5 and 10^6 trees (the default species, a 128 MB cache, every core), and
-//! glTF export of 10^4 trees. Hero creation is measured on its own.
+//! glTF export of 10^4 trees. Hero creation is measured on its own. Painting: one 60 m
+//! stroke dragged as 31 mouse moves over a 10^5-tree forest, each move regenerating the trees
+//! within reach, then undone.
 
 use std::hint::black_box;
 use std::path::Path;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use sylva::forest::{
-    ForestBuilder, ForestConfig, GltfOptions, PlacementBlock, Rect, Species, write_glb,
+    Brush, BrushAction, ForestBuilder, ForestConfig, ForestPainter, GltfOptions, PaintLayer,
+    PlacementBlock, Rect, Species, write_glb,
 };
 use sylva::terrain::glam::Vec2;
 use sylva::terrain::{DiamondSquare, EdgeMode, Heightmap};
@@ -108,6 +111,28 @@ fn forest(c: &mut Criterion) {
         })
     });
     let _ = std::fs::remove_file(&path);
+
+    // Painting a 10^5-tree forest: a stroke of 31 mouse moves, then its undo (so every
+    // iteration paints the same forest).
+    let (map, region) = ground(&builder, 100_000);
+    let weights: Vec<f32> = builder.config().species.iter().map(|s| s.weight).collect();
+    let layer = PaintLayer::filled(region, 1.0, &weights).expect("layer fits");
+    let mut painter = ForestPainter::new(builder.clone(), map, layer).expect("painter");
+    let centre = (region.min + region.max) * 0.5;
+    let mut brush = Brush::new(BrushAction::Erase, 15.0);
+    brush.strength = 0.8;
+    group.throughput(Throughput::Elements(painter.tree_count() as u64));
+    group.bench_function("paint_stroke_and_undo_100000_trees", |b| {
+        b.iter(|| {
+            painter.begin_stroke(brush).expect("brush");
+            for k in 0..=30 {
+                let at = centre + Vec2::new(2.0 * k as f32 - 30.0, 0.0);
+                black_box(painter.stroke_to(at).expect("on the terrain"));
+            }
+            painter.end_stroke();
+            painter.undo().expect("undoes")
+        })
+    });
     group.finish();
 }
 

@@ -285,6 +285,24 @@ fn bad_strokes_and_masks_are_refused_and_change_nothing() {
         e.contains("16-bit grayscale") && e.contains("plant.png"),
         "{e}"
     );
+    // A header claiming a vast image is refused before anything is allocated for it.
+    for side in [70_000u32, u32::MAX >> 1] {
+        let mut bytes = Vec::new();
+        let mut enc = png::Encoder::new(&mut bytes, side, side);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Sixteen);
+        let mut writer = enc.write_header().unwrap();
+        // One row's worth of image data at most follows: the header lies.
+        writer
+            .write_chunk(png::chunk::IDAT, &[0x78, 0x9c, 0x03, 0x00])
+            .unwrap();
+        drop(writer);
+        std::fs::write(dir.join("plant.png"), &bytes).unwrap();
+        let e = load_masks(&dir, &names, bounds()).unwrap_err().to_string();
+        // Refused by the layer's bound or the PNG decoder's own memory limit, naming the file.
+        let bounded = e.contains("too large") || e.contains("limits are exceeded");
+        assert!(bounded && e.contains("plant.png"), "{e}");
+    }
     std::fs::write(dir.join("pine.png"), b"not a png").unwrap();
     let e = load_masks(&dir, &names, bounds()).unwrap_err().to_string();
     assert!(e.contains("names no species"), "{e}");

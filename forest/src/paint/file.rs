@@ -126,7 +126,7 @@ fn read_mask(path: &Path, bounds: Rect, species: usize) -> Result<Mask, ForestEr
         ));
     }
     let (width, depth) = (info.width as usize, info.height as usize);
-    if width * depth * species > MAX_PAINT_VALUES {
+    if width as u128 * depth as u128 * species as u128 > MAX_PAINT_VALUES as u128 {
         return Err(io_error(
             path,
             format!("a mask of {width} x {depth} for {species} species is too large"),
