@@ -1,13 +1,6 @@
 //! Paint layers on disk: one 16-bit grayscale PNG mask per species, in one directory.
 //!
-//! The format: a directory holding `<species name>.png` for each painted species (the name
-//! with every character other than letters, digits, `-`, `_` and `.` turned into `_`; see
-//! [`mask_file_name`]). Each mask is a 16-bit grayscale PNG of the layer's `width x depth`
-//! cells; a pixel is that species' density in the cell, 0 (none) to 65535 (full); the
-//! image's first row is the layer's lowest z, its first column the lowest x. The masks
-//! stretch over the terrain's rectangle; a `tEXt` chunk [`MASK_TEXT_KEY`] holds that
-//! rectangle (`min_x min_z max_x max_z`) and, when present, must match the terrain's. A
-//! species without a file has no trees painted; every file must name a species.
+//! See [`load_masks`] for the format.
 
 use std::collections::BTreeMap;
 use std::io::BufWriter;
@@ -60,8 +53,8 @@ fn io_error(path: &Path, e: impl std::fmt::Display) -> ForestError {
     }
 }
 
-/// Writes one mask per species of `layer` into `dir` (created if missing); `species` names
-/// the layer's channels in order. Species with nothing painted get a file too, so a saved
+/// Writes one mask per species of `layer` into `dir` (created if missing), in the format
+/// [`load_masks`] reads; `species` names the layer's channels in order. Species with nothing painted get a file too, so a saved
 /// layer reads back exactly.
 pub fn save_masks(layer: &PaintLayer, species: &[&str], dir: &Path) -> Result<(), ForestError> {
     if species.len() != layer.species() {
@@ -174,6 +167,32 @@ fn read_mask(path: &Path, bounds: Rect, species: usize) -> Result<Mask, ForestEr
 /// `species` (the forest's species names, in order). Errors, naming the file, when a mask is
 /// not 16-bit grayscale, the masks differ in size, a mask's stored rectangle is not the
 /// terrain's, a file names no species, or no species has a mask.
+///
+/// # Format
+///
+/// A directory holding `<species name>.png` for each painted species (the name
+/// with every character other than letters, digits, `-`, `_` and `.` turned into `_`; see
+/// [`mask_file_name`]). Each mask is a 16-bit grayscale PNG of the layer's `width x depth`
+/// cells; a pixel is that species' density in the cell, 0 (none) to 65535 (full); the
+/// image's first row is the layer's lowest z, its first column the lowest x. The masks
+/// stretch over the terrain's rectangle; a `tEXt` chunk [`MASK_TEXT_KEY`] holds that
+/// rectangle (`min_x min_z max_x max_z`) and, when present, must match the terrain's. A
+/// species without a file has no trees painted; every file must name a species.
+///
+/// ```
+/// use sylva_forest::{PaintLayer, Rect, load_masks, save_masks};
+/// use sylva_terrain::glam::Vec2;
+///
+/// let terrain = Rect::new(Vec2::ZERO, Vec2::splat(64.0));
+/// let mut layer = PaintLayer::new(terrain, 2.0, 2)?;
+/// layer.set(5, &[1000, 30000])?;
+/// let dir = std::env::temp_dir().join(format!("sylva-doc-masks-{}", std::process::id()));
+/// save_masks(&layer, &["oak", "birch"], &dir)?;
+/// assert!(dir.join("birch.png").exists());
+/// assert_eq!(load_masks(&dir, &["oak", "birch"], terrain)?, layer);
+/// # std::fs::remove_dir_all(&dir).ok();
+/// # Ok::<(), sylva_forest::ForestError>(())
+/// ```
 pub fn load_masks(dir: &Path, species: &[&str], bounds: Rect) -> Result<PaintLayer, ForestError> {
     let names = file_names(species)?;
     let entries = std::fs::read_dir(dir).map_err(|e| io_error(dir, e))?;
