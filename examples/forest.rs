@@ -36,12 +36,11 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 use sylva::forest::{
     ForestBuilder, ForestConfig, GltfOptions, Level, PlacementBlock, Rect, Species, TileId,
-    TileScheme, TileStats, TilesetOptions, load_masks, tile_path, write_glb, write_tile,
-    write_tileset,
+    TileScheme, TileStats, TilesetOptions, tile_path, write_glb, write_tile, write_tileset,
 };
 use sylva::instancing::Assembler;
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{HeightField, HeightRange, Heightmap};
+use sylva::terrain::{HeightRange, Heightmap};
 
 const USAGE: &str = "usage: forest [--area METRES | --trees N | --terrain HEIGHTS.png|.raw [--spacing M] [--height-range LO,HI]] \
                      [--density TREES_PER_HA] [--species FILE]... [--budget-mb MB] [--seed S] [--out forest.glb] \
@@ -237,17 +236,8 @@ fn run() -> Result<(), String> {
     let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
     // A painted forest: the masks stretch over the terrain and decide where each species grows.
     if let Some(dir) = &args.paint {
-        let names: Vec<&str> = builder
-            .config()
-            .species
-            .iter()
-            .map(|s| s.name.as_str())
-            .collect();
-        let (lo, hi) = map.bounds();
-        let layer =
-            load_masks(Path::new(dir), &names, Rect::new(lo, hi)).map_err(|e| e.to_string())?;
         builder = builder
-            .with_paint(Some(layer.into()))
+            .with_masks(Path::new(dir), &map)
             .map_err(|e| e.to_string())?;
     }
     if let Some(dir) = &args.tiles {

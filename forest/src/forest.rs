@@ -392,6 +392,24 @@ impl ForestBuilder {
             .collect()
     }
 
+    /// This builder painted with the masks saved in `dir` (see [`crate::load_masks`]),
+    /// stretched over `terrain`: one mask per species, named after it.
+    pub fn with_masks(
+        &self,
+        dir: &std::path::Path,
+        terrain: &dyn HeightField,
+    ) -> Result<ForestBuilder, ForestError> {
+        let names: Vec<&str> = self
+            .config
+            .species
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        let (lo, hi) = terrain.bounds();
+        let layer = crate::paint::load_masks(dir, &names, Rect::new(lo, hi))?;
+        self.with_paint(Some(Arc::new(layer)))
+    }
+
     /// Sets the paint layer, already checked against the species (by a canvas).
     pub(crate) fn set_paint(&mut self, layer: Arc<PaintLayer>) {
         self.config.paint = Some(layer);

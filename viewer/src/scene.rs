@@ -5,8 +5,7 @@ use bytemuck::{Pod, Zeroable};
 use std::sync::{Arc, PoisonError, RwLock};
 
 use sylva::forest::{
-    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, PaintLayer, Rect, Species,
-    load_masks, tree_proxy,
+    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, PaintLayer, Species, tree_proxy,
 };
 use sylva::instancing::Span;
 
@@ -161,16 +160,8 @@ impl World {
             .smooth(2.0, EdgeMode::Mirror)
             .map_err(|e| e.to_string())?;
         if let Some(dir) = &options.paint {
-            let names: Vec<&str> = builder
-                .config()
-                .species
-                .iter()
-                .map(|s| s.name.as_str())
-                .collect();
-            let (lo, hi) = heightmap.bounds();
-            let layer = load_masks(dir, &names, Rect::new(lo, hi)).map_err(|e| e.to_string())?;
             builder = builder
-                .with_paint(Some(Arc::new(layer)))
+                .with_masks(dir, &heightmap)
                 .map_err(|e| e.to_string())?;
         }
         let species = &builder.config().species;
