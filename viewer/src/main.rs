@@ -2,8 +2,9 @@
 //!
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
-//!     [--area METRES | --trees N] [--budget-mb MB] [--camera x,z,yaw,pitch[,height]]
-//!     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M]] [--wind S] [--time T]]
+//!     [--area METRES | --trees N] [--budget-mb MB] [--paint MASKS_DIR]
+//!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids]
+//!     [--frames N [--walk M] | --tour N [--tour-spacing M]] [--wind S] [--time T]]
 //! ```
 //!
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
@@ -17,13 +18,23 @@
 //! trees sway in a breeze. The title shows draw calls, instances, triangles and frame time;
 //! `--frames N` closes the window after N frames and prints the median frame time.
 //!
+//! P turns the painting tool on (Carey's): the left button paints the species chosen with 1
+//! to 9 onto the terrain under the cursor, E erases, T turns trees into the species, `[` `]`
+//! size the brush, `-` `=` set its strength, Ctrl+Z and Ctrl+Y undo and redo, Ctrl+S saves
+//! the masks (to `--paint DIR`, or `paint_masks/`); the right button looks around. G starts
+//! the guided walk (the Garden of Eden's): the camera is led from target to target around
+//! the trunks; the mouse looks around, A and D lean a little off the way. `--paint DIR`
+//! opens a painted forest (the masks the paint example, the tool or you wrote).
+//!
 //! Headless (`--screenshot`): renders one frame offscreen and writes a PNG, in a wind of
 //! strength `--wind` (1, a breeze, by default; 0 for still air) at `--time` seconds into its
 //! cycle; `--frames N` renders N more frames and prints the median frame time, and with
 //! `--walk M` the camera walks M metres along its heading between them, streaming as it
 //! goes. With `--ids` the picture shows flat material colours and the viewer prints what
-//! share of it terrain, bark, leaves and sky cover. Without a GPU it runs on Mesa's software
-//! drivers (lavapipe, or `WGPU_BACKEND=gl`).
+//! share of it terrain, bark, leaves and sky cover. `--tour N` renders N frames along a
+//! guided walk from the camera's position, `--tour-spacing` metres apart (0.5 by default),
+//! to `PATH_0000.png` and on, and prints what the walk did. Without a GPU it runs on Mesa's
+//! software drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
 mod cells;
 mod cli;
