@@ -22,6 +22,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
+use sylva::base::hash::{mix, unit_f32};
 use sylva::forest::{
     Brush, BrushAction, ForestBuilder, ForestConfig, ForestPainter, PaintLayer, Rect, save_masks,
 };
@@ -78,11 +79,9 @@ fn parse() -> Result<Args, String> {
 
 /// A uniform value in [0, 1) from a counter (the session is a pure function of the seed).
 fn unit(seed: u64, k: u64) -> f32 {
-    // SplitMix64's finaliser over the counter.
-    let mut z = seed ^ k.wrapping_add(1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    unit_f32(mix(
+        seed ^ k.wrapping_add(1).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+    ))
 }
 
 fn median(v: &mut [Duration]) -> f64 {

@@ -2,6 +2,7 @@
 //!
 //! # Crates
 //!
+//! - [`base`]: the seeded SplitMix hash every crate draws from, and bounded file reading.
 //! - [`forest`]: species, density management, placement, glTF export, grown stands.
 //! - [`growth`]: trees grown into their environment in a voxel space (light, collision).
 //! - [`lsys`]: L-system grammars and seeded rewriting.
@@ -9,6 +10,7 @@
 //! - [`turtle`]: 3D turtle interpretation into meshes and skeletons.
 //! - [`terrain`]: diamond-square heightmaps, smoothing, erosion, sampling, export.
 
+pub use sylva_base as base;
 pub use sylva_forest as forest;
 pub use sylva_growth as growth;
 pub use sylva_instancing as instancing;

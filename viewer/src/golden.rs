@@ -29,12 +29,7 @@ fn read_png(path: &str) -> Option<Vec<u8>> {
 }
 
 fn write_png(path: &str, pixels: &[u8]) {
-    let file = std::fs::File::create(path).expect("golden file is writable");
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), SIZE.0, SIZE.1);
-    encoder.set_color(png::ColorType::Rgba);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().expect("png header");
-    writer.write_image_data(pixels).expect("png data");
+    crate::write_png(path, SIZE, pixels).expect("golden file is writable");
 }
 
 fn default_scene() -> Scene {

@@ -134,16 +134,10 @@ impl Brush {
     }
 }
 
-/// The distance from `p` to the segment from `a` to `b`.
+/// The distance from `p` to the segment from `a` to `b`, in the x-z plane (the growth crate's
+/// segment distance, in the plane).
 pub(crate) fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + t * ab)
+    sylva_growth::distance_to_segment(p.extend(0.0), a.extend(0.0), b.extend(0.0))
 }
 
 #[cfg(test)]
