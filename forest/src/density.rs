@@ -37,6 +37,22 @@ impl Rect {
             max: self.max.min(other.max),
         }
     }
+
+    /// The smallest rectangle holding both.
+    pub fn union(&self, other: &Rect) -> Rect {
+        Rect {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// The rectangle grown by `margin` on every side.
+    pub fn expanded(&self, margin: f32) -> Rect {
+        Rect {
+            min: self.min - margin,
+            max: self.max + margin,
+        }
+    }
 }
 
 /// A proposed tree.

@@ -13,7 +13,7 @@ use sylva_base::hash::{mix, unit_f32 as unit};
 
 use crate::density::{Candidate, DensityModel, Rect};
 use crate::error::ForestError;
-use crate::paint::{PaintLayer, check_layer};
+use crate::paint::PaintLayer;
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
 
@@ -193,7 +193,7 @@ impl ForestBuilder {
             )));
         }
         if let Some(layer) = &config.paint {
-            check_layer(config.species.len(), layer)?;
+            layer.check_species(config.species.len())?;
         }
         let canopies = config
             .species
@@ -327,7 +327,7 @@ impl ForestBuilder {
     /// layer does not have one channel per species.
     pub fn with_paint(&self, paint: Option<Arc<PaintLayer>>) -> Result<ForestBuilder, ForestError> {
         if let Some(layer) = &paint {
-            check_layer(self.config.species.len(), layer)?;
+            layer.check_species(self.config.species.len())?;
         }
         let mut builder = self.clone();
         builder.config.paint = paint;

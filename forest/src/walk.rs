@@ -98,16 +98,22 @@ impl TrunkGrid {
     }
 }
 
+impl TrunkGrid {
+    /// The cells within `reach` of `p`.
+    fn keys(&self, p: Vec2, reach: f32) -> impl Iterator<Item = (i64, i64)> + use<> {
+        let cell = self.cell;
+        let span =
+            move |v: f32| ((v - reach) / cell).floor() as i64..=((v + reach) / cell).floor() as i64;
+        let xs = span(p.x);
+        span(p.y).flat_map(move |j| xs.clone().map(move |i| (i, j)))
+    }
+}
+
 impl Trunks for TrunkGrid {
     fn near(&mut self, p: Vec2, reach: f32, out: &mut Vec<(Vec2, f32)>) {
-        let span = |v: f32| {
-            ((v - reach) / self.cell).floor() as i64..=((v + reach) / self.cell).floor() as i64
-        };
-        for j in span(p.y) {
-            for i in span(p.x) {
-                if let Some(c) = self.cells.get(&(i, j)) {
-                    out.extend_from_slice(c);
-                }
+        for key in self.keys(p, reach) {
+            if let Some(c) = self.cells.get(&key) {
+                out.extend_from_slice(c);
             }
         }
     }
@@ -119,7 +125,8 @@ impl Trunks for TrunkGrid {
 pub struct ForestTrunks<'a> {
     trees: Box<dyn FnMut(Rect) -> Vec<CompactTree> + 'a>,
     radius: Box<dyn Fn(&CompactTree) -> f32 + 'a>,
-    squares: HashMap<(i64, i64), Vec<(Vec2, f32)>>,
+    /// The squares generated so far, as a grid of their side.
+    grid: TrunkGrid,
 }
 
 /// Side of the squares [`ForestTrunks`] generates.
@@ -138,7 +145,7 @@ impl<'a> ForestTrunks<'a> {
         ForestTrunks {
             trees: Box::new(trees),
             radius: Box::new(radius),
-            squares: HashMap::new(),
+            grid: TrunkGrid::new(Vec::new(), TRUNK_SQUARE),
         }
     }
 
@@ -162,43 +169,37 @@ impl<'a> ForestTrunks<'a> {
 
     /// Forgets the trunks generated so far (after the forest changed, as painting does).
     pub fn forget(&mut self) {
-        self.squares.clear();
-    }
-
-    fn square(&mut self, key: (i64, i64)) -> &[(Vec2, f32)] {
-        if self.squares.len() >= MAX_TRUNK_SQUARES {
-            self.squares.clear();
-        }
-        let (trees, radius) = (&mut self.trees, &self.radius);
-        self.squares.entry(key).or_insert_with(|| {
-            let min = Vec2::new(key.0 as f32, key.1 as f32) * TRUNK_SQUARE;
-            trees(Rect::new(min, min + TRUNK_SQUARE))
-                .iter()
-                .map(|t| (Vec2::new(t.position[0], t.position[2]), radius(t)))
-                .collect()
-        })
+        self.grid.cells.clear();
     }
 }
 
 impl std::fmt::Debug for ForestTrunks<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ForestTrunks")
-            .field("squares", &self.squares.len())
+            .field("squares", &self.grid.cells.len())
             .finish_non_exhaustive()
     }
 }
 
 impl Trunks for ForestTrunks<'_> {
     fn near(&mut self, p: Vec2, reach: f32, out: &mut Vec<(Vec2, f32)>) {
-        let span = |v: f32| {
-            ((v - reach) / TRUNK_SQUARE).floor() as i64
-                ..=((v + reach) / TRUNK_SQUARE).floor() as i64
-        };
-        for j in span(p.y) {
-            for i in span(p.x) {
-                out.extend_from_slice(self.square((i, j)));
-            }
+        // A long walk forgets what it generated, before this call's squares come in.
+        if self.grid.cells.len() >= MAX_TRUNK_SQUARES {
+            self.grid.cells.clear();
         }
+        // Squares not generated yet are generated (an empty square is kept too).
+        for key in self.grid.keys(p, reach) {
+            if self.grid.cells.contains_key(&key) {
+                continue;
+            }
+            let min = Vec2::new(key.0 as f32, key.1 as f32) * TRUNK_SQUARE;
+            let trunks = (self.trees)(Rect::new(min, min + TRUNK_SQUARE))
+                .iter()
+                .map(|t| (Vec2::new(t.position[0], t.position[2]), (self.radius)(t)))
+                .collect();
+            self.grid.cells.insert(key, trunks);
+        }
+        self.grid.near(p, reach, out);
     }
 }
 

@@ -570,8 +570,7 @@ mod tests {
             .expect("stroke")
             .expect("a change");
         let version = world.repaint(canvas.shared_layer()).expect("repaint");
-        let reach = forest.density().reach();
-        let region = Rect::new(change.region.min - reach, change.region.max + reach);
+        let region = change.region.expanded(forest.density().reach());
         let regenerated = cells.repaint(&world, region, version).expect("cells");
         assert!(regenerated >= 2, "{regenerated}");
         assert!(cells.stale(

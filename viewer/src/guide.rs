@@ -83,10 +83,7 @@ impl Guide {
                 let gap = step.position.distance(*t) - r - self.options.body;
                 self.least_gap = self.least_gap.min(gap);
             }
-            let heading = step.heading.y.atan2(step.heading.x);
-            let turn = (heading - self.yaw + std::f32::consts::PI)
-                .rem_euclid(std::f32::consts::TAU)
-                - std::f32::consts::PI;
+            let turn = Vec2::from_angle(self.yaw).angle_to(step.heading);
             self.yaw += turn * (1.0 - (-self.options.step / YAW_LAG).exp());
         }
     }

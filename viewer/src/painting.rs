@@ -27,13 +27,9 @@ pub(crate) struct Painting {
     names: Vec<String>,
     /// Where Ctrl+S saves the masks.
     save_to: PathBuf,
-    /// Whether a stroke is under way (the button is down).
-    stroking: bool,
     /// Milliseconds of the last edit (layer, forest and cells), and a message for the title.
     pub(crate) last_ms: f64,
     pub(crate) message: String,
-    /// The density model's reach beyond a change, metres.
-    reach: f32,
     changed: bool,
 }
 
@@ -90,10 +86,8 @@ impl Painting {
             species: 0,
             names,
             save_to,
-            stroking: false,
             last_ms: 0.0,
             message: String::new(),
-            reach: forest.density().reach(),
             changed: false,
         })
     }
@@ -174,13 +168,12 @@ impl Painting {
             self.message = e.to_string();
             return;
         }
-        self.stroking = true;
         self.drag(scene, point);
     }
 
     /// The cursor moved to `point` with the button down.
     pub(crate) fn drag(&mut self, scene: &mut Scene, point: Option<Vec3>) {
-        let Some(p) = point.filter(|_| self.stroking) else {
+        let Some(p) = point.filter(|_| self.canvas.stroking()) else {
             return;
         };
         let start = Instant::now();
@@ -193,10 +186,7 @@ impl Painting {
 
     /// The button came up: the stroke can be undone.
     pub(crate) fn release(&mut self) {
-        if self.stroking {
-            self.canvas.end_stroke();
-            self.stroking = false;
-        }
+        self.canvas.end_stroke();
     }
 
     fn edit(&mut self, scene: &mut Scene, edit: impl FnOnce(&mut PaintCanvas) -> Option<Change>) {
@@ -214,10 +204,10 @@ impl Painting {
 
     /// Hands the layer to the world and generates the cells under the change again.
     fn show(&mut self, scene: &mut Scene, change: Change, start: Instant) {
-        let region = Rect::new(
-            change.region.min - self.reach,
-            change.region.max + self.reach,
-        );
+        // Trees change up to the density model's reach from the cells painted.
+        let region = change
+            .region
+            .expanded(scene.world.forest().0.density().reach());
         let shown = scene
             .world
             .repaint(self.canvas.shared_layer())

@@ -110,13 +110,7 @@ impl PaintCanvas {
     /// only species with trees (a positive weight, so instance caches) may be painted.
     pub fn for_forest(builder: &ForestBuilder, layer: PaintLayer) -> Result<Self, ForestError> {
         let species = &builder.config().species;
-        if layer.species() != species.len() {
-            return Err(ForestError::BadParameter(format!(
-                "the paint layer has {} species channels, the forest {} species",
-                layer.species(),
-                species.len()
-            )));
-        }
+        layer.check_species(species.len())?;
         let mut canvas = PaintCanvas::new(layer);
         canvas.species = species
             .iter()
@@ -140,6 +134,11 @@ impl PaintCanvas {
     /// The layer, shared (cheap to clone; later strokes copy it rather than change it).
     pub fn shared_layer(&self) -> Arc<PaintLayer> {
         Arc::clone(&self.layer)
+    }
+
+    /// Whether a stroke is under way (begun and not ended).
+    pub fn stroking(&self) -> bool {
+        self.stroke.is_some()
     }
 
     /// Strokes that can be undone and redone.
@@ -264,8 +263,7 @@ impl PaintCanvas {
                 edit.cells.push(cell);
                 edit.before.extend_from_slice(before);
                 edit.after.extend_from_slice(after);
-                let r = self.layer.cell_rect(cell);
-                edit.region = Rect::new(edit.region.min.min(r.min), edit.region.max.max(r.max));
+                edit.region = edit.region.union(&self.layer.cell_rect(cell));
             }
         }
         if edit.cells.is_empty() {

@@ -52,12 +52,6 @@ impl PaintLayer {
     /// `species` species. Errors when the rectangle is empty, the cell size is not positive,
     /// or the layer would hold more than [`MAX_PAINT_VALUES`] values.
     pub fn new(bounds: Rect, cell: f32, species: usize) -> Result<Self, ForestError> {
-        if bounds.is_empty() {
-            return Err(ForestError::BadParameter(format!(
-                "a paint layer needs a rectangle with area, not {:?} to {:?}",
-                bounds.min, bounds.max
-            )));
-        }
         if !(cell.is_finite() && cell > 0.0) {
             return Err(ForestError::BadParameter(format!(
                 "paint cell size {cell} must be a positive number of metres"
@@ -76,11 +70,6 @@ impl PaintLayer {
         depth: usize,
         species: usize,
     ) -> Result<Self, ForestError> {
-        if bounds.is_empty() {
-            return Err(ForestError::BadParameter(
-                "a paint layer needs a rectangle with area".into(),
-            ));
-        }
         Self::with_grid(bounds, width as f64, depth as f64, species)
     }
 
@@ -90,6 +79,12 @@ impl PaintLayer {
         depth: f64,
         species: usize,
     ) -> Result<Self, ForestError> {
+        if bounds.is_empty() {
+            return Err(ForestError::BadParameter(format!(
+                "a paint layer needs a rectangle with area, not {:?} to {:?}",
+                bounds.min, bounds.max
+            )));
+        }
         if species == 0 {
             return Err(ForestError::BadParameter(
                 "a paint layer needs at least one species".into(),
@@ -126,6 +121,17 @@ impl PaintLayer {
             cell.copy_from_slice(&mix);
         }
         Ok(layer)
+    }
+
+    /// An error unless the layer has one channel per species of a forest of `species`.
+    pub fn check_species(&self, species: usize) -> Result<(), ForestError> {
+        if self.species != species {
+            return Err(ForestError::BadParameter(format!(
+                "the paint layer has {} species channels, the forest {species} species",
+                self.species
+            )));
+        }
+        Ok(())
     }
 
     /// The rectangle covered.

@@ -13,7 +13,6 @@ pub use brush::{Brush, BrushAction, MAX_BRUSH_RADIUS};
 pub use canvas::{Change, MAX_UNDO, PaintCanvas};
 pub use file::{MASK_TEXT_KEY, load_masks, mask_file_name, save_masks};
 pub use layer::{FULL, MAX_PAINT_VALUES, PaintLayer};
-pub(crate) use painter::check_layer;
 pub use painter::{ForestPainter, PAINT_TILE_PATCHES, StrokeReport};
 
 use crate::density::{Candidate, DensityModel, Rect};

@@ -1,7 +1,6 @@
 //! The forest painter: a paint canvas and the forest it grows, regenerated patch-locally as
 //! strokes land.
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use glam::Vec2;
@@ -194,8 +193,7 @@ impl<T: HeightField + Sync> ForestPainter<T> {
     /// The rectangle whose trees a change of `cells` may alter: a tree's fate reads the
     /// layer at spots up to `RINGS` patches away, and spots lie inside their own patches.
     pub fn reach(&self, cells: Rect) -> Rect {
-        let margin = self.builder.density().reach();
-        Rect::new(cells.min - margin, cells.max + margin)
+        cells.expanded(self.builder.density().reach())
     }
 
     fn update(&mut self, change: Option<Change>, start: Instant) -> StrokeReport {
@@ -259,19 +257,4 @@ impl<T: HeightField + Sync> ForestPainter<T> {
             self.tiles[t] = trees;
         }
     }
-}
-
-/// An error unless `layer` has one channel per species of the forest.
-pub(crate) fn check_layer(
-    builder_species: usize,
-    layer: &Arc<PaintLayer>,
-) -> Result<(), ForestError> {
-    if layer.species() != builder_species {
-        return Err(ForestError::BadParameter(format!(
-            "the paint layer has {} species channels, the forest {} species",
-            layer.species(),
-            builder_species
-        )));
-    }
-    Ok(())
 }
