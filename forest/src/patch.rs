@@ -183,8 +183,8 @@ impl PatchDensity {
                 let spot = (1..=TRIES)
                     .map(|k| self.spot(seed, i, j, 2 + k))
                     .find(|&p| {
-                        composition.choose(self, p, draw) == Some(t.species)
-                            && neighbours(i, j).all(|(a, b)| !clash(&t, p, &original[at(a, b)]))
+                        neighbours(i, j).all(|(a, b)| !clash(&t, p, &original[at(a, b)]))
+                            && composition.choose(self, p, draw) == Some(t.species)
                     });
                 let m = &mut moved[at(i, j)];
                 match spot {
