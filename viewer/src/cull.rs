@@ -4,6 +4,9 @@
 
 use sylva::terrain::glam::{Mat4, Vec3, Vec4};
 
+use crate::cells::{Level, world_sphere};
+use crate::scene::{InstanceRaw, Scene};
+
 /// A convex view volume as inward-facing planes `n . p + d >= 0`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Volume {
@@ -49,6 +52,70 @@ pub(crate) fn bounding_sphere(points: impl Iterator<Item = Vec3>) -> (Vec3, f32)
         .map(|p| p.distance(centre))
         .fold(0.0f32, f32::max);
     (centre, radius)
+}
+
+/// Placements smaller on screen than this many pixels across are not drawn: far twigs and
+/// seedlings that fog would hide anyway.
+const MIN_PIXELS: f32 = 2.0;
+
+/// Appends to `visible` the placements of every group in the fine cells drawn, then the
+/// proxies of every variant, whose bounding spheres touch `volume` and, seen from `eye` with
+/// `pixels_per_radian`, span at least [`MIN_PIXELS`]. With `lod` (a point and a distance), a
+/// fine cell's trees farther than that from the point are drawn as proxies too. Returns (first, count) in
+/// `visible` for each group, then for each variant's proxies.
+pub(crate) fn visible_instances(
+    scene: &Scene,
+    volume: &Volume,
+    (eye, pixels_per_radian): (Vec3, f32),
+    lod: Option<(Vec3, f32)>,
+    visible: &mut Vec<InstanceRaw>,
+) -> Vec<(u64, u32)> {
+    // A sphere of radius r at distance d spans about 2 r / d radians.
+    let min_ratio = 0.5 * MIN_PIXELS / pixels_per_radian.max(1e-6);
+    let seen = |i: &InstanceRaw, sphere: (Vec3, f32)| {
+        let (world, r) = world_sphere(i, sphere);
+        volume.touches(world, r) && r >= min_ratio * world.distance(eye)
+    };
+    let near = |i: &InstanceRaw| {
+        lod.is_none_or(|(from, far)| {
+            Vec3::new(i.tree[0], i.tree[1], i.tree[2]).distance(from) <= far
+        })
+    };
+    // Whole cells out of view are skipped before their placements are looked at.
+    let (mut fine, mut coarse) = (Vec::new(), Vec::new());
+    for (key, cell) in scene.cells.drawn() {
+        let (centre, radius) = cell.sphere;
+        if radius >= 0.0 && volume.touches(centre, radius) {
+            match key.level {
+                Level::Fine => fine.push(cell),
+                Level::Coarse => coarse.push(cell),
+            }
+        }
+    }
+    let world = &scene.world;
+    let mut ranges = Vec::with_capacity(world.groups.len() + world.proxies.len());
+    for (k, g) in world.groups.iter().enumerate() {
+        let first = visible.len();
+        for cell in &fine {
+            let run = cell.placements.run(k).iter();
+            visible.extend(run.filter(|i| near(i) && seen(i, g.sphere)));
+        }
+        ranges.push((first as u64, (visible.len() - first) as u32));
+    }
+    for (k, p) in world.proxies.iter().enumerate() {
+        let first = visible.len();
+        if lod.is_some() {
+            for cell in &fine {
+                let run = cell.proxies.run(k).iter();
+                visible.extend(run.filter(|i| !near(i) && seen(i, p.sphere)));
+            }
+        }
+        for cell in &coarse {
+            visible.extend(cell.proxies.run(k).iter().filter(|i| seen(i, p.sphere)));
+        }
+        ranges.push((first as u64, (visible.len() - first) as u32));
+    }
+    ranges
 }
 
 #[cfg(test)]

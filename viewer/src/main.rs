@@ -42,6 +42,7 @@ mod coverage;
 mod cull;
 #[cfg(test)]
 mod golden;
+mod gpu;
 mod guide;
 mod loader;
 mod offscreen;

@@ -1,6 +1,7 @@
 //! Headless rendering: an offscreen target with its own device, frames read back as RGBA.
 
-use crate::render::{FrameStats, Mode, Renderer, View, device, targets};
+use crate::gpu::{device, targets};
+use crate::render::{FrameStats, Mode, Renderer, View};
 use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
 
 /// Mesa's Vulkan device-select layer looks for a Wayland compositor while adapters are

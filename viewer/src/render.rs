@@ -6,19 +6,15 @@ use std::num::NonZeroU64;
 use bytemuck::{Pod, Zeroable};
 use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::turtle::Vertex;
-use wgpu::util::DeviceExt;
 
-use crate::cells::{LOD_DISTANCE, Level, Streamed, VIEW_DISTANCE, world_sphere};
-use crate::cull::Volume;
+use crate::cells::{LOD_DISTANCE, Streamed, VIEW_DISTANCE};
+use crate::cull::{Volume, visible_instances};
+use crate::gpu::{DEPTH, buffer, index_buffer, scene_pipeline};
 use crate::scene::{InstanceRaw, Scene};
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::{bark_layer, leaf_layer, textures};
 
-pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const MATERIAL_STRIDE: u64 = 256;
-/// Placements smaller on screen than this many pixels across are not drawn: far twigs and
-/// seedlings that fog would hide anyway.
-const MIN_PIXELS: f32 = 2.0;
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
 const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
@@ -116,95 +112,6 @@ pub(crate) struct Renderer {
     fog_density: f32,
     /// Lowest and highest terrain vertex, for the ground colour by altitude.
     terrain_heights: (f32, f32),
-}
-
-fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
-    const MESH: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
-        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
-    ];
-    const INSTANCE: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
-        4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4
-    ];
-    [
-        Some(wgpu::VertexBufferLayout {
-            array_stride: size_of::<Vertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &MESH,
-        }),
-        Some(wgpu::VertexBufferLayout {
-            array_stride: size_of::<InstanceRaw>() as u64,
-            step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &INSTANCE,
-        }),
-    ]
-}
-
-fn buffer(
-    device: &wgpu::Device,
-    label: &str,
-    bytes: &[u8],
-    usage: wgpu::BufferUsages,
-) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytes,
-        usage,
-    })
-}
-
-/// A pipeline drawing the terrain and the instanced trees: both faces (leaves are one-sided
-/// quads), depth tested and written, into `target` (none for the depth-only shadow map).
-fn scene_pipeline(
-    device: &wgpu::Device,
-    shader: &wgpu::ShaderModule,
-    layout: &wgpu::PipelineLayout,
-    (vertex, fragment): (&str, &str),
-    target: Option<wgpu::TextureFormat>,
-    bias: wgpu::DepthBiasState,
-) -> wgpu::RenderPipeline {
-    let targets = [target.map(Into::into)];
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(fragment),
-        layout: Some(layout),
-        vertex: wgpu::VertexState {
-            module: shader,
-            entry_point: Some(vertex),
-            compilation_options: Default::default(),
-            buffers: &vertex_layouts(),
-        },
-        primitive: wgpu::PrimitiveState {
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias,
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: shader,
-            entry_point: Some(fragment),
-            compilation_options: Default::default(),
-            targets: if target.is_some() { &targets } else { &[] },
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
-}
-
-/// An index buffer, or none for no indices (wgpu refuses empty buffers for drawing).
-fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<wgpu::Buffer> {
-    (!indices.is_empty()).then(|| {
-        buffer(
-            device,
-            label,
-            bytemuck::cast_slice(indices),
-            wgpu::BufferUsages::INDEX,
-        )
-    })
 }
 
 impl Renderer {
@@ -515,7 +422,7 @@ impl Renderer {
         // Far trees are drawn whole as proxies when shading (the id mode measures the real
         // trees, and its cells are all fine).
         let lod = shaded.then_some((view.eye, LOD_DISTANCE));
-        let in_view = cull(
+        let in_view = visible_instances(
             scene,
             &Volume::of(&view.view_proj),
             (view.eye, view.pixels_per_radian),
@@ -525,7 +432,7 @@ impl Renderer {
         let in_sun = if shaded {
             // The sun sees the box from afar at one texel per SHADOW_TEXEL metres.
             let from_sun = view.eye + sun * 1e4;
-            cull(
+            visible_instances(
                 scene,
                 &Volume::of(&light_view_proj),
                 (from_sun, 1e4 / SHADOW_TEXEL),
@@ -662,134 +569,4 @@ impl Renderer {
         }
         stats
     }
-}
-
-/// Appends to `visible` the placements of every group in the fine cells drawn, then the
-/// proxies of every variant, whose bounding spheres touch `volume` and, seen from `eye` with
-/// `pixels_per_radian`, span at least [`MIN_PIXELS`]. With `lod` (a point and a distance), a
-/// fine cell's trees farther than that from the point are drawn as proxies too. Returns (first, count) in
-/// `visible` for each group, then for each variant's proxies.
-fn cull(
-    scene: &Scene,
-    volume: &Volume,
-    (eye, pixels_per_radian): (Vec3, f32),
-    lod: Option<(Vec3, f32)>,
-    visible: &mut Vec<InstanceRaw>,
-) -> Vec<(u64, u32)> {
-    // A sphere of radius r at distance d spans about 2 r / d radians.
-    let min_ratio = 0.5 * MIN_PIXELS / pixels_per_radian.max(1e-6);
-    let seen = |i: &InstanceRaw, sphere: (Vec3, f32)| {
-        let (world, r) = world_sphere(i, sphere);
-        volume.touches(world, r) && r >= min_ratio * world.distance(eye)
-    };
-    let near = |i: &InstanceRaw| {
-        lod.is_none_or(|(from, far)| {
-            Vec3::new(i.tree[0], i.tree[1], i.tree[2]).distance(from) <= far
-        })
-    };
-    // Whole cells out of view are skipped before their placements are looked at.
-    let (mut fine, mut coarse) = (Vec::new(), Vec::new());
-    for (key, cell) in scene.cells.drawn() {
-        let (centre, radius) = cell.sphere;
-        if radius >= 0.0 && volume.touches(centre, radius) {
-            match key.level {
-                Level::Fine => fine.push(cell),
-                Level::Coarse => coarse.push(cell),
-            }
-        }
-    }
-    let world = &scene.world;
-    let mut ranges = Vec::with_capacity(world.groups.len() + world.proxies.len());
-    for (k, g) in world.groups.iter().enumerate() {
-        let first = visible.len();
-        for cell in &fine {
-            let run = cell.placements.run(k).iter();
-            visible.extend(run.filter(|i| near(i) && seen(i, g.sphere)));
-        }
-        ranges.push((first as u64, (visible.len() - first) as u32));
-    }
-    for (k, p) in world.proxies.iter().enumerate() {
-        let first = visible.len();
-        if lod.is_some() {
-            for cell in &fine {
-                let run = cell.proxies.run(k).iter();
-                visible.extend(run.filter(|i| !near(i) && seen(i, p.sphere)));
-            }
-        }
-        for cell in &coarse {
-            visible.extend(cell.proxies.run(k).iter().filter(|i| seen(i, p.sphere)));
-        }
-        ranges.push((first as u64, (visible.len() - first) as u32));
-    }
-    ranges
-}
-
-/// A colour and depth target of the given size.
-pub(crate) fn targets(
-    device: &wgpu::Device,
-    format: wgpu::TextureFormat,
-    width: u32,
-    height: u32,
-    readable: bool,
-) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView) {
-    let size = wgpu::Extent3d {
-        width,
-        height,
-        depth_or_array_layers: 1,
-    };
-    let colour = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("colour"),
-        size,
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-            | if readable {
-                wgpu::TextureUsages::COPY_SRC
-            } else {
-                wgpu::TextureUsages::empty()
-            },
-        view_formats: &[],
-    });
-    let depth = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("depth"),
-        size,
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: DEPTH,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    });
-    let cv = colour.create_view(&Default::default());
-    let dv = depth.create_view(&Default::default());
-    (colour, cv, dv)
-}
-
-/// Requests an adapter and device; `None` surface for headless use.
-pub(crate) async fn device(
-    instance: &wgpu::Instance,
-    surface: Option<&wgpu::Surface<'_>>,
-) -> Result<(wgpu::Adapter, wgpu::Device, wgpu::Queue), String> {
-    let adapter = instance
-        .request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: surface,
-            ..Default::default()
-        })
-        .await
-        .map_err(|e| {
-            format!("no graphics adapter ({e}); without a GPU install Mesa's software drivers (Debian: libvulkan1 mesa-vulkan-drivers, or libegl1 libegl-mesa0 libgl1-mesa-dri with WGPU_BACKEND=gl)")
-        })?;
-    let (device, queue) = adapter
-        .request_device(&wgpu::DeviceDescriptor {
-            label: Some("sylva viewer"),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        })
-        .await
-        .map_err(|e| format!("cannot open the graphics device: {e}"))?;
-    Ok((adapter, device, queue))
 }

@@ -11,9 +11,10 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
+use crate::gpu::targets;
 use crate::guide::Guide;
 use crate::painting::{Painting, pick};
-use crate::render::{Mode, Renderer, View, targets};
+use crate::render::{Mode, Renderer, View};
 use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
 use sylva::terrain::glam::Vec2;
 use winit::event::Modifiers;
@@ -123,7 +124,7 @@ impl App {
             .create_surface(window.clone())
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
         let (adapter, device, queue) =
-            pollster::block_on(crate::render::device(&instance, Some(&surface)))?;
+            pollster::block_on(crate::gpu::device(&instance, Some(&surface)))?;
         let lost = self.lost.clone();
         device.set_device_lost_callback(move |_, _| lost.store(true, Ordering::SeqCst));
         let size = window.inner_size();
