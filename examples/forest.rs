@@ -172,7 +172,7 @@ fn phase<T>(quiet: bool, message: &str, work: impl FnOnce() -> T) -> (T, Duratio
 fn run() -> Result<(), String> {
     let args = parse()?;
     let species = if args.species.is_empty() {
-        common::default_species()?
+        sylva::presets::species().map_err(|e| e.to_string())?
     } else {
         args.species
             .iter()
@@ -222,7 +222,7 @@ fn run() -> Result<(), String> {
             let mesh = map.mesh(1).map_err(|e| e.to_string())?;
             return Ok((map, mesh));
         }
-        let map = common::default_terrain(args.seed, side)?;
+        let map = sylva::presets::terrain(args.seed, side).map_err(|e| e.to_string())?;
         let mesh = map.mesh(1).map_err(|e| e.to_string())?;
         Ok((map, mesh))
     });

@@ -92,11 +92,11 @@ fn median(v: &mut [Duration]) -> f64 {
 fn run() -> Result<(), String> {
     let args = parse()?;
     let start = Instant::now();
-    let mut config = ForestConfig::new(common::default_species()?);
+    let mut config = ForestConfig::new(sylva::presets::species().map_err(|e| e.to_string())?);
     config.seed = args.seed;
     config.budget = 32 << 20;
     let builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
-    let map = common::default_terrain(args.seed, args.area)?;
+    let map = sylva::presets::terrain(args.seed, args.area).map_err(|e| e.to_string())?;
     let (lo, hi) = map.bounds();
     let bounds = Rect::new(lo, hi);
     let species = &builder.config().species;

@@ -9,6 +9,9 @@
 //! - [`instancing`]: Kenwood's branch-level instance cache and tree assembly.
 //! - [`turtle`]: 3D turtle interpretation into meshes and skeletons.
 //! - [`terrain`]: diamond-square heightmaps, smoothing, erosion, sampling, export.
+//!
+//! [`presets`] holds the default forest (five species and a terrain) the examples and the
+//! viewer grow.
 
 pub use sylva_base as base;
 pub use sylva_forest as forest;
@@ -17,3 +20,5 @@ pub use sylva_instancing as instancing;
 pub use sylva_lsys as lsys;
 pub use sylva_terrain as terrain;
 pub use sylva_turtle as turtle;
+
+pub mod presets;

@@ -12,7 +12,7 @@ use sylva::instancing::Span;
 use crate::cells::{Cells, Streamed, VIEW_DISTANCE};
 use crate::cull::bounding_sphere;
 use sylva::terrain::glam::{Mat4, Vec3};
-use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap, TerrainVertex};
+use sylva::terrain::{HeightField, Heightmap, TerrainVertex};
 use sylva::turtle::Vertex;
 
 /// One placement as the vertex shader reads it: rotation, then translation and scale.
@@ -100,41 +100,14 @@ pub(crate) struct SceneOptions {
     pub(crate) paint: Option<std::path::PathBuf>,
 }
 
-pub(crate) const DEFAULT_SPECIES: [(&str, &str); 5] = [
-    (
-        "examples/species/oak.species",
-        include_str!("../../examples/species/oak.species"),
-    ),
-    (
-        "examples/species/birch.species",
-        include_str!("../../examples/species/birch.species"),
-    ),
-    (
-        "examples/species/spruce.species",
-        include_str!("../../examples/species/spruce.species"),
-    ),
-    (
-        "examples/species/pine.species",
-        include_str!("../../examples/species/pine.species"),
-    ),
-    (
-        "examples/species/hazel.species",
-        include_str!("../../examples/species/hazel.species"),
-    ),
-];
-
+/// The bundled species ([`sylva::presets::species`]).
 pub(crate) fn default_species() -> Result<Vec<Species>, String> {
-    DEFAULT_SPECIES
-        .iter()
-        .map(|(path, text)| {
-            Species::parse_file(text, std::path::Path::new(path)).map_err(|e| e.to_string())
-        })
-        .collect()
+    sylva::presets::species().map_err(|e| e.to_string())
 }
 
 impl World {
-    /// The forest's caches and the terrain (the forest example's: smoothed diamond-square,
-    /// 257 samples a side); no trees are placed until cells are streamed.
+    /// The forest's caches and the terrain ([`sylva::presets::terrain`], as the forest
+    /// example's); no trees are placed until cells are streamed.
     pub(crate) fn build(options: SceneOptions) -> Result<World, String> {
         let mut config = ForestConfig::new(options.species);
         config.seed = options.seed;
@@ -149,16 +122,7 @@ impl World {
                 "a world of {side} m: expected 10 to 20000 metres a side"
             ));
         }
-        let mut heightmap = DiamondSquare::new(257)
-            .with_seed(options.seed)
-            .with_spacing(side / 256.0)
-            .with_roughness(0.75)
-            .with_amplitude(side * 0.06)
-            .generate()
-            .map_err(|e| e.to_string())?;
-        heightmap
-            .smooth(2.0, EdgeMode::Mirror)
-            .map_err(|e| e.to_string())?;
+        let heightmap = sylva::presets::terrain(options.seed, side).map_err(|e| e.to_string())?;
         if let Some(dir) = &options.paint {
             builder = builder
                 .with_masks(dir, &heightmap)
