@@ -8,13 +8,16 @@ use crate::scene::InstanceRaw;
 
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
+/// The scene's vertex streams: the mesh (slot 0), the placement per instance (slot 1) and
+/// each vertex's material number (slot 2).
+fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 3] {
     const MESH: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
         0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
     ];
     const INSTANCE: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
         4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4
     ];
+    const MATERIAL: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![8 => Uint32];
     [
         Some(wgpu::VertexBufferLayout {
             array_stride: size_of::<Vertex>() as u64,
@@ -25,6 +28,11 @@ fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
             array_stride: size_of::<InstanceRaw>() as u64,
             step_mode: wgpu::VertexStepMode::Instance,
             attributes: &INSTANCE,
+        }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: size_of::<u32>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &MATERIAL,
         }),
     ]
 }

@@ -45,6 +45,7 @@ mod golden;
 mod gpu;
 mod guide;
 mod loader;
+mod materials;
 mod offscreen;
 mod painting;
 mod render;

@@ -52,7 +52,7 @@ impl Offscreen {
             device(&instance, None).await?
         };
         let format = wgpu::TextureFormat::Rgba8UnormSrgb;
-        let renderer = Renderer::new(&device, &queue, format, scene);
+        let renderer = Renderer::new(&device, &queue, format, scene)?;
         let (colour, view, depth) = targets(&device, format, width, height, true);
         // Rows of a texture-to-buffer copy must be 256-byte aligned.
         let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)

@@ -1,5 +1,6 @@
 //! The GPU side of the viewer: one shared vertex and index buffer per species variant, one
-//! instance buffer, one `draw_indexed` per instance range and material.
+//! instance buffer, one `draw_indexed` per instance range and bark or leaves; the materials
+//! are one array bound once per pass, indexed by a material number on each vertex.
 
 use std::num::NonZeroU64;
 
@@ -10,11 +11,11 @@ use sylva::turtle::Vertex;
 use crate::cells::{LOD_DISTANCE, Streamed, VIEW_DISTANCE};
 use crate::cull::{Volume, visible_instances};
 use crate::gpu::{DEPTH, buffer, index_buffer, scene_pipeline};
+use crate::materials::Materials;
 use crate::scene::{InstanceRaw, Scene};
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
-use crate::textures::{bark_layer, leaf_layer, textures};
+use crate::textures::textures;
 
-const MATERIAL_STRIDE: u64 = 256;
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
 const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
@@ -76,6 +77,9 @@ pub(crate) enum Mode {
 
 struct VariantBuffers {
     vertices: wgpu::Buffer,
+    /// Each vertex's material (an index into the material array): its variant's bark or
+    /// leaf material.
+    materials: wgpu::Buffer,
     bark: Option<wgpu::Buffer>,
     leaves: Option<wgpu::Buffer>,
 }
@@ -85,7 +89,6 @@ struct VariantBuffers {
 struct Draw {
     variant: usize,
     group: usize,
-    material: u32,
     indices: (u32, u32),
     bark: bool,
 }
@@ -99,8 +102,11 @@ pub(crate) struct Renderer {
     shadow: ShadowMap,
     globals: wgpu::Buffer,
     globals_group: wgpu::BindGroup,
+    /// Every material (the terrain's first), bound once per pass; each vertex names its own.
     material_group: wgpu::BindGroup,
     terrain_vertices: wgpu::Buffer,
+    /// Material 0 (the terrain) for each terrain vertex.
+    terrain_materials: wgpu::Buffer,
     terrain_indices: wgpu::Buffer,
     terrain_count: u32,
     identity: wgpu::Buffer,
@@ -115,14 +121,15 @@ pub(crate) struct Renderer {
 }
 
 impl Renderer {
+    /// The GPU side of `scene`: its meshes, materials, textures and pipelines; an error when
+    /// the adapter cannot bind the world's materials in one uniform array.
     pub(crate) fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         format: wgpu::TextureFormat,
         scene: &Scene,
-    ) -> Renderer {
+    ) -> Result<Renderer, String> {
         let world = &scene.world;
-        let shader = device.create_shader_module(wgpu::include_wgsl!("shader.wgsl"));
         let (texture_layout, texture_group) = textures(device, queue);
         let uniform_layout = |dynamic: bool, size: u64| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -140,7 +147,23 @@ impl Renderer {
             })
         };
         let globals_layout = uniform_layout(false, size_of::<Globals>() as u64);
-        let material_layout = uniform_layout(true, 32);
+        let materials = Materials::of(world);
+        let most = device.limits().max_uniform_buffer_binding_size;
+        if materials.bytes.len() as u64 > most {
+            return Err(format!(
+                "{} materials need {} bytes of uniforms; this adapter binds at most {most}",
+                materials.count(),
+                materials.bytes.len()
+            ));
+        }
+        let material_layout = uniform_layout(false, materials.bytes.len() as u64);
+        // The material array is sized to the world's materials.
+        let source =
+            include_str!("shader.wgsl").replace("MATERIAL_COUNT", &materials.count().to_string());
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("shader.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
         let shadow = ShadowMap::new(device, DEPTH);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
@@ -220,37 +243,12 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        // Materials: terrain, then bark and leaves of each variant, 256 bytes apart. The
-        // colour's fourth component is the leaf texture layer plus one (0: no texture).
-        // The terrain's fourth component is -1: the shader paints it by slope and altitude.
-        let mut materials: Vec<([f32; 3], [f32; 3], f32)> = vec![(TERRAIN, ID_TERRAIN, -1.0)];
-        for v in &world.variants {
-            materials.push((
-                v.bark_colour,
-                ID_BARK,
-                1.0 + bark_layer(v.bark_pattern) as f32,
-            ));
-            materials.push((
-                v.leaf_colour,
-                ID_LEAF,
-                1.0 + leaf_layer(v.leaf_shape) as f32,
-            ));
-        }
-        // Then the far trees' proxies, untextured: the crown darker than the leaf colour, as
-        // the leaf cards' texture and the gaps between them darken a real crown.
-        let proxy_materials = materials.len() as u32;
-        for v in &world.variants {
-            materials.push((v.bark_colour, ID_BARK, 0.0));
-            materials.push((v.leaf_colour.map(|c| c * 0.6), ID_LEAF, 0.0));
-        }
-        let mut bytes = vec![0u8; materials.len() * MATERIAL_STRIDE as usize];
-        for (i, (colour, id, layer)) in materials.iter().enumerate() {
-            let m: [f32; 8] = [
-                colour[0], colour[1], colour[2], *layer, id[0], id[1], id[2], 1.0,
-            ];
-            bytes[i * MATERIAL_STRIDE as usize..][..32].copy_from_slice(bytemuck::bytes_of(&m));
-        }
-        let material_buffer = buffer(device, "materials", &bytes, wgpu::BufferUsages::UNIFORM);
+        let material_buffer = buffer(
+            device,
+            "materials",
+            &materials.bytes,
+            wgpu::BufferUsages::UNIFORM,
+        );
         let globals_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &globals_layout,
@@ -264,33 +262,47 @@ impl Renderer {
             layout: &material_layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &material_buffer,
-                    offset: 0,
-                    size: NonZeroU64::new(32),
-                }),
+                resource: material_buffer.as_entire_binding(),
             }],
         });
         // The variants' caches, then their proxies.
-        let variant_buffers = |vertices: &[Vertex], bark: &[u32], leaves: &[u32]| VariantBuffers {
-            vertices: buffer(
-                device,
-                "variant vertices",
-                bytemuck::cast_slice(vertices),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            bark: index_buffer(device, "bark indices", bark),
-            leaves: index_buffer(device, "leaf indices", leaves),
-        };
+        let variant_buffers =
+            |vertices: &[Vertex],
+             bark: &[u32],
+             leaves: &[u32],
+             (bark_material, leaf_material): (u32, u32)| {
+                let mut of_vertex = vec![leaf_material; vertices.len()];
+                for &i in bark {
+                    of_vertex[i as usize] = bark_material;
+                }
+                VariantBuffers {
+                    vertices: buffer(
+                        device,
+                        "variant vertices",
+                        bytemuck::cast_slice(vertices),
+                        wgpu::BufferUsages::VERTEX,
+                    ),
+                    materials: buffer(
+                        device,
+                        "variant materials",
+                        bytemuck::cast_slice(&of_vertex),
+                        wgpu::BufferUsages::VERTEX,
+                    ),
+                    bark: index_buffer(device, "bark indices", bark),
+                    leaves: index_buffer(device, "leaf indices", leaves),
+                }
+            };
         let variants: Vec<VariantBuffers> = world
             .variants
             .iter()
-            .map(|v| variant_buffers(&v.vertices, &v.bark, &v.leaves))
+            .zip(&materials.variants)
+            .map(|(v, &m)| variant_buffers(&v.vertices, &v.bark, &v.leaves, m))
             .chain(
                 world
                     .proxies
                     .iter()
-                    .map(|p| variant_buffers(&p.vertices, &p.bark, &p.leaves)),
+                    .zip(&materials.proxies)
+                    .map(|(p, &m)| variant_buffers(&p.vertices, &p.bark, &p.leaves, m)),
             )
             .collect();
         let mut draws = Vec::new();
@@ -302,7 +314,6 @@ impl Renderer {
                     draws.push(Draw {
                         variant: kinds + v,
                         group: groups + v,
-                        material: proxy_materials + 2 * v as u32 + u32::from(!bark),
                         indices: (0, count as u32),
                         bark,
                     });
@@ -315,13 +326,14 @@ impl Renderer {
                     draws.push(Draw {
                         variant: g.variant,
                         group,
-                        material: 1 + 2 * g.variant as u32 + u32::from(!bark),
                         indices: (span.start, span.end()),
                         bark,
                     });
                 }
             }
         }
+        // By variant, so a pass binds each variant's buffers once.
+        draws.sort_by_key(|d| (d.variant, d.bark));
         let identity = InstanceRaw {
             rotation: [0.0, 0.0, 0.0, 1.0],
             translation_scale: [0.0, 0.0, 0.0, 1.0],
@@ -340,7 +352,7 @@ impl Renderer {
                 wind: [0.0; 4],
             })
             .collect();
-        Renderer {
+        Ok(Renderer {
             texture_group,
             shaded: pipeline("fs_main"),
             ids: pipeline("fs_id"),
@@ -354,6 +366,12 @@ impl Renderer {
                 device,
                 "terrain vertices",
                 bytemuck::cast_slice(&terrain),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            terrain_materials: buffer(
+                device,
+                "terrain materials",
+                bytemuck::cast_slice(&vec![0u32; terrain.len()]),
                 wgpu::BufferUsages::VERTEX,
             ),
             terrain_indices: buffer(
@@ -380,7 +398,7 @@ impl Renderer {
                 .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
                     (lo.min(v.position[1]), hi.max(v.position[1]))
                 }),
-        }
+        })
     }
 
     /// Records one frame into `encoder`: the shadow map (shaded mode), then the sky, the
@@ -501,7 +519,7 @@ impl Renderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.globals_group, &[]);
-        pass.set_bind_group(1, &self.material_group, &[0]);
+        pass.set_bind_group(1, &self.material_group, &[]);
         pass.set_bind_group(2, &self.texture_group, &[]);
         pass.set_bind_group(3, &self.shadow.group, &[]);
         if shaded {
@@ -524,11 +542,12 @@ impl Renderer {
         terrain: bool,
     ) -> FrameStats {
         pass.set_bind_group(0, &self.globals_group, &[]);
+        pass.set_bind_group(1, &self.material_group, &[]);
         pass.set_bind_group(2, &self.texture_group, &[]);
         let mut stats = FrameStats::default();
         if terrain {
-            pass.set_bind_group(1, &self.material_group, &[0]);
             pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));
+            pass.set_vertex_buffer(2, self.terrain_materials.slice(..));
             pass.set_vertex_buffer(1, self.identity.slice(..));
             pass.set_index_buffer(self.terrain_indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..self.terrain_count, 0, 0..1);
@@ -549,14 +568,10 @@ impl Renderer {
             let Some(indices) = indices else { continue };
             if bound != Some((d.variant, d.bark)) {
                 pass.set_vertex_buffer(0, v.vertices.slice(..));
+                pass.set_vertex_buffer(2, v.materials.slice(..));
                 pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                 bound = Some((d.variant, d.bark));
             }
-            pass.set_bind_group(
-                1,
-                &self.material_group,
-                &[d.material * MATERIAL_STRIDE as u32],
-            );
             // Each group's placements sit contiguously in the one instance buffer.
             pass.set_vertex_buffer(
                 1,

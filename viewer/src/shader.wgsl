@@ -25,9 +25,11 @@ struct Material {
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
-@group(1) @binding(0) var<uniform> material: Material;
+// Every material (the terrain's first); each vertex names its own. MATERIAL_COUNT is replaced
+// by the world's number of materials when the shader is built.
+@group(1) @binding(0) var<uniform> materials: array<Material, MATERIAL_COUNT>;
 // The procedural textures, one layer each: broadleaf, needles, furrowed and smooth bark, then
-// the two barks' normal maps; material.colour.w is the colour layer plus one (0 for
+// the two barks' normal maps; a material's colour.w is the colour layer plus one (0 for
 // untextured materials, -1 for the terrain). Bark (layers 2 and 3) tiles; leaf cards do not.
 @group(2) @binding(0) var textures: texture_2d_array<f32>;
 @group(2) @binding(1) var texture_sampler: sampler;
@@ -47,6 +49,7 @@ struct VertexIn {
     @location(6) tint: vec4<f32>,
     // The tree's base (xyz, world) and phase (w).
     @location(7) tree: vec4<f32>,
+    @location(8) material: u32,
 };
 
 struct VertexOut {
@@ -55,6 +58,7 @@ struct VertexOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) tint: vec3<f32>,
+    @location(4) @interpolate(flat) material: u32,
 };
 
 fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
@@ -62,7 +66,7 @@ fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     return v + q.w * t + cross(q.xyz, t);
 }
 
-fn is_terrain() -> bool {
+fn is_terrain(material: Material) -> bool {
     return material.colour.w < -0.5;
 }
 
@@ -70,9 +74,9 @@ fn is_terrain() -> bool {
 // higher the point), each branch sways about its pivot (more the longer its lever and the
 // deeper the branch) and leaf cards flutter, each with its own phase. Every term reads
 // either world-space geometry or the tree's own data, so instanced branches move as one tree.
-fn sway(world: vec3<f32>, pivot: vec3<f32>, packed: f32, tree: vec4<f32>) -> vec3<f32> {
+fn sway(world: vec3<f32>, pivot: vec3<f32>, packed: f32, tree: vec4<f32>, still: bool) -> vec3<f32> {
     let strength = length(globals.wind.xz);
-    if (strength < 1e-4 || is_terrain()) {
+    if (strength < 1e-4 || still) {
         return vec3<f32>(0.0);
     }
     let dir = vec3<f32>(globals.wind.x, 0.0, globals.wind.z) / strength;
@@ -92,7 +96,7 @@ fn to_world(in: VertexIn) -> vec3<f32> {
     let s = in.translation_scale.w;
     let world = in.translation_scale.xyz + s * rotate(in.rotation, in.position);
     let pivot = in.translation_scale.xyz + s * rotate(in.rotation, in.wind.xyz);
-    return world + sway(world, pivot, in.wind.w, in.tree);
+    return world + sway(world, pivot, in.wind.w, in.tree, is_terrain(materials[in.material]));
 }
 
 @vertex
@@ -104,6 +108,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.normal = rotate(in.rotation, in.normal);
     out.uv = in.uv;
     out.tint = in.tint.rgb;
+    out.material = in.material;
     return out;
 }
 
@@ -116,7 +121,7 @@ struct Texel {
 
 // The material's texture (leaf card or bark) with the bark's normal map, or white for
 // untextured materials. Sampled in uniform control flow; callers discard clear texels.
-fn texel(uv: vec2<f32>) -> Texel {
+fn texel(uv: vec2<f32>, material: Material) -> Texel {
     let layer = i32(material.colour.w + 0.5) - 1;
     let bark = layer >= 2;
     let tiled = select(uv, fract(uv), bark);
@@ -217,12 +222,13 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let dp_dy = dpdy(in.world);
     let duv_dx = dpdx(in.uv);
     let duv_dy = dpdy(in.uv);
-    let tex = texel(in.uv);
+    let material = materials[in.material];
+    let tex = texel(in.uv, material);
     if (tex.alpha < 0.5) {
         discard;
     }
     var albedo = material.colour.rgb * tex.colour * in.tint;
-    if (is_terrain()) {
+    if (is_terrain(material)) {
         let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
         albedo = ground(normalize(in.normal), clamp(height, 0.0, 1.0)) * ground_detail(in.world.xz);
     }
@@ -252,7 +258,8 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
 @fragment
 fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
     // Clear parts of leaf cards are no leaf.
-    if (texel(in.uv).alpha < 0.5) {
+    let material = materials[in.material];
+    if (texel(in.uv, material).alpha < 0.5) {
         discard;
     }
     return material.id;
@@ -262,6 +269,7 @@ fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
 struct ShadowOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) uv: vec2<f32>,
+    @location(1) @interpolate(flat) material: u32,
 };
 
 @vertex
@@ -269,12 +277,13 @@ fn vs_shadow(in: VertexIn) -> ShadowOut {
     var out: ShadowOut;
     out.clip = globals.light_view_proj * vec4<f32>(to_world(in), 1.0);
     out.uv = in.uv;
+    out.material = in.material;
     return out;
 }
 
 @fragment
 fn fs_shadow(in: ShadowOut) {
-    if (texel(in.uv).alpha < 0.5) {
+    if (texel(in.uv, materials[in.material]).alpha < 0.5) {
         discard;
     }
 }

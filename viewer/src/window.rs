@@ -136,7 +136,7 @@ impl App {
             config.format = *srgb;
         }
         surface.configure(&device, &config);
-        let renderer = Renderer::new(&device, &queue, config.format, &self.scene);
+        let renderer = Renderer::new(&device, &queue, config.format, &self.scene)?;
         let (_, _, depth) = targets(&device, config.format, config.width, config.height, false);
         Ok(Gpu {
             window,
