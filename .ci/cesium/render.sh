@@ -17,7 +17,7 @@ url="http://127.0.0.1:$port/render.html?tileset=world/tileset.json${query:+&$que
 flags=(--headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader
   --disable-quic --no-first-run --disable-background-networking --disable-component-update
   --disable-sync --user-data-dir="$(mktemp -d)" --window-size=960,540
-  --virtual-time-budget=300000)
+  --virtual-time-budget=900000)
 title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>[^<]*</title>' || true)
 echo "CesiumJS: $title"
 chromium "${flags[@]}" --screenshot="$out" "$url" 2>/dev/null
