@@ -461,20 +461,10 @@ impl Cells {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{SceneOptions, default_species};
+    use crate::scene::SceneOptions;
 
     fn world(side: f32) -> Arc<World> {
-        Arc::new(
-            World::build(SceneOptions {
-                seed: 5,
-                side,
-                trees: None,
-                species: default_species().expect("bundled species")[..2].to_vec(),
-                budget: 4 << 20,
-                paint: None,
-            })
-            .expect("world builds"),
-        )
+        Arc::new(World::build(SceneOptions::small(5, side)).expect("world builds"))
     }
 
     /// Every tree of the world is in exactly one cell: the fine cells together hold the

@@ -123,21 +123,13 @@ impl Guide {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Scene, SceneOptions, default_species};
+    use crate::scene::{Scene, SceneOptions};
 
     /// A guided walk through a real streamed world keeps clear of every trunk, keeps moving and
     /// keeps the camera at eye height on the terrain.
     #[test]
     fn the_guide_leads_the_camera_around_the_trunks() {
-        let scene = Scene::build(SceneOptions {
-            seed: 6,
-            side: 300.0,
-            trees: None,
-            species: default_species().expect("bundled species")[..2].to_vec(),
-            budget: 4 << 20,
-            paint: None,
-        })
-        .expect("scene builds");
+        let scene = Scene::build(SceneOptions::small(6, 300.0)).expect("scene builds");
         let mut guide = Guide::new(&scene.world, Vec2::splat(150.0), 3).expect("guide");
         for _ in 0..40 {
             guide.advance(5.0, 0.0);

@@ -99,21 +99,13 @@ impl Materials {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{SceneOptions, default_species};
+    use crate::scene::SceneOptions;
 
     /// Variants of one species share their materials; each material is stored once; the
     /// terrain is material 0 and the proxies are untextured.
     #[test]
     fn each_distinct_material_is_stored_once() {
-        let world = World::build(SceneOptions {
-            seed: 5,
-            side: 150.0,
-            trees: None,
-            species: default_species().expect("bundled species")[..2].to_vec(),
-            budget: 4 << 20,
-            paint: None,
-        })
-        .expect("world builds");
+        let world = World::build(SceneOptions::small(5, 150.0)).expect("world builds");
         let materials = Materials::of(&world);
         assert!(world.variants.len() > 2, "several variants per species");
         assert_eq!(materials.variants.len(), world.variants.len());

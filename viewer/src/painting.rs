@@ -226,15 +226,7 @@ mod tests {
     use crate::scene::{SceneOptions, default_species};
 
     fn scene() -> Scene {
-        Scene::build(SceneOptions {
-            seed: 2,
-            side: 400.0,
-            trees: None,
-            species: default_species().expect("bundled species")[..2].to_vec(),
-            budget: 4 << 20,
-            paint: None,
-        })
-        .expect("scene builds")
+        Scene::build(SceneOptions::small(2, 400.0)).expect("scene builds")
     }
 
     /// The ray through a pixel meets the terrain on that pixel's line of sight.

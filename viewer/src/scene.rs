@@ -100,6 +100,22 @@ pub(crate) struct SceneOptions {
     pub(crate) paint: Option<std::path::PathBuf>,
 }
 
+#[cfg(test)]
+impl SceneOptions {
+    /// A small world for tests: the first two bundled species (oak and birch) on `side`
+    /// metres, with a 4 MB instance cache.
+    pub(crate) fn small(seed: u64, side: f32) -> SceneOptions {
+        SceneOptions {
+            seed,
+            side,
+            trees: None,
+            species: default_species().expect("bundled species")[..2].to_vec(),
+            budget: 4 << 20,
+            paint: None,
+        }
+    }
+}
+
 /// The bundled species ([`sylva::presets::species`]).
 pub(crate) fn default_species() -> Result<Vec<Species>, String> {
     sylva::presets::species().map_err(|e| e.to_string())
