@@ -56,7 +56,15 @@ pub(crate) fn textures(
         srgb_encoded(Texture::bark_normal(BarkPattern::Furrowed)),
         srgb_encoded(Texture::bark_normal(BarkPattern::Smooth)),
     ];
-    let data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
+    let mut data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
+    let mut layers = images.len() as u32;
+    // wgpu's GL backend takes a square texture of a multiple of six layers for a cube map
+    // (it cannot know the view's dimension when it creates the texture) and then samples it
+    // as black; a clear spare layer keeps the array an array.
+    if layers.is_multiple_of(6) {
+        data.resize(data.len() + images[0].rgba.len(), 0);
+        layers += 1;
+    }
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
@@ -64,7 +72,7 @@ pub(crate) fn textures(
             size: wgpu::Extent3d {
                 width: images[0].width,
                 height: images[0].height,
-                depth_or_array_layers: images.len() as u32,
+                depth_or_array_layers: layers,
             },
             mip_level_count: 1,
             sample_count: 1,

@@ -118,8 +118,11 @@ impl App {
                 .create_window(Window::default_attributes().with_title("sylva"))
                 .map_err(|e| format!("cannot create a window: {e}"))?,
         );
+        // The display handle lets the GL backend (WGPU_BACKEND=gl) present to the window too.
         let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
+                Box::new(event_loop.owned_display_handle()),
+            ));
         let surface = instance
             .create_surface(window.clone())
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
