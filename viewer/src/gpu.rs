@@ -6,6 +6,7 @@ use wgpu::util::DeviceExt;
 
 use crate::scene::InstanceRaw;
 
+/// The format of every depth target, the shadow map's included.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// The scene's vertex streams: the mesh (slot 0), the placement per instance (slot 1) and
@@ -37,6 +38,7 @@ fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 3] {
     ]
 }
 
+/// A buffer holding `bytes`, for `usage`.
 pub(crate) fn buffer(
     device: &wgpu::Device,
     label: &str,

@@ -4,7 +4,7 @@
 //!
 //! One array bound once per pass, rather than a material bound per draw, because binds cost:
 //! lavapipe (Mesa 22.3) spends about 0.4 ms on each descriptor-set bind and keeps about
-//! 190 KB of it until the device is dropped, which made software frames seven times slower
+//! 190 KB of it until the device is dropped, which made software frames about six times slower
 //! and grew the viewer by up to a gigabyte a frame.
 
 use crate::render::{ID_BARK, ID_LEAF, ID_TERRAIN, TERRAIN};

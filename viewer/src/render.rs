@@ -131,7 +131,7 @@ impl Renderer {
     ) -> Result<Renderer, String> {
         let world = &scene.world;
         let (texture_layout, texture_group) = textures(device, queue);
-        let uniform_layout = |dynamic: bool, size: u64| {
+        let uniform_layout = |size: u64| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: None,
                 entries: &[wgpu::BindGroupLayoutEntry {
@@ -139,14 +139,14 @@ impl Renderer {
                     visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                     ty: wgpu::BindingType::Buffer {
                         ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: dynamic,
+                        has_dynamic_offset: false,
                         min_binding_size: NonZeroU64::new(size),
                     },
                     count: None,
                 }],
             })
         };
-        let globals_layout = uniform_layout(false, size_of::<Globals>() as u64);
+        let globals_layout = uniform_layout(size_of::<Globals>() as u64);
         let materials = Materials::of(world);
         let most = device.limits().max_uniform_buffer_binding_size;
         if materials.bytes.len() as u64 > most {
@@ -156,7 +156,7 @@ impl Renderer {
                 materials.bytes.len()
             ));
         }
-        let material_layout = uniform_layout(false, materials.bytes.len() as u64);
+        let material_layout = uniform_layout(materials.bytes.len() as u64);
         // The material array is sized to the world's materials.
         let source =
             include_str!("shader.wgsl").replace("MATERIAL_COUNT", &materials.count().to_string());
