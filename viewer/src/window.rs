@@ -187,9 +187,11 @@ impl App {
             return self.fail(event_loop, "the graphics device was lost".into());
         }
         let now = Instant::now();
-        let dt = (now - self.last).as_secs_f32().min(0.1);
+        let elapsed = (now - self.last).as_secs_f64();
         self.last = now;
-        self.walk(dt);
+        // Movement steps at most 0.1 s at a time, so a slow frame does not jump the camera;
+        // the frame time shown and measured is the real one.
+        self.walk(elapsed.min(0.1) as f32);
         // Cells arrive from the loader thread; until a fine cell comes its coarse one stands
         // in.
         let streamed = match self
@@ -237,9 +239,9 @@ impl App {
         );
         gpu.queue.submit([encoder.finish()]);
         gpu.queue.present(frame);
-        self.frame_ms = 0.9 * self.frame_ms + 0.1 * f64::from(dt) * 1e3;
+        self.frame_ms = 0.9 * self.frame_ms + 0.1 * elapsed * 1e3;
         if self.max_frames > 0 {
-            self.frame_times.push(f64::from(dt) * 1e3);
+            self.frame_times.push(elapsed * 1e3);
             if self.frame_times.len() as u32 >= self.max_frames {
                 let mut t = self.frame_times[1..].to_vec();
                 t.sort_by(f64::total_cmp);
