@@ -418,15 +418,19 @@ impl ForestBuilder {
     /// Builds the forest of `region` on `terrain`.
     pub fn build(&self, terrain: &dyn HeightField, region: Rect) -> Forest {
         let start = Instant::now();
-        let trees = self.trees(terrain, region);
-        let mut stats = self.stats;
-        stats.placement_time = start.elapsed();
+        let mut forest = self.forest_of(self.trees(terrain, region));
+        forest.stats.placement_time = start.elapsed();
+        forest
+    }
+
+    /// The forest of `trees` placed by this builder (or by a painter with its caches).
+    pub(crate) fn forest_of(&self, trees: Vec<CompactTree>) -> Forest {
         Forest {
             species: self.config.species.clone(),
             variants: Arc::clone(&self.variants),
             trees,
             canopies: self.canopies.clone(),
-            stats,
+            stats: self.stats,
         }
     }
 }

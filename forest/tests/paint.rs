@@ -82,7 +82,8 @@ fn a_stroke_grows_the_generated_forest_inside_and_nothing_outside() {
     // trees stand, all of the painted species.
     let deep = radius - 5.0 * patch;
     let inside = |t: &&CompactTree| at(t).distance(centre) < deep;
-    let leafy = |t: &CompactTree| painter.forest().variants[usize::from(t.variant)].species == 0;
+    let variants = painter.forest().variants;
+    let leafy = |t: &CompactTree| variants[usize::from(t.variant)].species == 0;
     let painted: Vec<&CompactTree> = painter.trees().filter(inside).collect();
     let generated: Vec<&CompactTree> = unpainted.iter().filter(inside).collect();
     assert!(painted.len() > 100, "{}", painted.len());

@@ -137,11 +137,7 @@ impl<T: HeightField + Sync> ForestPainter<T> {
 
     /// The painted forest, ready for placements and export.
     pub fn forest(&self) -> Forest {
-        let mut forest = self
-            .builder
-            .build(&self.terrain, Rect::new(Vec2::ZERO, Vec2::ZERO));
-        forest.trees = self.trees().copied().collect();
-        forest
+        self.builder.forest_of(self.trees().copied().collect())
     }
 
     /// A builder that grows this painted forest anywhere asked (streaming, tiles, export).
