@@ -274,16 +274,15 @@ fn run() -> Result<(), String> {
                 times.push(t.elapsed().as_secs_f64() * 1e3);
                 streaming.push((stats.streamed.milliseconds, stats.streamed.generated));
             }
-            times.sort_by(f64::total_cmp);
             if args.walk != 0.0 && !streaming.is_empty() {
                 let generated: usize = streaming.iter().map(|s| s.1).sum();
                 let most = streaming.iter().map(|s| s.0).fold(0.0, f64::max);
-                streaming.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let mut ms: Vec<f64> = streaming.iter().map(|s| s.0).collect();
                 println!(
                     "walked {:.0} m in {} frames: {generated} cells streamed in, streaming {:.0} ms per frame (median), {most:.0} ms at most",
                     args.walk * streaming.len() as f32,
                     streaming.len(),
-                    streaming[streaming.len() / 2].0
+                    median(&mut ms).unwrap_or(0.0)
                 );
             }
             let adapter = &offscreen.adapter;
@@ -295,12 +294,10 @@ fn run() -> Result<(), String> {
                 stats.draws,
                 stats.instances,
                 stats.triangles,
-                times
-                    .get(times.len() / 2)
-                    .map_or(String::new(), |m| format!(
-                        ", steady frame {m:.0} ms (median of {})",
-                        times.len()
-                    ))
+                median(&mut times).map_or(String::new(), |m| format!(
+                    ", steady frame {m:.0} ms (median of {})",
+                    times.len()
+                ))
             );
             if args.ids {
                 println!("coverage: {}", coverage::Coverage::of_ids(&pixels));
@@ -314,6 +311,12 @@ fn run() -> Result<(), String> {
             args.paint.unwrap_or_else(|| "paint_masks".into()),
         ),
     }
+}
+
+/// The median of `values` (the upper one of an even count), sorting them; `None` when empty.
+fn median(values: &mut [f64]) -> Option<f64> {
+    values.sort_by(f64::total_cmp);
+    values.get(values.len() / 2).copied()
 }
 
 /// Writes RGBA pixels as an 8-bit PNG.
@@ -380,14 +383,13 @@ impl Tour {
                 stats.triangles
             );
         }
-        times.sort_by(f64::total_cmp);
         println!(
             "tour of {} frames {} m apart on {}: {}; median frame {:.0} ms",
             self.frames,
             self.spacing,
             offscreen.adapter,
             guide.summary(),
-            times[times.len() / 2]
+            median(&mut times).unwrap_or(0.0)
         );
         Ok(())
     }

@@ -244,14 +244,13 @@ impl App {
             self.frame_times.push(elapsed * 1e3);
             if self.frame_times.len() as u32 >= self.max_frames {
                 let mut t = self.frame_times[1..].to_vec();
-                t.sort_by(f64::total_cmp);
                 println!(
                     "{} frames: {} draw calls, {} instances, {} triangles per frame; median frame {:.0} ms",
                     self.frame_times.len(),
                     stats.draws,
                     stats.instances,
                     stats.triangles,
-                    t.get(t.len() / 2).copied().unwrap_or(0.0)
+                    crate::median(&mut t).unwrap_or(0.0)
                 );
                 event_loop.exit();
             }
