@@ -8,10 +8,9 @@ use std::hint::black_box;
 use std::path::Path;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use sylva::forest::{
-    Brush, BrushAction, ForestBuilder, ForestConfig, ForestPainter, GltfOptions, PaintLayer,
-    PlacementBlock, Rect, Species, write_glb,
-};
+use sylva::export::{GltfOptions, write_glb};
+use sylva::forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
+use sylva::paint::{Brush, BrushAction, ForestPainter, PaintLayer};
 use sylva::terrain::glam::Vec2;
 use sylva::terrain::{DiamondSquare, EdgeMode, Heightmap};
 

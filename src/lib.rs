@@ -2,8 +2,12 @@
 //!
 //! # Crates
 //!
-//! - [`base`]: the seeded SplitMix hash every crate draws from, and bounded file reading.
-//! - [`forest`]: species, density management, placement, glTF export, grown stands.
+//! - [`base`]: the seeded SplitMix hash every crate draws from, bounded file reading and
+//!   atomic file writes.
+//! - [`forest`]: species, density management, placement, streaming, proxies, grown stands,
+//!   the guided walk.
+//! - [`paint`]: paint layers, brushes with undo, the painter, masks.
+//! - [`export`]: every file format: glTF, shared geometry, 3D Tiles, textures.
 //! - [`growth`]: trees grown into their environment in a voxel space (light, collision).
 //! - [`lsys`]: L-system grammars and seeded rewriting.
 //! - [`instancing`]: Kenwood's branch-level instance cache and tree assembly.
@@ -14,10 +18,12 @@
 //! viewer grow.
 
 pub use sylva_base as base;
+pub use sylva_export as export;
 pub use sylva_forest as forest;
 pub use sylva_growth as growth;
 pub use sylva_instancing as instancing;
 pub use sylva_lsys as lsys;
+pub use sylva_paint as paint;
 pub use sylva_terrain as terrain;
 pub use sylva_turtle as turtle;
 

@@ -1,5 +1,6 @@
 //! What every sylva crate needs and none owns: the seeded, position-keyed hash that makes
-//! outputs a pure function of (seed, position), and text-file reading with a size limit.
+//! outputs a pure function of (seed, position), text-file reading with a size limit, and
+//! file writes that cannot tear.
 //!
 //! ```
 //! use sylva_base::hash::{hash_cell, unit_f32};
@@ -19,5 +20,6 @@
 //! Hashes are integer arithmetic only (wrapping multiplies, shifts, xors), so they give the
 //! same bits on every platform.
 
+pub mod file;
 pub mod hash;
 pub mod text_file;

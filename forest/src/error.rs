@@ -1,11 +1,18 @@
-//! Errors of forest generation and export.
+//! Errors of forest generation: species, configurations, placement, stands and walks.
 
 use std::path::PathBuf;
 
+use glam::Vec2;
+use sylva_base::file::FileError;
+use sylva_base::text_file::TextFileError;
 use sylva_instancing::InstancingError;
-use sylva_lsys::ParseError;
+use sylva_lsys::{DeriveError, ParseError};
+use sylva_turtle::TurtleError;
 
-/// Why a forest could not be built or written.
+/// Why a forest could not be built, or a species read.
+///
+/// Each variant carries what was wrong (the value, the limit, the place) and its message says
+/// how to put it right.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ForestError {
@@ -21,27 +28,136 @@ pub enum ForestError {
         /// What is wrong.
         message: String,
     },
+    /// A species file could not be read (missing, too large, not text).
+    #[error("{0}")]
+    Read(#[from] TextFileError),
+    /// Reading or writing a file failed.
+    #[error("{0}")]
+    File(#[from] FileError),
     /// A grammar given as text failed to parse.
     #[error("grammar: {0}")]
     Grammar(#[from] ParseError),
+    /// No bundled grammar has this name; `sylva_lsys::presets()` lists them.
+    #[error("no preset called '{name}' (the bundled presets are listed by sylva_lsys::presets)")]
+    UnknownPreset {
+        /// The name asked for.
+        name: String,
+    },
+    /// A species' sample trees could not be derived (usually a size limit: fewer generations).
+    #[error("species '{species}': {source}")]
+    Derive {
+        /// The species.
+        species: String,
+        /// Why the derivation stopped.
+        source: DeriveError,
+    },
+    /// A species' sample trees could not be interpreted by the turtle.
+    #[error("species '{species}': {source}")]
+    Turtle {
+        /// The species.
+        species: String,
+        /// What the turtle met.
+        source: TurtleError,
+    },
+    /// A species' trees draw nothing: its grammar never moves the turtle.
+    #[error(
+        "species '{species}' draws nothing: its trees have no extent (does its grammar move the turtle?)"
+    )]
+    EmptySpecies {
+        /// The species.
+        species: String,
+    },
     /// Building a species' instance cache failed.
     #[error("instancing: {0}")]
     Instancing(#[from] InstancingError),
-    /// A setting is out of range; the message names it and says what is allowed.
-    #[error("{0}")]
-    BadParameter(String),
-    /// The exporter found something that would make an invalid file, and wrote nothing.
-    #[error("refusing to write an invalid glTF file: {0}")]
-    InvalidExport(String),
     /// Growing trees in their environment failed.
     #[error("growth: {0}")]
     Growth(#[from] sylva_growth::GrowthError),
-    /// Reading or writing a file failed.
-    #[error("{path}: {message}")]
-    Io {
-        /// The file.
-        path: String,
-        /// The system's message.
-        message: String,
+    /// No species has a positive weight: give at least one species a weight above 0.
+    #[error("a forest needs at least one species with a positive weight")]
+    NoSpecies,
+    /// A setting is outside its range: set it within `expected`.
+    #[error("{name} = {value} is out of range: expected {expected}")]
+    OutOfRange {
+        /// The setting.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
     },
+    /// A composition (a paint layer) was made for another number of species than the forest
+    /// has: paint it for this forest's species.
+    #[error("the composition is for {composition} species, the forest has {forest}")]
+    CompositionSpecies {
+        /// Species the composition decides among.
+        composition: usize,
+        /// Species of the forest.
+        forest: usize,
+    },
+    /// A tree names a variant the forest does not have (trees of another forest).
+    #[error("tree of variant {variant}, but the forest has {variants} variants")]
+    UnknownVariant {
+        /// The tree's variant.
+        variant: u16,
+        /// Variants of the forest.
+        variants: usize,
+    },
+    /// A region too large to stream in blocks of the forest's patches: ask for a smaller one.
+    #[error("a region of {} x {} m in patches of {patch} m makes more than {limit} blocks", size.x, size.y)]
+    TooManyBlocks {
+        /// The region's size (x, z).
+        size: Vec2,
+        /// The patch side.
+        patch: f32,
+        /// The most blocks a region may have ([`MAX_BLOCKS`](crate::limits::MAX_BLOCKS)).
+        limit: usize,
+    },
+    /// A [`PlacementSink`](crate::PlacementSink) stopped the stream; a sink that returns this
+    /// keeps its own reason (the exporters return theirs in place of this).
+    #[error("the placement sink stopped the stream")]
+    Stopped,
+    /// A stand was asked for with no plantings: plant at least one tree.
+    #[error("no trees to grow: plant at least one")]
+    NoPlantings,
+    /// A planting names a species the stand was not given.
+    #[error("a planting names species {species}, but only {count} species were given")]
+    PlantingSpecies {
+        /// The species index named.
+        species: usize,
+        /// Species given.
+        count: usize,
+    },
+    /// The terrain has no finite height under the plantings: plant them on the terrain.
+    #[error("the terrain has no height under the plantings")]
+    NoGround,
+    /// The walker has no room inside the bounds less the margin: a larger area or a smaller
+    /// margin.
+    #[error("no room to walk in {min} to {max} with a margin of {margin} m")]
+    NoRoomToWalk {
+        /// The bounds' lower corner.
+        min: Vec2,
+        /// The bounds' upper corner.
+        max: Vec2,
+        /// The margin asked for.
+        margin: f32,
+    },
+}
+
+/// An error unless `value` is finite and `ok`.
+pub(crate) fn check(
+    name: &'static str,
+    value: f64,
+    ok: bool,
+    expected: &'static str,
+) -> Result<(), ForestError> {
+    if value.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(ForestError::OutOfRange {
+            name,
+            value,
+            expected,
+        })
+    }
 }

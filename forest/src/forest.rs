@@ -11,9 +11,9 @@ use sylva_terrain::HeightField;
 
 use sylva_base::hash::{mix, unit_f32 as unit};
 
+use crate::composition::Composition;
 use crate::density::{Candidate, DensityModel, Rect};
-use crate::error::ForestError;
-use crate::paint::PaintLayer;
+use crate::error::{ForestError, check};
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
 
@@ -72,9 +72,9 @@ pub struct ForestConfig {
     pub spacing_factor: f32,
     /// Seedlings proposed per patch.
     pub seedlings_per_patch: u32,
-    /// A painted forest's layer: where each species grows (see [`PaintLayer`]); `None` grows
-    /// every species everywhere by weight.
-    pub paint: Option<Arc<PaintLayer>>,
+    /// Which species stands at each spot (a paint layer of `sylva-paint`, or your own
+    /// [`Composition`]); `None` grows every species everywhere by weight.
+    pub composition: Option<Arc<dyn Composition>>,
 }
 
 impl ForestConfig {
@@ -88,7 +88,7 @@ impl ForestConfig {
             scale_variation: 0.1,
             spacing_factor: 1.0,
             seedlings_per_patch: 8,
-            paint: None,
+            composition: None,
         }
     }
 }
@@ -177,23 +177,22 @@ impl ForestBuilder {
     /// Measures canopies and fills one cache per species and maturity.
     pub fn new(config: ForestConfig) -> Result<Self, ForestError> {
         if config.species.is_empty() || !config.species.iter().any(|s| s.weight > 0.0) {
-            return Err(ForestError::BadParameter(
-                "a forest needs at least one species with a positive weight".into(),
-            ));
+            return Err(ForestError::NoSpecies);
         }
-        if config.budget == 0 {
-            return Err(ForestError::BadParameter(
-                "the cache budget must be positive".into(),
-            ));
-        }
-        if !(config.scale_variation.is_finite() && (0.0..1.0).contains(&config.scale_variation)) {
-            return Err(ForestError::BadParameter(format!(
-                "scale variation {} must be in [0, 1)",
-                config.scale_variation
-            )));
-        }
-        if let Some(layer) = &config.paint {
-            layer.check_species(config.species.len())?;
+        check(
+            "budget",
+            config.budget as f64,
+            config.budget > 0,
+            "a positive number of bytes",
+        )?;
+        check(
+            "scale_variation",
+            f64::from(config.scale_variation),
+            (0.0..1.0).contains(&config.scale_variation),
+            "0 <= scale_variation < 1",
+        )?;
+        if let Some(composition) = &config.composition {
+            check_composition(composition.as_ref(), config.species.len())?;
         }
         let canopies = config
             .species
@@ -206,10 +205,9 @@ impl ForestBuilder {
             .zip(&canopies)
             .find(|(s, c)| s.weight > 0.0 && !(c.radius() > 0.0 && c.radius().is_finite()))
         {
-            return Err(ForestError::BadParameter(format!(
-                "species '{}' draws nothing: its trees have no extent (does its grammar move the turtle?)",
-                s.name
-            )));
+            return Err(ForestError::EmptySpecies {
+                species: s.name.clone(),
+            });
         }
         let total_weight: f32 = config.species.iter().map(|s| s.weight.max(0.0)).sum();
         let start = Instant::now();
@@ -316,21 +314,28 @@ impl ForestBuilder {
     /// The trees of `region` on `terrain`: a pure function of (seed, paint layer, region),
     /// seamless between adjacent regions. Trees outside the terrain's bounds are dropped.
     pub fn trees(&self, terrain: &dyn HeightField, region: Rect) -> Vec<CompactTree> {
-        match &self.config.paint {
-            Some(layer) => self.trees_with(&self.density.painted(layer), terrain, region),
+        match &self.config.composition {
+            Some(composition) => self.trees_with(
+                &self.density.composed(composition.as_ref()),
+                terrain,
+                region,
+            ),
             None => self.trees_with(&self.density, terrain, region),
         }
     }
 
-    /// This builder with another paint layer (or none), sharing its caches: cheap, so a
+    /// This builder with another composition (or none), sharing its caches: cheap, so a
     /// painting tool can hand each edit's layer to streaming and export. An error when the
-    /// layer does not have one channel per species.
-    pub fn with_paint(&self, paint: Option<Arc<PaintLayer>>) -> Result<ForestBuilder, ForestError> {
-        if let Some(layer) = &paint {
-            layer.check_species(self.config.species.len())?;
+    /// composition was made for another number of species.
+    pub fn with_composition(
+        &self,
+        composition: Option<Arc<dyn Composition>>,
+    ) -> Result<ForestBuilder, ForestError> {
+        if let Some(c) = &composition {
+            check_composition(c.as_ref(), self.config.species.len())?;
         }
         let mut builder = self.clone();
-        builder.config.paint = paint;
+        builder.config.composition = composition;
         Ok(builder)
     }
 
@@ -392,29 +397,6 @@ impl ForestBuilder {
             .collect()
     }
 
-    /// This builder painted with the masks saved in `dir` (see [`crate::load_masks`]),
-    /// stretched over `terrain`: one mask per species, named after it.
-    pub fn with_masks(
-        &self,
-        dir: &std::path::Path,
-        terrain: &dyn HeightField,
-    ) -> Result<ForestBuilder, ForestError> {
-        let names: Vec<&str> = self
-            .config
-            .species
-            .iter()
-            .map(|s| s.name.as_str())
-            .collect();
-        let (lo, hi) = terrain.bounds();
-        let layer = crate::paint::load_masks(dir, &names, Rect::new(lo, hi))?;
-        self.with_paint(Some(Arc::new(layer)))
-    }
-
-    /// Sets the paint layer, already checked against the species (by a canvas).
-    pub(crate) fn set_paint(&mut self, layer: Arc<PaintLayer>) {
-        self.config.paint = Some(layer);
-    }
-
     /// Builds the forest of `region` on `terrain`.
     pub fn build(&self, terrain: &dyn HeightField, region: Rect) -> Forest {
         let start = Instant::now();
@@ -423,8 +405,8 @@ impl ForestBuilder {
         forest
     }
 
-    /// The forest of `trees` placed by this builder (or by a painter with its caches).
-    pub(crate) fn forest_of(&self, trees: Vec<CompactTree>) -> Forest {
+    /// The forest of `trees` placed by this builder (or by a painter sharing its caches).
+    pub fn forest_of(&self, trees: Vec<CompactTree>) -> Forest {
         Forest {
             species: self.config.species.clone(),
             variants: Arc::clone(&self.variants),
@@ -458,14 +440,28 @@ impl Forest {
             .collect();
         let mut assembler = Assembler::new();
         for tree in &self.trees {
-            let b = out.get_mut(tree.variant as usize).ok_or_else(|| {
-                ForestError::BadParameter(format!("tree of unknown variant {}", tree.variant))
-            })?;
+            let b =
+                out.get_mut(tree.variant as usize)
+                    .ok_or_else(|| ForestError::UnknownVariant {
+                        variant: tree.variant,
+                        variants: self.variants.len(),
+                    })?;
             let cache = &self.variants[tree.variant as usize].cache;
             let groups = &mut b.placements.groups;
             b.placements.count +=
                 assembler.expand_with(cache, tree, |i, t| groups[i as usize].push(t))?;
         }
         Ok(out)
+    }
+}
+
+/// An error unless `composition` fits a forest of `forest` species.
+fn check_composition(composition: &dyn Composition, forest: usize) -> Result<(), ForestError> {
+    match composition.species() {
+        Some(n) if n != forest => Err(ForestError::CompositionSpecies {
+            composition: n,
+            forest,
+        }),
+        _ => Ok(()),
     }
 }

@@ -1,5 +1,7 @@
 //! Forests: species, patch-based density management, placement on any terrain, forests
-//! streamed block by block on every core, and streamed glTF export.
+//! streamed block by block on every core, whole-tree proxies, stands grown in their
+//! environment and the guided walk. Files are written by `sylva-export`, painting is
+//! `sylva-paint`.
 //!
 //! ```
 //! use sylva_forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
@@ -35,44 +37,36 @@
 //! +Y up, metres, colours in linear RGB. A forest of a region is a pure function of (seed,
 //! region): regions generated apart join without seams.
 
+mod appearance;
+mod composition;
 mod density;
 mod error;
 mod forest;
-mod gltf;
-mod paint;
 mod patch;
+mod proxy;
 mod species;
 mod stand;
 mod stream;
-mod texture;
-mod tiles;
 mod variety;
 mod walk;
 
+pub use appearance::{BarkPattern, LeafShape};
+pub use composition::{ComposedDensity, Composition};
 pub use density::{Candidate, DensityModel, Rect};
 pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
-pub use gltf::{
-    CHUNK_BYTES, GlbStats, GltfOptions, MAX_NODE_PLACEMENTS, write_glb, write_shared_geometry,
-    write_stand_glb,
-};
-pub use paint::{
-    Brush, BrushAction, Change, FULL, ForestPainter, MASK_TEXT_KEY, MAX_BRUSH_RADIUS,
-    MAX_PAINT_VALUES, MAX_UNDO, PAINT_TILE_PATCHES, PaintCanvas, PaintLayer, PaintedDensity,
-    StrokeReport, load_masks, mask_file_name, save_masks,
-};
 pub use patch::{PatchDensity, PatchSpecies};
-pub use species::{Canopy, MAX_SPECIES_FILE_BYTES, Species};
+pub use proxy::{Extent, tree_proxy};
+pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
-pub use stream::{
-    BLOCK_PATCHES, MAX_BLOCKS, Placement, PlacementBlock, PlacementSink, StreamStats,
-};
-pub use texture::{BarkPattern, LeafShape, TEXTURE_SIZE, Texture};
-pub use tiles::{
-    Extent, Level, MAX_TILES, TileId, TileScheme, TileStats, TilesetOptions, tile_path, tree_proxy,
-    write_tile, write_tileset,
-};
+pub use stream::{Placement, PlacementBlock, PlacementSink, StreamStats};
 pub use variety::{tree_tint, tree_wind};
 pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};
+
+/// The limits and tuning constants of forest generation.
+pub mod limits {
+    pub use crate::species::MAX_SPECIES_FILE_BYTES;
+    pub use crate::stream::{BLOCK_PATCHES, MAX_BLOCKS};
+}

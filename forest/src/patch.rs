@@ -5,6 +5,7 @@ use glam::Vec2;
 
 use sylva_base::hash::{hash_cell as hash, mix, unit_f32 as unit};
 
+use crate::composition::Composition;
 use crate::density::{Candidate, DensityModel, Rect};
 
 /// Patch-based density management (thesis 5.3.3 and 7.10).
@@ -99,9 +100,18 @@ impl PatchDensity {
         (RINGS as f32 + 1.0) * self.patch
     }
 
-    /// A species index drawn by weight; only called when some weight is positive, so the
-    /// index is always in range.
-    pub(crate) fn pick_species(&self, h: u64) -> usize {
+    /// A species index drawn by weight from `h`, as the unpainted model draws it (always a
+    /// valid index when some weight is positive; 0 otherwise).
+    ///
+    /// ```
+    /// use sylva_forest::{PatchDensity, PatchSpecies};
+    ///
+    /// let oak = PatchSpecies { canopy_radius: 6.0, weight: 1.0 };
+    /// let none = PatchSpecies { canopy_radius: 3.0, weight: 0.0 };
+    /// let model = PatchDensity::new(vec![oak, none]);
+    /// assert!((0..100).all(|h| model.pick_species(h * 0x9e37_79b9_7f4a_7c15) == 0));
+    /// ```
+    pub fn pick_species(&self, h: u64) -> usize {
         let weight = |s: &PatchSpecies| s.weight.max(0.0);
         let total: f32 = self.species.iter().map(weight).sum();
         let mut u = unit(h) * total;
@@ -218,19 +228,17 @@ impl DensityModel for PatchDensity {
     }
 }
 
-/// Which species, if any, may stand at a spot: the species weights everywhere, or a paint
-/// layer's mix at the spot.
-pub(crate) trait Composition {
-    /// The species of a tree proposed at `p`, drawn from `draw`, or `None` for no tree.
-    fn choose(&self, density: &PatchDensity, p: Vec2, draw: u64) -> Option<usize>;
-}
-
 /// Every spot takes a tree, its species drawn by the species' weights.
+#[derive(Debug)]
 struct ByWeight;
 
 impl Composition for ByWeight {
     fn choose(&self, density: &PatchDensity, _: Vec2, draw: u64) -> Option<usize> {
         Some(density.pick_species(draw))
+    }
+
+    fn species(&self) -> Option<usize> {
+        None
     }
 }
 

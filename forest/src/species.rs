@@ -6,8 +6,8 @@ use glam::Vec3;
 use sylva_lsys::{GrammarFileError, LSystem};
 use sylva_turtle::{Skeleton, Tropism, TurtleOptions, interpret};
 
+use crate::appearance::{BarkPattern, LeafShape};
 use crate::error::ForestError;
-use crate::texture::{BarkPattern, LeafShape};
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
@@ -83,7 +83,7 @@ impl Species {
     /// the bend it had in its hero, which approximates, as in the Kenwood paper.
     pub fn from_preset(name: &str, generations: u32) -> Result<Self, ForestError> {
         let p = sylva_lsys::preset(name)
-            .ok_or_else(|| ForestError::BadParameter(format!("no preset called '{name}'")))?;
+            .ok_or_else(|| ForestError::UnknownPreset { name: name.into() })?;
         let mut s = Species::new(name, p.lsystem()?, generations);
         s.turtle = s.turtle.with_angle(p.angle as f32);
         s.turtle.tropism = TurtleOptions::for_preset(p).tropism;
@@ -98,10 +98,17 @@ impl Species {
                 .grammar
                 .derive(self.generations, seed)
                 .and_then(|w| self.grammar.interpretation(&w, seed))
-                .map_err(|e| ForestError::BadParameter(format!("{}: {e}", self.name)))?;
+                .map_err(|source| ForestError::Derive {
+                    species: self.name.clone(),
+                    source,
+                })?;
             let mut skeleton = Skeleton::default();
-            interpret(&word, &self.turtle, &mut skeleton)
-                .map_err(|e| ForestError::BadParameter(format!("{}: {e}", self.name)))?;
+            interpret(&word, &self.turtle, &mut skeleton).map_err(|source| {
+                ForestError::Turtle {
+                    species: self.name.clone(),
+                    source,
+                }
+            })?;
             reach = reach.max(skeleton.horizontal_extent());
             // A branch runs from one branch point to the next: chains of bones whose parent
             // has no other child. L is the longest such chain.
@@ -152,12 +159,7 @@ impl Species {
     /// ```
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ForestError> {
         let path = path.as_ref();
-        let text = sylva_base::text_file::read(path, MAX_SPECIES_FILE_BYTES).map_err(|e| {
-            ForestError::Io {
-                path: path.display().to_string(),
-                message: e.to_string(),
-            }
-        })?;
+        let text = sylva_base::text_file::read(path, MAX_SPECIES_FILE_BYTES)?;
         Self::parse_file(&text, path)
     }
 

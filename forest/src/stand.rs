@@ -113,14 +113,13 @@ pub fn grow_stand(
     options: &StandOptions,
 ) -> Result<GrownStand, ForestError> {
     if plantings.is_empty() {
-        return Err(ForestError::BadParameter("no trees to grow".into()));
+        return Err(ForestError::NoPlantings);
     }
     if let Some(p) = plantings.iter().find(|p| p.species >= species.len()) {
-        return Err(ForestError::BadParameter(format!(
-            "a planting names species {} of {}",
-            p.species,
-            species.len()
-        )));
+        return Err(ForestError::PlantingSpecies {
+            species: p.species,
+            count: species.len(),
+        });
     }
     let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
     let mut ground = (f32::INFINITY, f32::NEG_INFINITY);
@@ -143,9 +142,7 @@ pub fn grow_stand(
         }
     }
     if !(ground.0.is_finite() && ground.1.is_finite()) {
-        return Err(ForestError::BadParameter(
-            "the terrain has no height under the plantings".into(),
-        ));
+        return Err(ForestError::NoGround);
     }
     let min = Vec3::new(lo.x, ground.0 - options.voxel, lo.y);
     let max = Vec3::new(hi.x, ground.1 + options.height.max(options.voxel), hi.y);

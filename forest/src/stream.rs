@@ -85,12 +85,11 @@ impl ForestBuilder {
         let size = region.max - region.min;
         let (fx, fz) = ((size.x / side).ceil(), (size.y / side).ceil());
         if !(side.is_finite() && side > 0.0 && f64::from(fx) * f64::from(fz) <= MAX_BLOCKS as f64) {
-            return Err(ForestError::BadParameter(format!(
-                "a region of {} x {} m in patches of {} m makes more than {MAX_BLOCKS} blocks",
-                size.x,
-                size.y,
-                self.density().patch
-            )));
+            return Err(ForestError::TooManyBlocks {
+                size,
+                patch: self.density().patch,
+                limit: MAX_BLOCKS,
+            });
         }
         let (nx, nz) = (fx as usize, fz as usize);
         let mut out = Vec::with_capacity(nx * nz);
@@ -136,8 +135,9 @@ impl ForestBuilder {
             let variant = u32::from(tree.variant);
             let cache = &variants
                 .get(usize::from(tree.variant))
-                .ok_or_else(|| {
-                    ForestError::BadParameter(format!("tree of unknown variant {variant}"))
+                .ok_or_else(|| ForestError::UnknownVariant {
+                    variant: tree.variant,
+                    variants: variants.len(),
                 })?
                 .cache;
             assembler.expand_with(cache, tree, |instance, transform| {

@@ -9,7 +9,7 @@ use sylva_instancing::CompactTree;
 use sylva_terrain::HeightField;
 
 use crate::density::Rect;
-use crate::error::ForestError;
+use crate::error::{ForestError, check};
 use crate::forest::ForestBuilder;
 
 /// Settings of a [`GuidedWalk`].
@@ -264,23 +264,34 @@ impl GuidedWalk {
         options: WalkOptions,
     ) -> Result<Self, ForestError> {
         let o = &options;
-        let positive = [o.step, o.influence, o.arrival, o.turn, o.deviation]
-            .iter()
-            .all(|v| v.is_finite() && *v > 0.0);
-        let non_negative = [o.repulsion, o.body, o.margin]
-            .iter()
-            .all(|v| v.is_finite() && *v >= 0.0);
-        if !(positive && non_negative) || o.step > 10.0 {
-            return Err(ForestError::BadParameter(format!(
-                "walk options out of range: {options:?}"
-            )));
+        check(
+            "step",
+            o.step.into(),
+            o.step > 0.0 && o.step <= 10.0,
+            "0 < step <= 10 m",
+        )?;
+        for (name, v) in [
+            ("influence", o.influence),
+            ("arrival", o.arrival),
+            ("turn", o.turn),
+            ("deviation", o.deviation),
+        ] {
+            check(name, v.into(), v > 0.0, "a positive number")?;
+        }
+        for (name, v) in [
+            ("repulsion", o.repulsion),
+            ("body", o.body),
+            ("margin", o.margin),
+        ] {
+            check(name, v.into(), v >= 0.0, "zero or more")?;
         }
         let inner = Rect::new(bounds.min + o.margin, bounds.max - o.margin);
         if inner.is_empty() || !start.is_finite() {
-            return Err(ForestError::BadParameter(format!(
-                "no room to walk in {:?} to {:?} with a margin of {} m",
-                bounds.min, bounds.max, o.margin
-            )));
+            return Err(ForestError::NoRoomToWalk {
+                min: bounds.min,
+                max: bounds.max,
+                margin: o.margin,
+            });
         }
         let mut walk = GuidedWalk {
             bounds: inner,
@@ -423,7 +434,7 @@ impl GuidedWalk {
             && self
                 .near
                 .iter()
-                .all(|&(t, r)| crate::paint::distance_to_segment(t, a, b) >= r + self.options.body)
+                .all(|&(t, r)| distance_in_plane(t, a, b) >= r + self.options.body)
     }
 
     /// A point near `p` clear of every trunk (p itself when it is).
@@ -456,4 +467,9 @@ impl GuidedWalk {
         self.waiting = 0;
         self.targets += 1;
     }
+}
+
+/// The distance from `p` to the segment from `a` to `b`, in the plane.
+fn distance_in_plane(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+    sylva_growth::distance_to_segment(p.extend(0.0), a.extend(0.0), b.extend(0.0))
 }

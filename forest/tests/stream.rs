@@ -112,7 +112,10 @@ fn degenerate_streams_are_empty_or_errors() {
     assert_eq!(b.blocks(nan).unwrap().len(), 0);
     b.density_mut().patch = 1e-6;
     let huge = Rect::new(Vec2::ZERO, Vec2::splat(20_000.0));
-    assert!(matches!(b.blocks(huge), Err(ForestError::BadParameter(_))));
+    assert!(matches!(
+        b.blocks(huge),
+        Err(ForestError::TooManyBlocks { .. })
+    ));
     assert!(
         b.stream(&plane(20_000.0), huge, &mut |_: &PlacementBlock| Ok(()))
             .is_err()

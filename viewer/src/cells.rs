@@ -527,7 +527,7 @@ mod tests {
     /// of a world painted with the final layer from the start.
     #[test]
     fn repainted_cells_are_the_painted_worlds_cells() {
-        use sylva::forest::{Brush, BrushAction, PaintCanvas, PaintLayer};
+        use sylva::paint::{Brush, BrushAction, PaintCanvas, PaintLayer};
         use sylva::terrain::HeightField;
         let painted = world(700.0);
         let world = world(700.0);

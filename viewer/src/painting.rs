@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use sylva::forest::{Brush, BrushAction, Change, PaintCanvas, PaintLayer, Rect, save_masks};
+use sylva::forest::Rect;
+use sylva::paint::{Brush, BrushAction, Change, PaintCanvas, PaintLayer, save_masks};
 use sylva::terrain::HeightField;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3, Vec4};
 
@@ -13,7 +14,7 @@ use crate::cells::VIEW_DISTANCE;
 use crate::scene::Camera;
 use crate::scene::Scene;
 #[cfg(test)]
-use sylva::forest::mask_file_name;
+use sylva::paint::mask_file_name;
 
 /// Largest layer side in cells: a bigger world gets coarser cells.
 const MAX_LAYER_CELLS: f32 = 2048.0;
@@ -61,7 +62,8 @@ impl Painting {
         let (forest, _) = scene.world.forest();
         let (lo, hi) = scene.world.heightmap.bounds();
         let bounds = Rect::new(lo, hi);
-        let layer = match &forest.config().paint {
+        let painted = scene.world.layer();
+        let layer = match &painted {
             Some(layer) => PaintLayer::clone(layer),
             None => {
                 let cell = ((hi.x - lo.x).max(hi.y - lo.y) / MAX_LAYER_CELLS).max(1.0);
@@ -70,7 +72,7 @@ impl Painting {
             }
         };
         let canvas = PaintCanvas::for_forest(&forest, layer).map_err(|e| e.to_string())?;
-        if forest.config().paint.is_none() {
+        if painted.is_none() {
             let version = scene.world.repaint(canvas.shared_layer())?;
             scene.cells.repaint(&scene.world, bounds, version)?;
         }

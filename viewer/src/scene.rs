@@ -5,9 +5,11 @@ use bytemuck::{Pod, Zeroable};
 use std::sync::{Arc, PoisonError, RwLock};
 
 use sylva::forest::{
-    BarkPattern, Extent, ForestBuilder, ForestConfig, LeafShape, PaintLayer, Species, tree_proxy,
+    BarkPattern, Composition, Extent, ForestBuilder, ForestConfig, LeafShape, Rect, Species,
+    tree_proxy,
 };
 use sylva::instancing::Span;
+use sylva::paint::PaintLayer;
 
 use crate::cells::{Cells, Streamed, VIEW_DISTANCE};
 use crate::cull::bounding_sphere;
@@ -66,6 +68,9 @@ pub(crate) struct World {
     /// The forest's recipe and how many times it has been repainted (cells remember the
     /// version they were generated from); swapped whole when the painting tool paints.
     forest: RwLock<(Arc<ForestBuilder>, u64)>,
+    /// The layer the forest is painted with, if any (the forest keeps it only as a
+    /// composition).
+    layer: RwLock<Option<Arc<PaintLayer>>>,
     pub(crate) heightmap: Heightmap,
     pub(crate) side: f32,
     pub(crate) variants: Vec<VariantGeometry>,
@@ -139,10 +144,24 @@ impl World {
             ));
         }
         let heightmap = sylva::presets::terrain(options.seed, side).map_err(|e| e.to_string())?;
+        let mut layer = None;
         if let Some(dir) = &options.paint {
+            let names: Vec<&str> = builder
+                .config()
+                .species
+                .iter()
+                .map(|s| s.name.as_str())
+                .collect();
+            let (lo, hi) = heightmap.bounds();
+            let loaded = Arc::new(
+                sylva::paint::load_masks(dir, &names, Rect::new(lo, hi))
+                    .map_err(|e| e.to_string())?,
+            );
+            let composition: Arc<dyn Composition> = loaded.clone();
             builder = builder
-                .with_masks(dir, &heightmap)
+                .with_composition(Some(composition))
                 .map_err(|e| e.to_string())?;
+            layer = Some(loaded);
         }
         let species = &builder.config().species;
         let mut groups = Vec::new();
@@ -205,6 +224,7 @@ impl World {
         let seedling = builder.variants().iter().map(|v| v.seedling).collect();
         Ok(World {
             forest: RwLock::new((Arc::new(builder), 0)),
+            layer: RwLock::new(layer),
             heightmap,
             side,
             variants,
@@ -223,10 +243,22 @@ impl World {
         (Arc::clone(&guard.0), guard.1)
     }
 
+    /// The layer the forest is painted with, if any.
+    pub(crate) fn layer(&self) -> Option<Arc<PaintLayer>> {
+        self.layer
+            .read()
+            .unwrap_or_else(PoisonError::into_inner)
+            .clone()
+    }
+
     /// Paints the forest with `layer` from now on; returns the new version.
     pub(crate) fn repaint(&self, layer: Arc<PaintLayer>) -> Result<u64, String> {
         let (builder, _) = self.forest();
-        let painted = builder.with_paint(Some(layer)).map_err(|e| e.to_string())?;
+        let composition: Arc<dyn Composition> = layer.clone();
+        let painted = builder
+            .with_composition(Some(composition))
+            .map_err(|e| e.to_string())?;
+        *self.layer.write().unwrap_or_else(PoisonError::into_inner) = Some(layer);
         let mut guard = self.forest.write().unwrap_or_else(PoisonError::into_inner);
         guard.1 += 1;
         guard.0 = Arc::new(painted);

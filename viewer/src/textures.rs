@@ -1,7 +1,8 @@
 //! The procedural textures on the GPU: leaf cards and bark as one texture array, and which
 //! layer a material reads.
 
-use sylva::forest::{BarkPattern, LeafShape, Texture};
+use sylva::export::Texture;
+use sylva::forest::{BarkPattern, LeafShape};
 use wgpu::util::DeviceExt;
 
 /// The layer of a bark pattern's texture in the viewer's texture array, after the leaf

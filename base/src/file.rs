@@ -1,0 +1,374 @@
+//! Files written so that they cannot tear: every output goes to a temporary file beside its
+//! destination and is renamed into place only once it is whole and on disk, so a full disk, a
+//! crash or an interrupted run leaves the previous file (or none), never half of a new one.
+//! Sets of files that belong together (a paint layer's masks) are replaced as one folder.
+
+use std::fmt;
+use std::fs::File;
+use std::io::{self, BufWriter, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Reading or writing a file failed: the path and the system's error.
+///
+/// Cloneable and comparable (by path and [`io::ErrorKind`]) so that error enums holding it
+/// can be too. `Display` names the file and, for the common causes, what to do.
+#[derive(Debug, Clone)]
+pub struct FileError {
+    /// The file or folder.
+    pub path: PathBuf,
+    /// The system's error.
+    pub source: Arc<io::Error>,
+}
+
+impl FileError {
+    /// The error `source` met at `path`.
+    pub fn new(path: impl Into<PathBuf>, source: io::Error) -> Self {
+        FileError {
+            path: path.into(),
+            source: Arc::new(source),
+        }
+    }
+
+    /// A closure for `map_err` that names `path`.
+    pub fn at(path: &Path) -> impl Fn(io::Error) -> FileError + '_ {
+        move |e| FileError::new(path, e)
+    }
+
+    /// The kind of the system's error.
+    pub fn kind(&self) -> io::ErrorKind {
+        self.source.kind()
+    }
+}
+
+impl PartialEq for FileError {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path && self.kind() == other.kind()
+    }
+}
+
+impl fmt::Display for FileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.source)?;
+        let hint = match self.kind() {
+            io::ErrorKind::NotFound => "; check the path",
+            io::ErrorKind::PermissionDenied | io::ErrorKind::ReadOnlyFilesystem => {
+                "; choose a place you may write to"
+            }
+            io::ErrorKind::StorageFull | io::ErrorKind::QuotaExceeded => {
+                "; free some space or write elsewhere (nothing was replaced)"
+            }
+            io::ErrorKind::UnexpectedEof => "; the file is cut short: write it again",
+            _ => "",
+        };
+        f.write_str(hint)
+    }
+}
+
+impl std::error::Error for FileError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&*self.source)
+    }
+}
+
+/// Distinguishes the temporary files of one process.
+static NEXT_TEMPORARY: AtomicU64 = AtomicU64::new(0);
+
+/// A hidden name beside `path` for a temporary of this process: `.NAME.TAG-PID-N`.
+fn beside(path: &Path, tag: &str) -> PathBuf {
+    let name = path
+        .file_name()
+        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
+    let n = NEXT_TEMPORARY.fetch_add(1, Ordering::Relaxed);
+    path.with_file_name(format!(".{name}.{tag}-{}-{n}", std::process::id()))
+}
+
+/// The folder holding `path` (`.` for a bare file name).
+fn parent_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// Flushes a folder's entries (the renames into it) to disk; where folders cannot be opened
+/// for that (not on Unix), the rename itself is what there is.
+fn sync_folder(folder: &Path) -> io::Result<()> {
+    #[cfg(unix)]
+    File::open(folder)?.sync_all()?;
+    #[cfg(not(unix))]
+    let _ = folder;
+    Ok(())
+}
+
+/// A file being written: a temporary beside its destination, renamed into place by
+/// [`AtomicFile::commit`]. Dropped without a commit (an error, a panic), the temporary is
+/// removed and the destination is untouched.
+///
+/// ```
+/// use std::io::Write;
+/// use sylva_base::file::AtomicFile;
+///
+/// let path = std::env::temp_dir().join("sylva-atomic-doctest.txt");
+/// std::fs::write(&path, "old").unwrap();
+/// let mut file = AtomicFile::create(&path)?;
+/// file.write_all(b"new").unwrap();
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "old"); // not yet
+/// file.commit()?;
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), sylva_base::file::FileError>(())
+/// ```
+#[derive(Debug)]
+pub struct AtomicFile {
+    writer: Option<BufWriter<File>>,
+    temporary: PathBuf,
+    destination: PathBuf,
+}
+
+impl AtomicFile {
+    /// Starts writing `destination`: creates the temporary beside it.
+    pub fn create(destination: impl AsRef<Path>) -> Result<AtomicFile, FileError> {
+        let destination = destination.as_ref().to_path_buf();
+        let temporary = beside(&destination, "sylva-partial");
+        let file = File::create(&temporary).map_err(|e| FileError::new(&destination, e))?;
+        Ok(AtomicFile {
+            writer: Some(BufWriter::with_capacity(1 << 20, file)),
+            temporary,
+            destination,
+        })
+    }
+
+    /// The file this will become.
+    pub fn destination(&self) -> &Path {
+        &self.destination
+    }
+
+    /// Flushes the file to disk and renames it into place, replacing any file there.
+    pub fn commit(mut self) -> Result<(), FileError> {
+        let at = FileError::at(&self.destination);
+        let writer = self.writer.take().ok_or_else(|| {
+            FileError::new(&self.destination, io::Error::other("already committed"))
+        })?;
+        let file = writer.into_inner().map_err(|e| at(e.into_error()))?;
+        file.sync_all().map_err(&at)?;
+        drop(file);
+        std::fs::rename(&self.temporary, &self.destination).map_err(&at)?;
+        sync_folder(parent_of(&self.destination)).map_err(at)
+    }
+
+    fn writer(&mut self) -> io::Result<&mut BufWriter<File>> {
+        self.writer
+            .as_mut()
+            .ok_or_else(|| io::Error::other("the file was committed"))
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+        self.writer()?.write(bytes)
+    }
+
+    fn write_all(&mut self, bytes: &[u8]) -> io::Result<()> {
+        self.writer()?.write_all(bytes)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.writer()?.flush()
+    }
+}
+
+impl Seek for AtomicFile {
+    fn seek(&mut self, to: SeekFrom) -> io::Result<u64> {
+        self.writer()?.seek(to)
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.writer.take().is_some() {
+            // Not committed: the partial file must not stay behind.
+            let _ = std::fs::remove_file(&self.temporary);
+        }
+    }
+}
+
+/// Writes `path` whole or not at all: `write` fills a temporary beside it, which replaces
+/// `path` only if every byte reached the disk.
+///
+/// ```
+/// use std::io::Write;
+/// let path = std::env::temp_dir().join("sylva-write-doctest.txt");
+/// sylva_base::file::write(&path, |w| w.write_all(b"axiom: F"))?;
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "axiom: F");
+/// // A failed write leaves the file as it was.
+/// let failed = sylva_base::file::write(&path, |_| Err(std::io::Error::other("stopped")));
+/// assert!(failed.is_err());
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "axiom: F");
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), sylva_base::file::FileError>(())
+/// ```
+pub fn write(
+    path: impl AsRef<Path>,
+    write: impl FnOnce(&mut AtomicFile) -> io::Result<()>,
+) -> Result<(), FileError> {
+    let mut file = AtomicFile::create(path)?;
+    let at = file.destination().to_path_buf();
+    write(&mut file).map_err(|e| FileError::new(&at, e))?;
+    file.commit()
+}
+
+/// The name a folder's previous contents have while [`replace_folder`] swaps a new set in;
+/// found in place of the folder only if a replacement stopped between its two renames.
+pub fn previous_folder(folder: &Path) -> PathBuf {
+    let name = folder
+        .file_name()
+        .map_or_else(|| "folder".into(), |n| n.to_string_lossy().into_owned());
+    folder.with_file_name(format!(".{name}.sylva-previous"))
+}
+
+/// Replaces the folder `folder` whole: `fill` writes the new set into an empty temporary
+/// folder beside it, and only when every file is whole and on disk does the new folder take
+/// the old one's place. A failure anywhere before leaves the old folder as it was.
+///
+/// The swap is two renames (the old folder aside to [`previous_folder`], the new one in);
+/// should the process stop between them, the old set is whole at `previous_folder`, and the
+/// next replacement clears it.
+///
+/// ```
+/// use std::io::Write;
+/// let dir = std::env::temp_dir().join(format!("sylva-set-doctest-{}", std::process::id()));
+/// sylva_base::file::replace_folder(&dir, |new| {
+///     std::fs::write(new.join("a.txt"), "1")?;
+///     std::fs::write(new.join("b.txt"), "2")
+/// })?;
+/// let failed = sylva_base::file::replace_folder(&dir, |new| {
+///     std::fs::write(new.join("a.txt"), "3")?;
+///     Err(std::io::Error::other("the disk filled up"))
+/// });
+/// assert!(failed.is_err());
+/// assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "1");
+/// # std::fs::remove_dir_all(&dir).ok();
+/// # Ok::<(), sylva_base::file::FileError>(())
+/// ```
+pub fn replace_folder(
+    folder: &Path,
+    fill: impl FnOnce(&Path) -> io::Result<()>,
+) -> Result<(), FileError> {
+    let at = FileError::at(folder);
+    let parent = parent_of(folder);
+    std::fs::create_dir_all(parent).map_err(|e| FileError::new(parent, e))?;
+    let staging = beside(folder, "sylva-new");
+    std::fs::create_dir(&staging).map_err(&at)?;
+    let filled = fill(&staging).and_then(|()| sync_files(&staging));
+    if let Err(e) = filled {
+        let _ = std::fs::remove_dir_all(&staging);
+        return Err(at(e));
+    }
+    let previous = previous_folder(folder);
+    if previous.exists() && folder.exists() {
+        // A stale copy from a replacement that stopped after its swap.
+        std::fs::remove_dir_all(&previous).map_err(FileError::at(&previous))?;
+    }
+    let had_old = folder.exists();
+    if had_old {
+        std::fs::rename(folder, &previous).map_err(&at)?;
+    }
+    if let Err(e) = std::fs::rename(&staging, folder) {
+        if had_old {
+            let _ = std::fs::rename(&previous, folder);
+        }
+        let _ = std::fs::remove_dir_all(&staging);
+        return Err(at(e));
+    }
+    sync_folder(parent).map_err(&at)?;
+    if previous.exists() {
+        std::fs::remove_dir_all(&previous).map_err(FileError::at(&previous))?;
+    }
+    Ok(())
+}
+
+/// Flushes every file of a folder to disk.
+fn sync_files(folder: &Path) -> io::Result<()> {
+    for entry in std::fs::read_dir(folder)? {
+        let entry = entry?;
+        if entry.file_type()?.is_file() {
+            File::open(entry.path())?.sync_all()?;
+        }
+    }
+    sync_folder(folder)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("sylva-file-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn an_uncommitted_file_leaves_nothing_behind() {
+        let dir = scratch("uncommitted");
+        let path = dir.join("forest.glb");
+        {
+            let mut file = AtomicFile::create(&path).unwrap();
+            file.write_all(b"half").unwrap();
+        }
+        assert!(!path.exists());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn a_failed_write_keeps_the_old_file_and_names_it() {
+        let dir = scratch("failed");
+        let path = dir.join("tileset.json");
+        std::fs::write(&path, "{}").unwrap();
+        let err = write(&path, |w| {
+            w.write_all(b"{\"asset\"")?;
+            Err(io::Error::from(io::ErrorKind::StorageFull))
+        })
+        .unwrap_err();
+        assert_eq!(err.path, path);
+        assert!(err.to_string().contains("free some space"), "{err}");
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "{}");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn a_folder_is_replaced_whole_and_stale_copies_are_cleared() {
+        let dir = scratch("set");
+        let masks = dir.join("masks");
+        replace_folder(&masks, |new| std::fs::write(new.join("oak.png"), "1")).unwrap();
+        // A replacement that stopped between its renames left the old set aside.
+        std::fs::create_dir(previous_folder(&masks)).unwrap();
+        replace_folder(&masks, |new| std::fs::write(new.join("birch.png"), "2")).unwrap();
+        assert!(!masks.join("oak.png").exists());
+        assert_eq!(
+            std::fs::read_to_string(masks.join("birch.png")).unwrap(),
+            "2"
+        );
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        assert_eq!(names, ["masks"]);
+    }
+
+    #[test]
+    fn errors_compare_by_path_and_kind() {
+        let a = FileError::new("a", io::Error::from(io::ErrorKind::NotFound));
+        let b = FileError::new("a", io::Error::new(io::ErrorKind::NotFound, "gone"));
+        assert_eq!(a, b.clone());
+        assert_ne!(
+            a,
+            FileError::new("b", io::Error::from(io::ErrorKind::NotFound))
+        );
+        assert!(a.to_string().starts_with("a: "));
+    }
+}

@@ -1,0 +1,213 @@
+//! `sylva forest`: the main job. A terrain, a few species, a forest of thousands of trees,
+//! written as one binary glTF and the heightmap as a 16-bit PNG.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use serde::Serialize;
+use sylva::export::{GltfOptions, write_glb};
+use sylva::forest::{ForestBuilder, ForestError, PlacementBlock, Rect};
+use sylva::instancing::Assembler;
+use sylva::terrain::Heightmap;
+
+use crate::Failure;
+use crate::progress::{ms, peak_rss_mb, phase, print_stats};
+use crate::world::WorldArgs;
+
+/// `sylva forest`'s flags.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "With no flags: an 800 m square of smoothed diamond-square terrain with \
+    the five bundled species (oak, birch, spruce, pine, hazel), written to forest.glb and \
+    forest_height.png."
+)]
+pub(crate) struct ForestArgs {
+    #[command(flatten)]
+    world: WorldArgs,
+    /// The glTF file to write.
+    #[arg(long, value_name = "FILE", default_value = "forest.glb")]
+    out: PathBuf,
+    /// The heightmap to write, a 16-bit PNG.
+    #[arg(long, value_name = "FILE", default_value = "forest_height.png")]
+    heightmap: PathBuf,
+    /// Write every placement as a node of its own sharing its mesh, for importers without
+    /// EXT_mesh_gpu_instancing (at most 250,000 placements).
+    #[arg(long)]
+    no_instancing: bool,
+    /// Print one JSON line of figures instead of the summary (and measure placement alone).
+    #[arg(long)]
+    stats: bool,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// The figures `--stats` prints.
+#[derive(Debug, Serialize)]
+struct ForestFigures {
+    trees: usize,
+    canopy_trees: usize,
+    seedlings: usize,
+    species: usize,
+    area_m: f32,
+    patch_m: f32,
+    heroes: u32,
+    cache_bytes: usize,
+    placements: usize,
+    placements_per_tree: f64,
+    /// Share of the first 10,000 trees whose composition no other of them has.
+    distinct_compositions: f64,
+    empty_placements: usize,
+    instance_nodes: usize,
+    hero_ms: f64,
+    placement_ms: f64,
+    placements_per_s: f64,
+    export_ms: f64,
+    export_passes: usize,
+    glb_bytes: usize,
+    peak_rss_mb: f64,
+    threads: usize,
+}
+
+pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
+    let hidden = args.quiet || args.stats;
+    let world = args.world.world(hidden)?;
+    let (builder, map, region) = (&world.builder, &world.map, world.region);
+    let (terrain_mesh, _) = phase(hidden, "meshing terrain", || map.mesh(1));
+    let terrain_mesh = terrain_mesh?;
+    // With --stats, one pass that only places every tree and computes every instance
+    // transform, keeping nothing: the figure to compare with Kenwood's 4.5 s per million.
+    let measured = if args.stats {
+        let (measured, time) = phase(true, "placing trees", || measure(builder, map, region));
+        Some((measured?, time))
+    } else {
+        None
+    };
+    let (written, export_time) = phase(hidden, "placing trees and writing glTF", || {
+        let mut options = GltfOptions::default();
+        options.one_node_per_placement = args.no_instancing;
+        let stats = write_glb(
+            builder,
+            map,
+            region,
+            Some(&terrain_mesh),
+            &options,
+            &args.out,
+        )?;
+        write_heightmap(map, &args.heightmap)?;
+        Ok::<_, Failure>(stats)
+    });
+    let written = written?;
+    let built = builder.stats();
+    let side = world.side;
+    if let Some((m, placement_time)) = measured {
+        let trees = written.trees.max(1) as f64;
+        return print_stats(&ForestFigures {
+            trees: written.trees,
+            canopy_trees: written.trees - written.seedlings,
+            seedlings: written.seedlings,
+            species: builder.config().species.len(),
+            area_m: side,
+            patch_m: builder.density().patch,
+            heroes: built.heroes,
+            cache_bytes: built.cache_bytes,
+            placements: written.placements,
+            placements_per_tree: m.placements as f64 / trees,
+            distinct_compositions: m.distinct,
+            empty_placements: written.empty_placements,
+            instance_nodes: written.instance_nodes,
+            hero_ms: ms(world.hero_time),
+            placement_ms: ms(placement_time),
+            placements_per_s: m.placements as f64 / placement_time.as_secs_f64().max(1e-9),
+            export_ms: ms(export_time),
+            export_passes: written.passes,
+            glb_bytes: written.bytes,
+            peak_rss_mb: peak_rss_mb(),
+            threads: rayon::current_num_threads(),
+        });
+    }
+    if args.quiet {
+        return Ok(());
+    }
+    println!(
+        "sylva forest: {side:.0} m x {side:.0} m, seed {}",
+        world.seed
+    );
+    for (s, c) in builder.config().species.iter().zip(builder.canopies()) {
+        println!(
+            "  species {:<8} canopy {:.1} m (bound {:.1} m, measured {:.1} m)",
+            s.name,
+            c.diameter(),
+            c.bound,
+            c.measured
+        );
+    }
+    println!(
+        "  {} trees ({} canopy, {} seedlings); {} heroes, {:.1} MB of instance cache in {:.0} ms",
+        written.trees,
+        written.trees - written.seedlings,
+        written.seedlings,
+        built.heroes,
+        built.cache_bytes as f64 / (1 << 20) as f64,
+        ms(world.hero_time)
+    );
+    println!(
+        "  {} instance placements in {} instanced meshes ({} more of branches with no geometry yet)",
+        written.placements, written.instance_nodes, written.empty_placements
+    );
+    println!(
+        "wrote {} ({:.1} MB) and {} in {:.0} ms",
+        args.out.display(),
+        written.bytes as f64 / (1 << 20) as f64,
+        args.heightmap.display(),
+        ms(export_time)
+    );
+    Ok(())
+}
+
+/// Writes `map` as a 16-bit PNG at `path`, whole or not at all.
+pub(crate) fn write_heightmap(map: &Heightmap, path: &Path) -> Result<(), Failure> {
+    sylva::base::file::write(path, |w| {
+        map.write_png16(w)
+            .map(|_| ())
+            .map_err(std::io::Error::other)
+    })?;
+    Ok(())
+}
+
+/// What the measuring pass saw.
+struct Measured {
+    placements: usize,
+    /// Share of the first 10,000 trees whose composition no other of them has.
+    distinct: f64,
+}
+
+/// Streams the forest once, keeping nothing but counts and the compositions of the first
+/// 10,000 trees.
+fn measure(
+    builder: &ForestBuilder,
+    map: &Heightmap,
+    region: Rect,
+) -> Result<Measured, ForestError> {
+    let mut compositions: HashMap<(u16, u64), u32> = HashMap::new();
+    let mut sampled = 0usize;
+    let mut assembler = Assembler::new();
+    let stats = builder.stream(map, region, &mut |block: &PlacementBlock| {
+        for tree in &block.trees {
+            if sampled == 10_000 {
+                break;
+            }
+            let cache = &builder.variants()[tree.variant as usize].cache;
+            let c = assembler.composition(cache, tree)?;
+            *compositions.entry((tree.variant, c)).or_insert(0) += 1;
+            sampled += 1;
+        }
+        Ok(())
+    })?;
+    let unique = compositions.values().filter(|&&n| n == 1).count();
+    Ok(Measured {
+        placements: stats.placements,
+        distinct: unique as f64 / sampled.max(1) as f64,
+    })
+}

@@ -1,0 +1,84 @@
+//! `sylva`: procedural forests on the command line.
+//!
+//! ```text
+//! sylva forest                 # the default forest: forest.glb and forest_height.png
+//! sylva tiles --out world      # the same world as a 3D Tiles 1.1 tileset
+//! sylva grow                   # 25 oaks grown together around a boulder: stand.glb
+//! sylva paint                  # a scripted painting session: paint_masks/
+//! sylva derive --preset abop-honda --generations 6
+//! sylva tree --preset abop-ternary --out tree.obj
+//! sylva terrain --size 1025 --out height.png
+//! sylva corpus path/to/vlab/oofs
+//! ```
+//!
+//! Every subcommand has `--help`. Exit status: 0 on success, 1 when the job failed (bad input
+//! or a file that could not be read or written; one line on stderr says which and why), 2 for
+//! a command line that does not parse.
+
+mod corpus;
+mod derive;
+mod failure;
+mod forest;
+mod grow;
+mod paint;
+mod progress;
+mod terrain;
+mod tiles;
+mod tree;
+mod world;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+pub(crate) use failure::Failure;
+
+/// Procedural forests: L-system grammars, turtle geometry, fractal terrain, branch-level
+/// instancing, growth in the environment, painting and export.
+#[derive(Debug, Parser)]
+#[command(name = "sylva", version, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Grows a forest on a terrain and writes it as one binary glTF, with the heightmap.
+    Forest(forest::ForestArgs),
+    /// Writes a world as an OGC 3D Tiles 1.1 tileset: every tile, one tile, or the root.
+    Tiles(tiles::TilesArgs),
+    /// Grows a stand of trees together with light and collision and writes it as glTF.
+    Grow(grow::GrowArgs),
+    /// Runs a timed, scripted painting session and saves its masks.
+    Paint(paint::PaintArgs),
+    /// Derives an L-system and prints the word.
+    Derive(derive::DeriveArgs),
+    /// Derives a tree, meshes it with the turtle and writes a Wavefront OBJ.
+    Tree(tree::TreeArgs),
+    /// Generates a diamond-square heightmap and writes it as a 16-bit PNG.
+    Terrain(terrain::TerrainArgs),
+    /// Loads, derives and meshes every cpfg and L-Py model under a folder; prints a table.
+    Corpus(corpus::CorpusArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Forest(a) => forest::run(a),
+        Command::Tiles(a) => tiles::run(a),
+        Command::Grow(a) => grow::run(a),
+        Command::Paint(a) => paint::run(a),
+        Command::Derive(a) => derive::run(a),
+        Command::Tree(a) => tree::run(a),
+        Command::Terrain(a) => terrain::run(a),
+        Command::Corpus(a) => corpus::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            eprintln!("error: {failure}");
+            ExitCode::from(failure.code())
+        }
+    }
+}

@@ -1,0 +1,186 @@
+//! The world `forest` and `tiles` share: species, terrain (generated or the user's), size,
+//! density, paint masks.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use clap::Args;
+use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::terrain::glam::Vec2;
+use sylva::terrain::{HeightRange, Heightmap};
+
+use crate::Failure;
+use crate::progress::phase;
+
+/// The world's flags.
+#[derive(Debug, Args)]
+pub(crate) struct WorldArgs {
+    /// Side of the square world in metres (default 800).
+    #[arg(long, value_name = "METRES", conflicts_with_all = ["trees", "terrain"])]
+    area: Option<f32>,
+    /// About this many canopy trees: the world's side follows from the patch size.
+    #[arg(long, value_name = "N", conflicts_with = "terrain")]
+    trees: Option<usize>,
+    /// Your own heightmap: a 16-bit PNG, or a square RAW of little-endian 16-bit samples
+    /// (.raw or .r16, with --spacing and --height-range).
+    #[arg(long, value_name = "HEIGHTS")]
+    terrain: Option<PathBuf>,
+    /// Metres between the heightmap's samples (for --terrain).
+    #[arg(long, value_name = "M")]
+    spacing: Option<f32>,
+    /// Heights of the samples 0 and 65535, in metres (for --terrain).
+    #[arg(long, value_name = "LO,HI", value_parser = parse_pair::<f32>)]
+    height_range: Option<(f32, f32)>,
+    /// Canopy trees per hectare (sets the patch size).
+    #[arg(long, value_name = "TREES_PER_HA")]
+    density: Option<f32>,
+    /// A species file; repeat for several (default: the five bundled species).
+    #[arg(long, value_name = "FILE")]
+    species: Vec<PathBuf>,
+    /// Instance-cache budget in MiB, shared among the species.
+    #[arg(long, value_name = "MB", default_value_t = 32)]
+    budget_mb: usize,
+    /// World seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Grow a painted forest: the masks in this folder (as `sylva paint` and the viewer save
+    /// them) decide where each species grows.
+    #[arg(long, value_name = "MASKS_DIR")]
+    paint: Option<PathBuf>,
+}
+
+/// A world made from its flags.
+pub(crate) struct World {
+    pub(crate) builder: ForestBuilder,
+    pub(crate) map: Heightmap,
+    pub(crate) region: Rect,
+    pub(crate) side: f32,
+    pub(crate) seed: u64,
+    pub(crate) hero_time: Duration,
+}
+
+/// Parses `A,B`.
+pub(crate) fn parse_pair<T: std::str::FromStr>(v: &str) -> Result<(T, T), String> {
+    v.split_once(',')
+        .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
+        .ok_or_else(|| format!("'{v}': expected two numbers, A,B"))
+}
+
+impl WorldArgs {
+    /// Builds the caches, the terrain and, with --paint, the painted builder.
+    pub(crate) fn world(&self, quiet: bool) -> Result<World, Failure> {
+        let species = if self.species.is_empty() {
+            sylva::presets::species()?
+        } else {
+            self.species
+                .iter()
+                .map(Species::from_file)
+                .collect::<Result<Vec<_>, _>>()?
+        };
+        let mut config = ForestConfig::new(species);
+        config.seed = self.seed;
+        config.budget = self
+            .budget_mb
+            .checked_mul(1 << 20)
+            .filter(|&b| b > 0)
+            .ok_or_else(|| Failure::usage("--budget-mb must be positive"))?;
+        let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
+            ForestBuilder::new(config)
+        });
+        let mut builder = builder?;
+        if let Some(d) = self.density {
+            if !(d > 0.0 && d <= 10_000.0) {
+                return Err(Failure::usage(format!(
+                    "--density {d}: expected 0 < trees per hectare <= 10000"
+                )));
+            }
+            builder.density_mut().patch = (10_000.0 / d).sqrt();
+        }
+        let patch = builder.density().patch;
+        let side = match (self.area, self.trees) {
+            (Some(a), _) if a > 0.0 && a <= 20_000.0 => a,
+            (Some(a), _) => {
+                return Err(Failure::usage(format!(
+                    "--area {a}: expected a side length from 0 to 20000 metres"
+                )));
+            }
+            (None, Some(n)) if n == 0 || n > 10_000_000 => {
+                return Err(Failure::usage(format!(
+                    "--trees {n}: expected 1 to 10000000"
+                )));
+            }
+            (None, Some(n)) => (n as f32).sqrt() * patch,
+            (None, None) => 800.0,
+        };
+        let (map, _) = phase(quiet, "generating terrain", || match &self.terrain {
+            Some(file) => read_terrain(file, self.spacing, self.height_range),
+            None => Ok(sylva::presets::terrain(self.seed, side)?),
+        });
+        let map = map?;
+        let side = match &self.terrain {
+            Some(_) => map.spacing() * (map.size() - 1) as f32,
+            None => side,
+        };
+        if let Some(dir) = &self.paint {
+            builder = sylva::paint::with_masks(&builder, dir, &map)?;
+        }
+        Ok(World {
+            builder,
+            map,
+            region: Rect::new(Vec2::ZERO, Vec2::splat(side)),
+            side,
+            seed: self.seed,
+            hero_time,
+        })
+    }
+}
+
+/// Reads a user's heightmap: a 16-bit PNG, or a square RAW of little-endian 16-bit samples.
+fn read_terrain(
+    file: &Path,
+    spacing: Option<f32>,
+    range: Option<(f32, f32)>,
+) -> Result<Heightmap, Failure> {
+    // A 8193 x 8193 map of 16-bit samples is 134 MB; refuse files well beyond any map.
+    const MAX_BYTES: u64 = 512 << 20;
+    let name = file.display();
+    let size = std::fs::metadata(file)
+        .map_err(|e| Failure::job(format!("{name}: {e}")))?
+        .len();
+    if size > MAX_BYTES {
+        return Err(Failure::job(format!(
+            "{name}: {size} bytes is more than the limit of {MAX_BYTES}"
+        )));
+    }
+    let fallback = match (range, spacing) {
+        (Some((min, max)), Some(s)) => Some((HeightRange { min, max }, s)),
+        _ => None,
+    };
+    let raw = matches!(
+        file.extension().and_then(|e| e.to_str()),
+        Some("raw" | "r16")
+    );
+    let map = if raw {
+        let (range, spacing) = fallback.ok_or_else(|| {
+            Failure::usage(format!(
+                "{name}: a RAW heightmap needs --height-range LO,HI and --spacing M"
+            ))
+        })?;
+        let bytes = std::fs::read(file).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+        Heightmap::from_raw16(&bytes, range, spacing)
+    } else {
+        let f = std::fs::File::open(file).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+        Heightmap::read_png16(std::io::BufReader::new(f), fallback)
+    };
+    let map = map.map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    let side = map.spacing() * (map.size() - 1) as f32;
+    if !(side > 10.0 && side <= 20_000.0) {
+        return Err(Failure::job(format!(
+            "{name}: a {} x {} map at {} m spacing is {side} m across; expected 10 to 20000 m",
+            map.size(),
+            map.size(),
+            map.spacing()
+        )));
+    }
+    Ok(map)
+}

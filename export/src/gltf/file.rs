@@ -1,0 +1,181 @@
+//! Writing a laid-out GLB: the header and JSON chunk, the geometry and textures, then the
+//! placements chunk by chunk, each chunk gathered from one streaming pass.
+
+use std::io::{Seek, SeekFrom, Write};
+use std::path::Path;
+
+use sylva_terrain::{HeightField, TerrainMesh};
+
+use super::document::{Document, padding};
+use super::tangent::tangents;
+use sylva_base::file::{AtomicFile, FileError};
+
+use super::{Node, PLACEMENT_BYTES};
+use crate::error::{ExportError, Invalid};
+use sylva_forest::PlacementBlock;
+use sylva_forest::Rect;
+use sylva_forest::{ForestBuilder, Variant};
+use sylva_forest::{tree_tint, tree_wind};
+
+/// Writes `path` whole or not at all: the GLB header, the JSON chunk and the BIN chunk
+/// header, then the binary content by `body`; returns what `body` returns.
+pub(super) fn write_file(
+    path: &Path,
+    document: &Document,
+    body: impl FnOnce(&mut AtomicFile) -> Result<usize, ExportError>,
+) -> Result<usize, ExportError> {
+    let total = u32::try_from(document.total).map_err(|_| ExportError::TooLarge {
+        bytes: document.total as u64,
+    })?;
+    let io = FileError::at(path);
+    let mut w = AtomicFile::create(path)?;
+    w.write_all(b"glTF").map_err(&io)?;
+    w.write_all(&2u32.to_le_bytes()).map_err(&io)?;
+    w.write_all(&total.to_le_bytes()).map_err(&io)?;
+    w.write_all(&(document.json.len() as u32).to_le_bytes())
+        .map_err(&io)?;
+    w.write_all(b"JSON").map_err(&io)?;
+    w.write_all(document.json.as_bytes()).map_err(&io)?;
+    if document.bin_len > 0 {
+        w.write_all(&(document.bin_len as u32).to_le_bytes())
+            .map_err(&io)?;
+        w.write_all(b"BIN\0").map_err(&io)?;
+    }
+    let passes = body(&mut w)?;
+    let end = w.seek(SeekFrom::End(0)).map_err(&io)?;
+    if end != document.total as u64 {
+        return Err(Invalid::Layout {
+            written: end,
+            layout: document.total as u64,
+        }
+        .into());
+    }
+    w.commit()?;
+    Ok(passes)
+}
+
+/// Terrain and cache buffers, in layout order, each padded to 4 bytes.
+pub(super) fn write_geometry(
+    w: &mut AtomicFile,
+    variants: &[Variant],
+    terrain: Option<&TerrainMesh>,
+    document: &Document,
+) -> Result<(), ExportError> {
+    let destination = w.destination().to_path_buf();
+    let io = FileError::at(&destination);
+    let mut written = 0usize;
+    let mut put = |w: &mut AtomicFile, bytes: &[u8]| -> Result<(), ExportError> {
+        w.write_all(bytes).map_err(&io)?;
+        written += bytes.len();
+        Ok(())
+    };
+    if let Some(t) = terrain {
+        put(w, bytemuck::cast_slice(&t.vertices))?;
+        put(w, bytemuck::cast_slice(&t.indices))?;
+        put(w, bytemuck::cast_slice(&document.terrain_colours))?;
+    }
+    for &v in &document.used_variants {
+        let cache = &variants[v].cache;
+        put(w, bytemuck::cast_slice(&cache.vertices))?;
+        // Bark triangles give the tangents (the leaves' normals need none).
+        put(
+            w,
+            bytemuck::cast_slice(&tangents(&cache.vertices, &cache.bark)),
+        )?;
+        put(w, bytemuck::cast_slice(&cache.bark))?;
+        put(w, bytemuck::cast_slice(&cache.leaves))?;
+    }
+    // Every buffer above is a whole number of 4-byte words; images are padded to one.
+    for image in &document.images {
+        put(w, image)?;
+        put(w, &[0; 3][..padding(image.len())])?;
+    }
+    debug_assert_eq!(written, document.placement_base);
+    Ok(())
+}
+
+/// Streams the forest once per chunk of nodes, gathering those nodes' placements in memory
+/// and writing them to the T, R and S sections, which start at file offset `base`. Returns
+/// the number of passes.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one call site; the pieces are all different"
+)]
+pub(super) fn write_placements(
+    w: &mut AtomicFile,
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+    nodes: &[Node],
+    node_of: &[Vec<u32>],
+    base: usize,
+    total: usize,
+    chunk_bytes: usize,
+) -> Result<usize, ExportError> {
+    let destination = w.destination().to_path_buf();
+    let io = FileError::at(&destination);
+    let (t_base, r_base, s_base, c_base, w_base) = (
+        base,
+        base + 12 * total,
+        base + 28 * total,
+        base + 40 * total,
+        base + 52 * total,
+    );
+    let mut passes = 0;
+    let mut start = 0;
+    while start < nodes.len() {
+        // The nodes of this pass: as many as fit in a chunk (at least one).
+        let mut end = start + 1;
+        while end < nodes.len()
+            && (nodes[end].first + nodes[end].count - nodes[start].first) * PLACEMENT_BYTES
+                <= chunk_bytes
+        {
+            end += 1;
+        }
+        let first = nodes[start].first;
+        let count = nodes[end - 1].first + nodes[end - 1].count - first;
+        let mut t = vec![0f32; 3 * count];
+        let mut r = vec![0f32; 4 * count];
+        let mut s = vec![0f32; 3 * count];
+        let mut c = vec![0f32; 3 * count];
+        let mut wind = vec![0f32; 4 * count];
+        let mut cursor: Vec<usize> = nodes[start..end].iter().map(|n| n.first - first).collect();
+        let range = start as u32..end as u32;
+        // Only the variants of this chunk's nodes need their trees expanded.
+        let (first_variant, last_variant) = (nodes[start].variant, nodes[end - 1].variant);
+        let wanted = |v: u16| (first_variant..=last_variant).contains(&usize::from(v));
+        builder.stream_variants(terrain, region, &wanted, &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let node = node_of[p.variant as usize][p.instance as usize];
+                if !range.contains(&node) {
+                    continue;
+                }
+                let k = &mut cursor[(node - range.start) as usize];
+                let x = &p.transform;
+                let q = x.rotation.normalize();
+                t[3 * *k..3 * *k + 3].copy_from_slice(&x.translation.to_array());
+                r[4 * *k..4 * *k + 4].copy_from_slice(&q.to_array());
+                s[3 * *k..3 * *k + 3].copy_from_slice(&[x.scale; 3]);
+                let tree = block.trees.get(p.tree as usize);
+                c[3 * *k..3 * *k + 3].copy_from_slice(&tree.map_or([1.0; 3], tree_tint));
+                wind[4 * *k..4 * *k + 4].copy_from_slice(&tree.map_or([0.0; 4], tree_wind));
+                *k += 1;
+            }
+            Ok(())
+        })?;
+        for (section, data, width) in [
+            (t_base, &t, 12),
+            (r_base, &r, 16),
+            (s_base, &s, 12),
+            (c_base, &c, 12),
+            (w_base, &wind, 16),
+        ] {
+            w.seek(SeekFrom::Start((section + first * width) as u64))
+                .map_err(&io)?;
+            w.write_all(bytemuck::cast_slice(data)).map_err(&io)?;
+        }
+        passes += 1;
+        start = end;
+    }
+    Ok(passes)
+}

@@ -1,0 +1,332 @@
+//! glTF 2.0 binary (.glb) export, streamed: the terrain, one mesh per used cached instance,
+//! and each instance's placements through EXT_mesh_gpu_instancing.
+//!
+//! A forest of a million trees has millions of placements, more than should sit in memory at
+//! once. The writer streams the forest twice or more: a first pass counts the placements of
+//! every instance, which fixes the whole layout (JSON and binary offsets); then each pass
+//! gathers the placements of a range of instances (at most [`CHUNK_BYTES`] of them) and
+//! writes them where the layout says. Memory holds the caches, the JSON text and one chunk.
+//! The file is written beside its destination under a temporary name and renamed when
+//! complete ([`sylva_base::file::AtomicFile`]), so an error (a bad path, a full disk) never
+//! leaves a half-written file.
+
+mod coarse;
+mod document;
+mod file;
+mod json_glb;
+mod shared;
+mod stand;
+mod tangent;
+
+pub(crate) use coarse::write_coarse_glb;
+pub use shared::write_shared_geometry;
+pub use stand::write_stand_glb;
+
+use std::path::Path;
+
+use sylva_terrain::{HeightField, TerrainMesh};
+use sylva_turtle::Vertex;
+
+use sylva_forest::{ForestBuilder, ForestError, PlacementBlock, Rect, StreamStats};
+
+use crate::error::{ExportError, Invalid};
+use document::Document;
+use file::{write_file, write_geometry, write_placements};
+
+/// Export settings.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct GltfOptions {
+    /// Terrain tint, linear RGB, multiplied with the ground colours by slope and altitude
+    /// ([`sylva_terrain::ground`]) that the terrain's vertices carry.
+    pub terrain_colour: [f32; 3],
+    /// Roughness of every material (all are dielectric: metallic 0).
+    pub roughness: f32,
+    /// Most bytes of placements gathered in memory per writing pass (at least one instance's
+    /// worth is always gathered). Smaller means less memory and more passes; the file is the
+    /// same. Default [`CHUNK_BYTES`].
+    pub chunk_bytes: usize,
+    /// The URI (relative to the GLB) of a file written by [`write_shared_geometry`] for the
+    /// same builder: when set, the GLB refers to that file's cache buffers and textures as an
+    /// external buffer instead of embedding them, as the tiles of one world do.
+    pub shared_geometry: Option<String>,
+    /// Write each placement as a node of its own that shares its instance's mesh, instead
+    /// of EXT_mesh_gpu_instancing: for importers that ignore the extension (Blender before
+    /// 3.6, some Unity and Godot importers). Forests over [`MAX_NODE_PLACEMENTS`] placements
+    /// are refused in this mode.
+    pub one_node_per_placement: bool,
+}
+
+/// Most placements [`GltfOptions::one_node_per_placement`] writes: a node each is text in the
+/// JSON chunk, gathered in memory, and importers slow down long before this.
+pub const MAX_NODE_PLACEMENTS: usize = 250_000;
+
+impl Default for GltfOptions {
+    fn default() -> Self {
+        GltfOptions {
+            terrain_colour: [1.0, 1.0, 1.0],
+            roughness: 0.9,
+            chunk_bytes: CHUNK_BYTES,
+            shared_geometry: None,
+            one_node_per_placement: false,
+        }
+    }
+}
+
+/// What was written.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct GlbStats {
+    /// File size in bytes.
+    pub bytes: usize,
+    /// Trees in the forest.
+    pub trees: usize,
+    /// Of which seedlings.
+    pub seedlings: usize,
+    /// Instance meshes written (one node each).
+    pub instance_nodes: usize,
+    /// Instance placements written.
+    pub placements: usize,
+    /// Placements of instances with no geometry (a branch introduced at the last generation
+    /// of a species without leaf symbols), left out of the file.
+    pub empty_placements: usize,
+    /// Times the forest was streamed: one count, then one per chunk of placements.
+    pub passes: usize,
+    /// Branch triangles drawn by the placements (the terrain not included).
+    pub triangles: u64,
+}
+
+/// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, 1.6 million placements of 40 bytes.
+pub const CHUNK_BYTES: usize = 64 << 20;
+
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+const FLOAT: u32 = 5126;
+const UNSIGNED_INT: u32 = 5125;
+/// Bytes of one placement in the file: translation, rotation, scale (as three floats), the
+/// tree's tint and its wind data.
+const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12 + 16;
+
+/// One instance that is drawn: a node with its own instancing accessors.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    pub(crate) variant: usize,
+    pub(crate) instance: usize,
+    /// First placement of this node in the T/R/S sections, counted in placements.
+    pub(crate) first: usize,
+    pub(crate) count: usize,
+}
+
+/// Writes the forest of `region` on `terrain`, and optionally a terrain mesh, as a binary glTF
+/// at `path`. The file declares EXT_mesh_gpu_instancing; every node of an instance mesh
+/// carries TRANSLATION, ROTATION and SCALE accessors of equal count, float components and unit
+/// quaternions. The output is a pure function of its inputs, at any thread count.
+///
+/// ```
+/// use sylva_export::{GltfOptions, write_glb};
+/// use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
+/// use sylva_terrain::{FlatPlane, glam::Vec2};
+///
+/// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
+/// leafy.turtle.step = 0.5;
+/// let mut config = ForestConfig::new(vec![leafy]);
+/// config.budget = 4 << 20;
+/// let builder = ForestBuilder::new(config)?;
+/// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
+/// let path = std::env::temp_dir().join("sylva-doctest-forest.glb");
+/// let region = Rect::new(Vec2::ZERO, Vec2::splat(200.0));
+/// let stats = write_glb(&builder, &ground, region, None, &GltfOptions::default(), &path)?;
+/// assert_eq!(std::fs::metadata(&path).unwrap().len() as usize, stats.bytes);
+/// assert!(stats.placements >= stats.trees);
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), sylva_export::ExportError>(())
+/// ```
+pub fn write_glb(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+    terrain_mesh: Option<&TerrainMesh>,
+    options: &GltfOptions,
+    path: &Path,
+) -> Result<GlbStats, ExportError> {
+    let variants = builder.variants();
+    let terrain_mesh = terrain_mesh.filter(|t| !t.indices.is_empty());
+    if let Some(t) = terrain_mesh {
+        check_mesh(
+            t.vertices.iter().map(|v| (&v.position, &v.normal)),
+            &t.indices,
+        )?;
+    }
+    for v in variants {
+        check_mesh(
+            v.cache
+                .vertices
+                .iter()
+                .map(|v: &Vertex| (&v.position, &v.normal)),
+            v.cache.bark.iter().chain(&v.cache.leaves),
+        )?;
+        let (bark, leaves) = (v.cache.bark.len(), v.cache.leaves.len());
+        if v.cache
+            .instances
+            .iter()
+            .any(|i| i.bark.end() as usize > bark || i.leaves.end() as usize > leaves)
+        {
+            return Err(Invalid::InstanceSpan.into());
+        }
+    }
+
+    // Pass 1: count the placements of every instance, checking each transform.
+    let mut counts: Vec<Vec<u32>> = variants
+        .iter()
+        .map(|v| vec![0; v.cache.instances.len()])
+        .collect();
+    let counted = stream_checked(builder, terrain, region, |block: &PlacementBlock| {
+        for p in &block.placements {
+            let t = &p.transform;
+            if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
+                return Err(Invalid::Transform(format!("{t:?}")).into());
+            }
+            let slot = counts
+                .get_mut(p.variant as usize)
+                .and_then(|c| c.get_mut(p.instance as usize))
+                .ok_or(Invalid::UnknownInstance)?;
+            *slot = slot.saturating_add(1);
+        }
+        Ok(())
+    })?;
+
+    // The layout: which instances become nodes, and where every byte goes.
+    let mut nodes = Vec::new();
+    let mut node_of: Vec<Vec<u32>> = Vec::with_capacity(variants.len());
+    let mut placements = 0usize;
+    let mut empty_placements = 0usize;
+    let mut triangles = 0u64;
+    for (v, variant) in variants.iter().enumerate() {
+        let mut map = vec![u32::MAX; variant.cache.instances.len()];
+        for (i, inst) in variant.cache.instances.iter().enumerate() {
+            let count = counts[v][i] as usize;
+            if count == 0 {
+                continue;
+            }
+            if inst.bark.is_empty() && inst.leaves.is_empty() {
+                empty_placements += count;
+                continue;
+            }
+            map[i] = nodes.len() as u32;
+            nodes.push(Node {
+                variant: v,
+                instance: i,
+                first: placements,
+                count,
+            });
+            placements += count;
+            triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);
+        }
+        node_of.push(map);
+    }
+    drop(counts);
+    // The fallback: every placement's transform, gathered per node for the JSON.
+    let each = if options.one_node_per_placement {
+        if placements > MAX_NODE_PLACEMENTS {
+            return Err(ExportError::TooManyNodes {
+                placements,
+                limit: MAX_NODE_PLACEMENTS,
+            });
+        }
+        let mut each: Vec<Vec<sylva_instancing::Similarity>> = vec![Vec::new(); nodes.len()];
+        builder.stream(terrain, region, &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let node = node_of[p.variant as usize][p.instance as usize];
+                if let Some(list) = each.get_mut(node as usize) {
+                    list.push(p.transform);
+                }
+            }
+            Ok(())
+        })?;
+        Some(each)
+    } else {
+        None
+    };
+    let document = Document::lay_out(
+        builder,
+        terrain_mesh,
+        options,
+        &nodes,
+        placements,
+        each.as_deref(),
+    )?;
+
+    let written = write_file(path, &document, |file| {
+        write_geometry(file, variants, terrain_mesh, &document)?;
+        if each.is_some() {
+            return Ok(1);
+        }
+        write_placements(
+            file,
+            builder,
+            terrain,
+            region,
+            &nodes,
+            &node_of,
+            document.bin_start() + document.placement_base,
+            placements,
+            options.chunk_bytes,
+        )
+    });
+    let passes = written?;
+    let StreamStats {
+        trees, seedlings, ..
+    } = counted;
+    Ok(GlbStats {
+        bytes: document.total,
+        trees,
+        seedlings,
+        instance_nodes: nodes.len(),
+        placements,
+        empty_placements,
+        passes: 1 + passes,
+        triangles,
+    })
+}
+
+/// Streams `builder`'s forest of `region` into `sink`, whose own errors come back as they
+/// are (the forest's sink interface carries only forest errors).
+pub(crate) fn stream_checked(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+    mut sink: impl FnMut(&PlacementBlock) -> Result<(), ExportError>,
+) -> Result<StreamStats, ExportError> {
+    let mut failure = None;
+    let streamed = builder.stream(terrain, region, &mut |block: &PlacementBlock| {
+        sink(block).map_err(|e| {
+            failure = Some(e);
+            ForestError::Stopped
+        })
+    });
+    match (streamed, failure) {
+        (_, Some(e)) => Err(e),
+        (streamed, None) => Ok(streamed?),
+    }
+}
+
+/// Every vertex finite with a unit normal, every index in range.
+fn check_mesh<'a>(
+    vertices: impl ExactSizeIterator<Item = (&'a [f32; 3], &'a [f32; 3])>,
+    indices: impl IntoIterator<Item = &'a u32>,
+) -> Result<(), ExportError> {
+    let n = vertices.len() as u32;
+    for (p, normal) in vertices {
+        if !p.iter().all(|c| c.is_finite()) {
+            return Err(Invalid::VertexPosition.into());
+        }
+        let len = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+        if !(len - 1.0).abs().lt(&1e-3) {
+            return Err(Invalid::Normal(*normal).into());
+        }
+    }
+    if indices.into_iter().any(|&i| i >= n) {
+        return Err(Invalid::Index.into());
+    }
+    Ok(())
+}

@@ -1,0 +1,150 @@
+//! Geometry shared by many GLB files: every variant's cache buffers and the textures, in one
+//! binary file that tiles reference as an external glTF buffer, so that a world of tiles
+//! holds its instance geometry once instead of once per tile.
+
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::Path;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use super::document::padding;
+use super::tangent::tangents;
+use crate::error::ExportError;
+use crate::texture::Texture;
+use sylva_base::file::{AtomicFile, FileError};
+use sylva_forest::ForestBuilder;
+use sylva_forest::{BarkPattern, LeafShape};
+
+/// Where one variant's buffers sit in the shared file (byte offsets).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct VariantSpans {
+    pub(super) vertices: usize,
+    pub(super) tangents: usize,
+    pub(super) bark: usize,
+    pub(super) leaves: usize,
+}
+
+/// The shared file's layout: a pure function of the builder (its species and caches).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct SharedLayout {
+    pub(super) variants: Vec<VariantSpans>,
+    /// Leaf shapes and bark patterns of all species, in order of first use.
+    pub(super) shapes: Vec<LeafShape>,
+    pub(super) patterns: Vec<BarkPattern>,
+    /// Images (leaf shapes, then bark colours, then bark normal maps): offset and length.
+    pub(super) images: Vec<(usize, usize)>,
+    pub(super) len: usize,
+}
+
+impl SharedLayout {
+    pub(super) fn of(builder: &ForestBuilder) -> SharedLayout {
+        let (shapes, patterns) = looks(builder);
+        let mut at = 0usize;
+        let mut take = |len: usize| {
+            let start = at;
+            at += len + padding(len);
+            start
+        };
+        let variants = builder
+            .variants()
+            .iter()
+            .map(|v| {
+                let c = &v.cache;
+                VariantSpans {
+                    vertices: take(size_of_val(c.vertices.as_slice())),
+                    tangents: take(16 * c.vertices.len()),
+                    bark: take(4 * c.bark.len()),
+                    leaves: take(4 * c.leaves.len()),
+                }
+            })
+            .collect();
+        let images = images(&shapes, &patterns)
+            .iter()
+            .map(|png| (take(png.len()), png.len()))
+            .collect();
+        SharedLayout {
+            variants,
+            shapes,
+            patterns,
+            images,
+            len: at,
+        }
+    }
+}
+
+/// The leaf shapes and bark patterns of the builder's species, in order of first use.
+pub(super) fn looks(builder: &ForestBuilder) -> (Vec<LeafShape>, Vec<BarkPattern>) {
+    let (mut shapes, mut patterns) = (Vec::new(), Vec::new());
+    for s in &builder.config().species {
+        if !shapes.contains(&s.leaf_shape) {
+            shapes.push(s.leaf_shape);
+        }
+        if !patterns.contains(&s.bark_pattern) {
+            patterns.push(s.bark_pattern);
+        }
+    }
+    (shapes, patterns)
+}
+
+/// The PNG images of `shapes` and `patterns`: leaves, bark colours, bark normal maps.
+/// Encoded once per set and kept: every tile of a world lays out the same images, and
+/// encoding them again for each tile cost more than placing a small tile's trees.
+pub(super) fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Arc<Vec<Vec<u8>>> {
+    type Key = (Vec<LeafShape>, Vec<BarkPattern>);
+    type Encoded = Mutex<HashMap<Key, Arc<Vec<Vec<u8>>>>>;
+    static ENCODED: OnceLock<Encoded> = OnceLock::new();
+    let key = (shapes.to_vec(), patterns.to_vec());
+    let cache = ENCODED.get_or_init(Default::default);
+    if let Some(found) = cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return found;
+    }
+    let mut out: Vec<Vec<u8>> = shapes.iter().map(|&s| Texture::leaf(s).png()).collect();
+    out.extend(patterns.iter().map(|&p| Texture::bark(p).png()));
+    out.extend(patterns.iter().map(|&p| Texture::bark_normal(p).png()));
+    let out = Arc::new(out);
+    if let Ok(mut c) = cache.lock() {
+        c.insert(key, out.clone());
+    }
+    out
+}
+
+/// Writes the geometry every tile of `builder`'s world shares (see
+/// [`GltfOptions::shared_geometry`](super::GltfOptions::shared_geometry)) to `path`, under a
+/// temporary name renamed when complete. Returns its size in bytes.
+///
+/// ```
+/// use sylva_export::write_shared_geometry;
+/// use sylva_forest::{ForestBuilder, ForestConfig, Species};
+/// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
+/// config.budget = 1 << 20;
+/// let builder = ForestBuilder::new(config)?;
+/// let path = std::env::temp_dir().join("sylva-doctest-shared.bin");
+/// let bytes = write_shared_geometry(&builder, &path)?;
+/// assert_eq!(std::fs::metadata(&path).unwrap().len() as usize, bytes);
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), sylva_export::ExportError>(())
+/// ```
+pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usize, ExportError> {
+    let layout = SharedLayout::of(builder);
+    let io = FileError::at(path);
+    let mut w = AtomicFile::create(path)?;
+    {
+        let mut put = |bytes: &[u8]| -> Result<(), FileError> {
+            w.write_all(bytes).map_err(&io)?;
+            w.write_all(&[0; 3][..padding(bytes.len())]).map_err(&io)
+        };
+        for v in builder.variants() {
+            let c = &v.cache;
+            put(bytemuck::cast_slice(&c.vertices))?;
+            // Bark triangles give the tangents (the leaves' normals need none).
+            put(bytemuck::cast_slice(&tangents(&c.vertices, &c.bark)))?;
+            put(bytemuck::cast_slice(&c.bark))?;
+            put(bytemuck::cast_slice(&c.leaves))?;
+        }
+        for png in images(&layout.shapes, &layout.patterns).iter() {
+            put(png)?;
+        }
+    }
+    w.commit()?;
+    Ok(layout.len)
+}

@@ -1,0 +1,300 @@
+//! Procedural leaf textures: alpha-masked cards drawn in Rust, deterministic from their
+//! parameters, so a forest's look needs no image files.
+//!
+//! A leaf card's texture runs from the petiole at v = 0 to the tip at v = 1, across the blade
+//! in u. Colours are near white with veins and blotches darker: the species' leaf colour is
+//! multiplied in by the material, so one texture serves every species of a shape.
+
+use sylva_base::hash::{hash_cell, mix, unit_f32};
+use sylva_forest::{BarkPattern, LeafShape};
+
+/// An RGBA8 image, rows from the top (v = 0 is the first row).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Texture {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Row-major RGBA, straight alpha.
+    pub rgba: Vec<u8>,
+}
+
+/// Side of the leaf and bark textures (colour and normal maps), in pixels.
+pub const TEXTURE_SIZE: u32 = 256;
+
+impl Texture {
+    /// The leaf texture of `shape`: transparent outside the leaves (alpha 0), opaque inside.
+    ///
+    /// ```
+    /// use sylva_export::Texture;
+    /// use sylva_forest::LeafShape;
+    /// let t = Texture::leaf(LeafShape::Broadleaf);
+    /// let alpha = |x: u32, y: u32| t.rgba[((y * t.width + x) * 4 + 3) as usize];
+    /// assert_eq!(alpha(0, 0), 0); // a corner is outside the blade
+    /// assert_eq!(alpha(t.width / 2, t.height / 2), 255); // the middle is leaf
+    /// ```
+    pub fn leaf(shape: LeafShape) -> Texture {
+        let n = TEXTURE_SIZE;
+        let mut rgba = vec![0u8; (n * n * 4) as usize];
+        for y in 0..n {
+            for x in 0..n {
+                let (u, v) = ((x as f32 + 0.5) / n as f32, (y as f32 + 0.5) / n as f32);
+                let texel = match shape {
+                    LeafShape::Broadleaf => leaf_cluster(u, v, x, y),
+                    LeafShape::Needles => needles(u, v, x, y),
+                };
+                if let Some(shade) = texel {
+                    let i = ((y * n + x) * 4) as usize;
+                    let s = (shade.clamp(0.0, 1.0) * 255.0).round() as u8;
+                    // A faint yellow-green cast in the veins and blotches, white elsewhere.
+                    rgba[i..i + 4].copy_from_slice(&[s, s, (f32::from(s) * 0.92) as u8, 255]);
+                }
+            }
+        }
+        Texture {
+            width: n,
+            height: n,
+            rgba,
+        }
+    }
+
+    /// A bark texture that tiles in both directions (u around a branch, v along it), near
+    /// white so that each species' bark colour tints it: long ridges broken by furrows
+    /// ([`BarkPattern::Furrowed`]) or smooth bark with dark lenticels
+    /// ([`BarkPattern::Smooth`]), with a little grain.
+    ///
+    /// ```
+    /// use sylva_export::Texture;
+    /// use sylva_forest::BarkPattern;
+    /// let t = Texture::bark(BarkPattern::Furrowed);
+    /// let n = t.width as usize;
+    /// // Opaque everywhere, and the first column continues the last (it tiles).
+    /// assert!(t.rgba.chunks_exact(4).all(|p| p[3] == 255));
+    /// let gap = |a: usize, b: usize| (t.rgba[a * 4] as i32 - t.rgba[b * 4] as i32).abs();
+    /// assert!((0..n).all(|y| gap(y * n, y * n + n - 1) < 48));
+    /// ```
+    pub fn bark(pattern: BarkPattern) -> Texture {
+        Texture::tile(|x, y, n| {
+            let relief = bark_relief(pattern, x, y, n);
+            let shade = match pattern {
+                BarkPattern::Smooth => {
+                    let blotch = periodic_noise(x, y, n, (8, 8), 0xb1c5);
+                    // Lenticels are dark; the rest pale with faint blotches.
+                    0.35 + 0.62 * relief - 0.12 * blotch + 0.04 * grain(x, y)
+                }
+                _ => 0.6 + 0.35 * relief + 0.08 * grain(x, y),
+            };
+            let s = (shade.clamp(0.0, 1.0) * 255.0).round() as u8;
+            [s, s, s, 255]
+        })
+    }
+
+    /// The tangent-space normal map of a bark pattern's relief, tiling like
+    /// [`Texture::bark`]: red along +u (around the branch), green along -v (up the image, as
+    /// glTF's normal textures read), blue out of the surface.
+    ///
+    /// ```
+    /// use sylva_export::Texture;
+    /// use sylva_forest::BarkPattern;
+    /// let t = Texture::bark_normal(BarkPattern::Furrowed);
+    /// // Every texel is a unit normal pointing out of the surface.
+    /// for p in t.rgba.chunks_exact(4) {
+    ///     let n = [p[0], p[1], p[2]].map(|c| c as f32 / 127.5 - 1.0);
+    ///     let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    ///     assert!((length - 1.0).abs() < 0.02 && n[2] > 0.3);
+    /// }
+    /// ```
+    pub fn bark_normal(pattern: BarkPattern) -> Texture {
+        // Relief depth in texels per unit of height: furrows are deep, lenticels shallow.
+        let depth = match pattern {
+            BarkPattern::Smooth => 1.5,
+            _ => 6.0,
+        };
+        Texture::tile(|x, y, n| {
+            let h = |dx: u32, dy: u32| bark_relief(pattern, (x + dx) % n, (y + dy) % n, n);
+            // Central differences that wrap, so the map tiles like the relief.
+            let du = (h(1, 0) - h(n - 1, 0)) * 0.5 * depth;
+            let dv = (h(0, 1) - h(0, n - 1)) * 0.5 * depth;
+            let (nx, ny, nz) = (-du, dv, 1.0f32);
+            let length = (nx * nx + ny * ny + nz * nz).sqrt();
+            let [r, g, b] = [nx, ny, nz].map(|c| ((c / length * 0.5 + 0.5) * 255.0).round() as u8);
+            [r, g, b, 255]
+        })
+    }
+
+    /// A square image of side [`TEXTURE_SIZE`] from a function of (x, y, side).
+    fn tile(texel: impl Fn(u32, u32, u32) -> [u8; 4]) -> Texture {
+        let n = TEXTURE_SIZE;
+        let mut rgba = Vec::with_capacity((n * n * 4) as usize);
+        for y in 0..n {
+            for x in 0..n {
+                rgba.extend_from_slice(&texel(x, y, n));
+            }
+        }
+        Texture {
+            width: n,
+            height: n,
+            rgba,
+        }
+    }
+
+    /// The image as PNG bytes.
+    pub fn png(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut encoder = png::Encoder::new(&mut out, self.width, self.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        // Writing to a Vec cannot fail and the data has the size the header says.
+        if let Ok(mut writer) = encoder.write_header() {
+            let _ = writer.write_image_data(&self.rgba);
+        }
+        out
+    }
+}
+
+/// A little per-pixel noise, the same on every machine.
+fn grain(x: u32, y: u32) -> f32 {
+    unit_f32(hash_cell(0x1eaf, i64::from(x), i64::from(y), 0)) - 0.5
+}
+
+/// A cluster of three leafy sprays fanning out from the base of the card, as a real-time leaf
+/// card shows a whole twig: each spray is [`spray`] shrunk to `SCALE` of the card.
+fn leaf_cluster(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    const SCALE: f32 = 0.82;
+    // Middle first: where sprays overlap, the middle one is in front.
+    for degrees in [0.0f32, -34.0, 34.0] {
+        let (s, c) = degrees.to_radians().sin_cos();
+        let (dx, dy) = (u - 0.5, v - 0.03);
+        let (lu, lv) = ((dx * c - dy * s) / SCALE + 0.5, (dx * s + dy * c) / SCALE);
+        if (0.0..=1.0).contains(&lu)
+            && (0.0..=1.0).contains(&lv)
+            && let Some(shade) = spray(lu, lv, x, y)
+        {
+            return Some(shade);
+        }
+    }
+    None
+}
+
+/// A leafy spray: a twig up the card with eight ovate leaves in alternate pairs angled
+/// towards its tip and a terminal leaf, each leaf a slightly different shade.
+fn spray(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    // The twig: a thin stroke up the middle, to the terminal leaf.
+    if (u - 0.5).abs() < 0.010 && v < 0.62 {
+        return Some(0.5);
+    }
+    // Each leaf: base height on the twig, side (-1 left, 0 terminal, 1 right), length and
+    // half width, in card units.
+    const LEAVES: [(f32, f32, f32, f32); 9] = [
+        (0.60, 0.0, 0.38, 0.115),
+        (0.52, 1.0, 0.33, 0.10),
+        (0.46, -1.0, 0.34, 0.10),
+        (0.38, 1.0, 0.35, 0.105),
+        (0.31, -1.0, 0.36, 0.105),
+        (0.23, 1.0, 0.36, 0.11),
+        (0.16, -1.0, 0.35, 0.105),
+        (0.09, 1.0, 0.32, 0.10),
+        (0.04, -1.0, 0.28, 0.09),
+    ];
+    for (k, (base, side, length, half)) in LEAVES.into_iter().enumerate() {
+        // Side leaves leave the twig at 62 degrees, the terminal one follows it.
+        let angle = side * 62f32.to_radians();
+        let (s, c) = angle.sin_cos();
+        let (dx, dy) = (u - 0.5, v - base);
+        // Leaf coordinates: t along the midrib (0 base, 1 tip), w across it.
+        let t = (dx * s + dy * c) / length;
+        let w = (dx * c - dy * s) / half;
+        if !(0.0..=1.0).contains(&t) {
+            continue;
+        }
+        // An ovate outline, widest at 40 per cent, drawn to a point at the tip.
+        let profile = (t / 0.4).min(1.0).powf(0.6) * ((1.0 - t) / 0.6).min(1.0).powf(0.9);
+        if w.abs() > profile {
+            continue;
+        }
+        let midrib = (w.abs() < 0.07) as u8 as f32;
+        let vein = ((t * 7.0 - w.abs() * 2.0).fract() < 0.12) as u8 as f32;
+        let edge = (w.abs() / profile.max(1e-3)).powi(4);
+        let tone = 0.84 + 0.16 * unit_f32(hash_cell(0x1eaf, k as i64, 0, 1));
+        return Some(
+            tone * (0.95 - 0.12 * edge + 0.06 * midrib - 0.06 * vein) + 0.06 * grain(x, y),
+        );
+    }
+    None
+}
+
+/// A twig with needles in two ranks, each a thin stroke angled towards the tip.
+fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    if (u - 0.5).abs() < 0.015 && v < 0.97 {
+        return Some(0.5);
+    }
+    let reach = (u - 0.5).abs();
+    if reach > 0.42 * (1.0 - 0.6 * v) + 0.05 {
+        return None;
+    }
+    // Needles leave the twig every 0.045 of its length, slanting 35 degrees forward.
+    let along = v - reach * 0.7;
+    let phase = (along / 0.045).fract();
+    (phase < 0.62 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
+}
+
+/// Periodic value noise on a lattice of `cells` (across, along) over a tile of side `n`
+/// pixels: it wraps at the tile's edges, so the texture tiles.
+fn periodic_noise(x: u32, y: u32, n: u32, cells: (u32, u32), salt: u64) -> f32 {
+    let (fx, fy) = (
+        x as f32 * cells.0 as f32 / n as f32,
+        y as f32 * cells.1 as f32 / n as f32,
+    );
+    let (x0, y0) = (fx.floor() as u32, fy.floor() as u32);
+    let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+    let corner = |i: u32, j: u32| {
+        unit_f32(hash_cell(
+            salt,
+            i64::from(i % cells.0),
+            i64::from(j % cells.1),
+            0,
+        ))
+    };
+    let smooth = |t: f32| t * t * (3.0 - 2.0 * t);
+    let (sx, sy) = (smooth(tx), smooth(ty));
+    let top = corner(x0, y0) * (1.0 - sx) + corner(x0 + 1, y0) * sx;
+    let bottom = corner(x0, y0 + 1) * (1.0 - sx) + corner(x0 + 1, y0 + 1) * sx;
+    top * (1.0 - sy) + bottom * sy
+}
+
+/// The bark's height at a texel, from 0 (deepest) to 1, tiling over the side `n`.
+fn bark_relief(pattern: BarkPattern, x: u32, y: u32, n: u32) -> f32 {
+    match pattern {
+        BarkPattern::Smooth => lenticels(x, y, n),
+        _ => ridges(x, y, n),
+    }
+}
+
+/// Furrowed bark: ridges running along the branch (few lattice cells along, many around),
+/// furrows between them.
+fn ridges(x: u32, y: u32, n: u32) -> f32 {
+    let ridges = periodic_noise(x, y, n, (8, 2), 0xba4c) * 0.6
+        + periodic_noise(x, y, n, (16, 8), 0xba4d) * 0.3
+        + periodic_noise(x, y, n, (32, 32), 0xba4e) * 0.1;
+    let furrow = (1.0 - (ridges - 0.5).abs() * 4.0).clamp(0.0, 1.0);
+    1.0 - furrow
+}
+
+/// Smooth bark with lenticels: short horizontal dashes, slightly sunk, scattered on a level
+/// surface.
+fn lenticels(x: u32, y: u32, n: u32) -> f32 {
+    // Dashes sit on a periodic lattice of 6 x 24 cells (wide around, short along), each
+    // with a random length and offset, so the pattern tiles.
+    let (cols, rows) = (6u32, 24u32);
+    let (cw, ch) = (n / cols, n / rows);
+    let (cx, cy) = ((x / cw).min(cols - 1), (y / ch).min(rows - 1));
+    let h = hash_cell(0xb1c4, i64::from(cx), i64::from(cy), 0);
+    let length = 0.3 + 0.6 * unit_f32(h);
+    let offset = unit_f32(mix(h)) * (1.0 - length);
+    let (fx, fy) = (
+        (x - cx * cw) as f32 / cw as f32,
+        (y - cy * ch) as f32 / ch as f32,
+    );
+    let dash = fx >= offset && fx <= offset + length && (0.35..0.65).contains(&fy);
+    if dash { 0.0 } else { 1.0 }
+}

@@ -1,0 +1,401 @@
+//! Worlds as tiles: an OGC 3D Tiles 1.1 tileset of GLB tiles with two levels of detail,
+//! every tile a pure function of (seed, tile id), so that tiles are generated one at a time,
+//! by separate processes or machines, and joined by a last step that writes the root.
+//!
+//! Layout of a tile folder: `tileset.json`, `shared.bin` (every variant's branch geometry and
+//! the textures, written once and referenced by every fine tile as an external glTF buffer)
+//! and `tiles/c_X_Y.glb` (coarse: whole-tree proxies of the canopy trees over a coarse
+//! terrain) and `tiles/f_X_Y.glb` (fine: every tree's branch instances over the full
+//! terrain).
+
+mod ground;
+mod tileset;
+
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use glam::Vec2;
+use serde_json::json;
+use sylva_terrain::HeightField;
+
+use sylva_forest::{Extent, ForestBuilder, Rect, tree_proxy};
+
+use sylva_base::file::FileError;
+
+use crate::error::{ExportError, Invalid, check};
+use crate::gltf::{GltfOptions, write_coarse_glb, write_glb, write_shared_geometry};
+use ground::{height_range, tile_terrain};
+use tileset::{bounding_box, east_north_up};
+
+/// Most tiles a world may have (fine tiles).
+pub const MAX_TILES: u64 = 1 << 20;
+
+/// How a world is cut into tiles: fine tiles of side `tile`, grouped `group` x `group` under
+/// each coarse tile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TileScheme {
+    /// The world's rectangle.
+    pub world: Rect,
+    /// Side of a fine tile, metres.
+    pub tile: f32,
+    /// Fine tiles along each side of a coarse tile.
+    pub group: u32,
+}
+
+/// Which of the two levels a tile is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Level {
+    /// Whole-tree proxies of the canopy trees.
+    Coarse,
+    /// Every tree's branch instances.
+    Fine,
+}
+
+/// A tile: its level and its column (x) and row (z) on that level's grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct TileId {
+    /// The level.
+    pub level: Level,
+    /// Column, from the world's low x.
+    pub x: u32,
+    /// Row, from the world's low z.
+    pub y: u32,
+}
+
+impl fmt::Display for TileId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let l = match self.level {
+            Level::Coarse => 'c',
+            Level::Fine => 'f',
+        };
+        write!(f, "{l}_{}_{}", self.x, self.y)
+    }
+}
+
+impl FromStr for TileId {
+    type Err = ExportError;
+
+    /// Parses `c_X_Y` or `f_X_Y` (the tile's file name without `.glb`).
+    fn from_str(s: &str) -> Result<TileId, ExportError> {
+        let bad = || ExportError::BadTileId { id: s.into() };
+        let mut parts = s.split('_');
+        let level = match parts.next() {
+            Some("c") => Level::Coarse,
+            Some("f") => Level::Fine,
+            _ => return Err(bad()),
+        };
+        let x = parts.next().and_then(|p| p.parse().ok()).ok_or_else(bad)?;
+        let y = parts.next().and_then(|p| p.parse().ok()).ok_or_else(bad)?;
+        if parts.next().is_some() {
+            return Err(bad());
+        }
+        Ok(TileId { level, x, y })
+    }
+}
+
+/// What writing tiles produced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TileStats {
+    /// Tiles written.
+    pub tiles: usize,
+    /// Trees in them (each tree once per level it appears on).
+    pub trees: usize,
+    /// Bytes written.
+    pub bytes: usize,
+    /// Triangles drawn if every tile of the level were shown: coarse and fine.
+    pub triangles: [u64; 2],
+    /// Bytes per level: coarse and fine (the shared geometry not included).
+    pub level_bytes: [usize; 2],
+}
+
+impl TileScheme {
+    /// A scheme over `world` with fine tiles of side `tile` and `group` x `group` fine tiles
+    /// per coarse tile. Refuses tiles under 10 m, larger than the world, or more than
+    /// [`MAX_TILES`] of them.
+    ///
+    /// ```
+    /// use sylva_export::TileScheme;
+    /// use sylva_forest::Rect;
+    /// use sylva_terrain::glam::Vec2;
+    /// let s = TileScheme::new(Rect::new(Vec2::ZERO, Vec2::splat(2000.0)), 250.0, 4)?;
+    /// assert_eq!(s.fine_count(), (8, 8));
+    /// assert_eq!(s.coarse_count(), (2, 2));
+    /// assert!(TileScheme::new(Rect::new(Vec2::ZERO, Vec2::splat(2000.0)), 0.5, 4).is_err());
+    /// # Ok::<(), sylva_export::ExportError>(())
+    /// ```
+    pub fn new(world: Rect, tile: f32, group: u32) -> Result<TileScheme, ExportError> {
+        let size = world.max - world.min;
+        if world.is_empty() {
+            return Err(ExportError::EmptyWorld {
+                min: world.min,
+                max: world.max,
+            });
+        }
+        check(
+            "tile size",
+            tile.into(),
+            tile >= 10.0 && tile <= size.max_element(),
+            "10 m up to the world's side",
+        )?;
+        check(
+            "fine tiles per coarse tile side",
+            group.into(),
+            (1..=64).contains(&group),
+            "1 to 64",
+        )?;
+        let n = (size / tile).ceil();
+        if f64::from(n.x) * f64::from(n.y) > MAX_TILES as f64 {
+            return Err(ExportError::TooManyTiles {
+                columns: n.x,
+                rows: n.y,
+                limit: MAX_TILES,
+            });
+        }
+        Ok(TileScheme { world, tile, group })
+    }
+
+    /// Fine tiles along x and z.
+    pub fn fine_count(&self) -> (u32, u32) {
+        let n = ((self.world.max - self.world.min) / self.tile).ceil();
+        (n.x as u32, n.y as u32)
+    }
+
+    /// Coarse tiles along x and z.
+    pub fn coarse_count(&self) -> (u32, u32) {
+        let (x, y) = self.fine_count();
+        (x.div_ceil(self.group), y.div_ceil(self.group))
+    }
+
+    /// The rectangle of a tile, clipped to the world; an error for ids outside it.
+    pub fn rect(&self, id: TileId) -> Result<Rect, ExportError> {
+        let ((nx, ny), side) = match id.level {
+            Level::Fine => (self.fine_count(), self.tile),
+            Level::Coarse => (self.coarse_count(), self.tile * self.group as f32),
+        };
+        if id.x >= nx || id.y >= ny {
+            return Err(ExportError::TileOutside {
+                id: id.to_string(),
+                columns: nx,
+                rows: ny,
+            });
+        }
+        let min = self.world.min + Vec2::new(id.x as f32, id.y as f32) * side;
+        Ok(Rect::new(
+            min,
+            (min + Vec2::splat(side)).min(self.world.max),
+        ))
+    }
+
+    /// Every tile id: the coarse ones, then the fine ones, row by row.
+    pub fn ids(&self) -> Vec<TileId> {
+        let mut out = Vec::new();
+        for (level, (nx, ny)) in [
+            (Level::Coarse, self.coarse_count()),
+            (Level::Fine, self.fine_count()),
+        ] {
+            for y in 0..ny {
+                for x in 0..nx {
+                    out.push(TileId { level, x, y });
+                }
+            }
+        }
+        out
+    }
+}
+
+/// An error unless `dir` is missing, empty or holds only a tileset's own files
+/// (`tileset.json`, `shared.bin`, `tiles/` and hidden files): a folder with anything else is
+/// somebody else's, and writing a world into it would mix the two.
+pub fn check_tileset_folder(dir: &Path) -> Result<(), ExportError> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if !matches!(name.as_str(), "tileset.json" | "shared.bin" | "tiles")
+            && !name.starts_with('.')
+        {
+            return Err(ExportError::NotTilesetFolder {
+                folder: dir.to_path_buf(),
+                entry: name,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The path of a tile's GLB in a tile folder.
+pub fn tile_path(dir: &Path, id: TileId) -> PathBuf {
+    dir.join("tiles").join(format!("{id}.glb"))
+}
+
+/// Cells of a fine tile's terrain mesh (the coarse tile's is a quarter as dense per side).
+const FINE_TERRAIN_CELLS: u32 = 32;
+
+/// Writes one tile of `builder`'s world on `terrain` into `dir` (creating `dir/tiles`):
+/// a pure function of the builder's configuration, the terrain, the scheme and the id, so the
+/// same tile written by any process is the same bytes. Returns the file's size and the
+/// tile's trees and triangles.
+pub fn write_tile(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    scheme: &TileScheme,
+    id: TileId,
+    dir: &Path,
+) -> Result<TileStats, ExportError> {
+    let rect = scheme.rect(id)?;
+    let folder = dir.join("tiles");
+    std::fs::create_dir_all(&folder).map_err(FileError::at(&folder))?;
+    let path = tile_path(dir, id);
+    let level = usize::from(id.level == Level::Fine);
+    match id.level {
+        Level::Fine => {
+            let mesh = tile_terrain(terrain, rect, FINE_TERRAIN_CELLS, scheme.world);
+            let options = GltfOptions {
+                shared_geometry: Some("../shared.bin".into()),
+                ..GltfOptions::default()
+            };
+            let written = write_glb(builder, terrain, rect, Some(&mesh), &options, &path)?;
+            let triangles = (mesh.indices.len() / 3) as u64 + written.triangles;
+            let mut stats = TileStats {
+                tiles: 1,
+                trees: written.trees,
+                bytes: written.bytes,
+                ..TileStats::default()
+            };
+            stats.triangles[level] = triangles;
+            stats.level_bytes[level] = written.bytes;
+            Ok(stats)
+        }
+        Level::Coarse => {
+            let cells = (FINE_TERRAIN_CELLS * scheme.group / 4).max(4);
+            let mesh = tile_terrain(terrain, rect, cells, scheme.world);
+            let variants = builder.variants();
+            // Proxies stand in for canopy trees; seedlings vanish at this distance.
+            let trees: Vec<_> = builder
+                .trees(terrain, rect)
+                .into_iter()
+                .filter(|t| !variants[usize::from(t.variant)].seedling)
+                .collect();
+            let proxies: Vec<_> = variants
+                .iter()
+                .map(|v| (tree_proxy(Extent::of(v)), v.species))
+                .collect();
+            let bytes =
+                write_coarse_glb(&trees, &proxies, &builder.config().species, &mesh, &path)?;
+            let per_tree: u64 = proxies
+                .first()
+                .map_or(0, |(m, _)| m.triangle_count() as u64);
+            let mut stats = TileStats {
+                tiles: 1,
+                trees: trees.len(),
+                bytes,
+                ..TileStats::default()
+            };
+            stats.triangles[level] =
+                (mesh.indices.len() / 3) as u64 + per_tree * trees.len() as u64;
+            stats.level_bytes[level] = bytes;
+            Ok(stats)
+        }
+    }
+}
+
+/// Where the world sits on the globe and how its levels switch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct TilesetOptions {
+    /// Longitude and latitude (degrees) of the world's origin (its low x, low z corner).
+    pub origin: (f64, f64),
+}
+
+impl Default for TilesetOptions {
+    fn default() -> Self {
+        TilesetOptions {
+            origin: (8.54, 47.37),
+        }
+    }
+}
+
+/// The last step: writes `dir/shared.bin` (the geometry every fine tile references) and
+/// `dir/tileset.json` (3D Tiles 1.1) for the scheme's tiles, which may be written before or
+/// after, by any process. Geometric errors: a coarse tile's is the widest crown diameter (the
+/// detail its proxies leave out), so standard clients (maximum screen-space error 16)
+/// switch to fine tiles within about 60 crown diameters; the root's is the coarse tile side.
+pub fn write_tileset(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    scheme: &TileScheme,
+    dir: &Path,
+    options: &TilesetOptions,
+) -> Result<usize, ExportError> {
+    std::fs::create_dir_all(dir).map_err(FileError::at(dir))?;
+    let shared = write_shared_geometry(builder, &dir.join("shared.bin"))?;
+    let (tallest, widest) = builder
+        .variants()
+        .iter()
+        .map(Extent::of)
+        .fold((0.0f32, 0.0f32), |(h, c), e| {
+            (h.max(e.height), c.max(e.crown))
+        });
+    let grown = 1.0 + builder.config().scale_variation.max(0.0);
+    let (tallest, widest) = (tallest * grown, widest * grown);
+    let volume = |rect: Rect| {
+        let (lo, hi) = height_range(terrain, rect);
+        bounding_box(
+            [rect.min.x - widest, lo - 1.0, rect.min.y - widest],
+            [rect.max.x + widest, hi + tallest, rect.max.y + widest],
+        )
+    };
+    let coarse_error = 2.0 * widest;
+    let (cx, cy) = scheme.coarse_count();
+    let (fx, fy) = scheme.fine_count();
+    let mut children = Vec::new();
+    for y in 0..cy {
+        for x in 0..cx {
+            let id = TileId {
+                level: Level::Coarse,
+                x,
+                y,
+            };
+            let mut fine = Vec::new();
+            for j in y * scheme.group..((y + 1) * scheme.group).min(fy) {
+                for i in x * scheme.group..((x + 1) * scheme.group).min(fx) {
+                    let f = TileId {
+                        level: Level::Fine,
+                        x: i,
+                        y: j,
+                    };
+                    fine.push(json!({
+                        "boundingVolume": volume(scheme.rect(f)?),
+                        "geometricError": 0.0,
+                        "content": {"uri": format!("tiles/{f}.glb")},
+                    }));
+                }
+            }
+            children.push(json!({
+                "boundingVolume": volume(scheme.rect(id)?),
+                "geometricError": coarse_error,
+                "refine": "REPLACE",
+                "content": {"uri": format!("tiles/{id}.glb")},
+                "children": fine,
+            }));
+        }
+    }
+    let side = scheme.tile * scheme.group as f32;
+    let tileset = json!({
+        "asset": {"version": "1.1", "generator": "sylva"},
+        "geometricError": side * 2.0,
+        "root": {
+            "transform": east_north_up(options.origin.0, options.origin.1),
+            "boundingVolume": volume(scheme.world),
+            "geometricError": side,
+            "refine": "REPLACE",
+            "children": children,
+        },
+    });
+    let text = serde_json::to_string_pretty(&tileset).map_err(|e| Invalid::Json(e.to_string()))?;
+    sylva_base::file::write(dir.join("tileset.json"), |w| w.write_all(text.as_bytes()))?;
+    Ok(shared + text.len())
+}

@@ -1,0 +1,233 @@
+//! glTF export: well-formed files whose counts match the forest, the same bytes at any chunk
+//! size and thread count, nothing left behind on error, and the procedural textures.
+
+mod common;
+
+use std::path::Path;
+
+use common::{export_case, scratch};
+use sylva_export::{ExportError, GltfOptions, Texture, write_glb};
+use sylva_forest::{BarkPattern, LeafShape, Rect, Species};
+use sylva_terrain::glam::Vec2;
+
+#[test]
+fn exported_glb_is_well_formed_and_counts_match() {
+    let (b, map, region) = export_case();
+    let path = scratch("well-formed");
+    let stats = write_glb(
+        &b,
+        &map,
+        region,
+        Some(&map.mesh(1).unwrap()),
+        &GltfOptions::default(),
+        &path,
+    )
+    .unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(stats.bytes, bytes.len());
+    assert_eq!(&bytes[0..4], b"glTF");
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    assert_eq!(json["extensionsUsed"][0], "EXT_mesh_gpu_instancing");
+    // Leaf cards carry an alpha-masked, double-sided texture embedded as PNG.
+    let images = json["images"].as_array().unwrap();
+    assert!(!images.is_empty() && images.iter().all(|i| i["mimeType"] == "image/png"));
+    let leaf_materials: Vec<_> = json["materials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|m| m["name"].as_str().unwrap().ends_with("leaves"))
+        .collect();
+    assert!(!leaf_materials.is_empty());
+    for m in leaf_materials {
+        assert_eq!(m["alphaMode"], "MASK");
+        assert_eq!(m["doubleSided"], true);
+        assert!(m["pbrMetallicRoughness"]["baseColorTexture"]["index"].is_u64());
+    }
+    let mut placements = 0u64;
+    for node in json["nodes"].as_array().unwrap() {
+        if let Some(ext) = node["extensions"].get("EXT_mesh_gpu_instancing") {
+            let count = |attr: &str| {
+                json["accessors"][ext["attributes"][attr].as_u64().unwrap() as usize]["count"]
+                    .as_u64()
+                    .unwrap()
+            };
+            assert_eq!(count("TRANSLATION"), count("ROTATION"));
+            assert_eq!(count("ROTATION"), count("SCALE"));
+            // Each tree's tint rides along as the instance colour.
+            assert_eq!(count("SCALE"), count("_COLOR_0"));
+            placements += count("TRANSLATION");
+        }
+    }
+    // The in-memory forest of the same region places the same instances.
+    let forest = b.build(&map, region);
+    let drawable: usize = forest
+        .placements()
+        .unwrap()
+        .iter()
+        .map(|v| {
+            let cache = &forest.variants[v.variant].cache;
+            v.placements
+                .groups
+                .iter()
+                .zip(&cache.instances)
+                .filter(|(_, i)| !(i.bark.is_empty() && i.leaves.is_empty()))
+                .map(|(g, _)| g.len())
+                .sum::<usize>()
+        })
+        .sum();
+    assert_eq!(placements as usize, drawable);
+    assert_eq!(stats.placements, drawable);
+    assert_eq!(stats.trees, forest.trees.len());
+    assert!(drawable >= forest.trees.len() / 2);
+}
+
+/// Chunked writing gathers a few instances per pass; the file is the same as in one pass,
+/// and the same with one thread as with several.
+#[test]
+fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
+    let (b, map, region) = export_case();
+    let write = |name: &str, threads: usize, chunk_bytes: usize| {
+        let path = scratch(name);
+        let mut options = GltfOptions::default();
+        options.chunk_bytes = chunk_bytes;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let stats = pool
+            .install(|| write_glb(&b, &map, region, None, &options, &path))
+            .unwrap();
+        (stats.passes, std::fs::read(&path).unwrap())
+    };
+    let (one_pass, reference) = write("one", 1, usize::MAX);
+    assert_eq!(one_pass, 2);
+    let (passes, chunked) = write("chunked", 1, 4096);
+    assert!(passes > 10, "{passes} passes");
+    assert!(chunked == reference, "chunked writing changed the file");
+    for threads in [2, 3, 8] {
+        let (_, parallel) = write(&format!("threads-{threads}"), threads, 64 << 10);
+        assert!(parallel == reference, "{threads} threads changed the file");
+    }
+}
+
+/// A bad destination is an error, and nothing is left behind: no file, no temporary file.
+#[test]
+fn a_failed_write_leaves_nothing_behind() {
+    let (b, map, region) = export_case();
+    let missing = std::env::temp_dir().join("sylva-no-such-dir-for-tests/forest.glb");
+    assert!(write_glb(&b, &map, region, None, &GltfOptions::default(), &missing).is_err());
+    assert!(!missing.exists());
+    // The destination is a directory: everything is written, then the rename fails.
+    let path = scratch("onto-a-directory");
+    std::fs::create_dir_all(&path).unwrap();
+    std::fs::write(path.join("keep"), b"x").unwrap();
+    let err = write_glb(&b, &map, region, None, &GltfOptions::default(), &path);
+    assert!(matches!(err, Err(ExportError::File(_))), "{err:?}");
+    let left: Vec<_> = std::fs::read_dir(path.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(
+        left,
+        vec!["forest.glb".to_string()],
+        "only the directory itself remains"
+    );
+}
+
+/// Leaf textures are pure functions of their shape, opaque inside the leaves and clear
+/// outside, and their PNG decodes to the same pixels.
+#[test]
+fn leaf_textures_are_deterministic_alpha_masks() {
+    for shape in [LeafShape::Broadleaf, LeafShape::Needles] {
+        let t = Texture::leaf(shape);
+        assert_eq!(t, Texture::leaf(shape));
+        let alphas: Vec<u8> = t.rgba.chunks_exact(4).map(|p| p[3]).collect();
+        assert!(
+            alphas.iter().all(|&a| a == 0 || a == 255),
+            "{shape:?}: a mask"
+        );
+        let covered = alphas.iter().filter(|&&a| a == 255).count() as f32 / alphas.len() as f32;
+        assert!((0.1..0.8).contains(&covered), "{shape:?} covers {covered}");
+        let png = t.png();
+        let mut reader = png::Decoder::new(std::io::Cursor::new(png))
+            .read_info()
+            .unwrap();
+        let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+        reader.next_frame(&mut pixels).unwrap();
+        assert!(pixels == t.rgba);
+    }
+}
+
+/// Bark textures are pure functions of their pattern; smooth (birch) bark is paler, with dark
+/// lenticels.
+#[test]
+fn bark_textures_tile_and_differ_by_pattern() {
+    let furrowed = Texture::bark(BarkPattern::Furrowed);
+    let smooth = Texture::bark(BarkPattern::Smooth);
+    assert!(furrowed != smooth);
+    for t in [&furrowed, &smooth] {
+        assert_eq!(
+            t,
+            &Texture::bark(if *t == furrowed {
+                BarkPattern::Furrowed
+            } else {
+                BarkPattern::Smooth
+            })
+        );
+        assert!(t.rgba.chunks_exact(4).all(|p| p[3] == 255));
+    }
+    // Birch bark is paler on average than furrowed bark, with dark lenticels.
+    let mean = |t: &Texture| {
+        t.rgba.chunks_exact(4).map(|p| f32::from(p[0])).sum::<f32>() / (t.rgba.len() / 4) as f32
+    };
+    assert!(mean(&smooth) > mean(&furrowed));
+    assert!(smooth.rgba.chunks_exact(4).any(|p| p[0] < 110));
+    let birch = Species::parse_file(
+        "grammar: sylva-birch\nbark_texture: smooth\n",
+        Path::new("b.species"),
+    )
+    .unwrap();
+    assert_eq!(birch.bark_pattern, BarkPattern::Smooth);
+}
+
+/// The fallback for importers without EXT_mesh_gpu_instancing: a node per placement sharing
+/// its instance's mesh, the same placements as the instanced file.
+#[test]
+fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
+    let (b, map, region) = export_case();
+    let path = scratch("nodes");
+    let mut options = GltfOptions::default();
+    options.one_node_per_placement = true;
+    let stats = write_glb(&b, &map, region, None, &options, &path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    assert!(json.get("extensionsUsed").is_none());
+    let nodes = json["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), stats.placements);
+    let meshes = json["meshes"].as_array().unwrap().len();
+    assert!(
+        meshes < nodes.len(),
+        "meshes are shared: {meshes} for {} nodes",
+        nodes.len()
+    );
+    for n in nodes {
+        assert!(n.get("extensions").is_none());
+        let q: Vec<f64> = n["rotation"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!((q.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-4);
+        assert!(n["mesh"].as_u64().unwrap() < meshes as u64);
+    }
+    // Too many placements for nodes are refused, and nothing is written.
+    let big = scratch("nodes-big");
+    let (large, ground) = (common::builder(7), common::plane(2000.0));
+    let world = Rect::new(Vec2::splat(-2000.0), Vec2::splat(2000.0));
+    let e = write_glb(&large, &ground, world, None, &options, &big).unwrap_err();
+    assert!(e.to_string().contains("limit"), "{e}");
+    assert!(!big.exists());
+}
