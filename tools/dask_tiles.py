@@ -1,14 +1,14 @@
-"""Generates a tiled world on a Dask cluster: one task per tile, each running the forest
-example with `--tile ID` (a pure function of the flags and the id, so any worker on any
+"""Generates a tiled world on a Dask cluster: one task per tile, each running
+`sylva tiles --tile ID` (a pure function of the flags and the id, so any worker on any
 machine writes the same bytes), then the root (`--tileset-only`) once the tiles are done.
 
 usage:
-  python3 tools/dask_tiles.py --forest target/release/examples/forest --out DIR \
-      [--workers N | --scheduler ADDRESS] -- --area 11000 --tile-size 500 [other forest flags]
+  python3 tools/dask_tiles.py --sylva target/release/sylva --out DIR \
+      [--workers N | --scheduler ADDRESS] -- --area 11000 --tile-size 500 [other tiles flags]
 
 Without --scheduler it starts a local cluster of N single-threaded worker processes (on a
 real cluster, start `dask scheduler` and `dask worker` processes and pass the scheduler's
-address; every worker needs the forest binary at the same path and DIR on a shared disk).
+address; every worker needs the sylva binary at the same path and DIR on a shared disk).
 Prints one JSON object: tiles, wall time, and per worker the tiles it wrote, the seconds
 it spent and the peak memory of its tile processes.
 """
@@ -24,7 +24,7 @@ import time
 
 
 def tile_ids(area, tile, group=4):
-    """The ids the forest example's TileScheme gives: coarse tiles, then fine ones."""
+    """The ids sylva's TileScheme gives: coarse tiles, then fine ones."""
     n = -(-area // tile)  # ceil
     c = -(-n // group)
     ids = [f"c_{x}_{y}" for y in range(c) for x in range(c)]
@@ -32,10 +32,10 @@ def tile_ids(area, tile, group=4):
     return ids
 
 
-def write_tile(forest, out, flags, tile):
+def write_tile(sylva, out, flags, tile):
     """Runs one tile job; returns (tile, seconds, worker, peak child memory in MB, trees)."""
     start = time.monotonic()
-    done = subprocess.run([forest, *flags, "--tiles", out, "--tile", tile], check=True,
+    done = subprocess.run([sylva, "tiles", *flags, "--out", out, "--tile", tile], check=True,
                           stdout=subprocess.PIPE, text=True)
     seconds = time.monotonic() - start
     # ru_maxrss of the children of this worker process: its largest tile job so far (KiB).
@@ -47,19 +47,19 @@ def write_tile(forest, out, flags, tile):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--forest", required=True, help="the forest example binary")
+    parser.add_argument("--sylva", required=True, help="the sylva command's binary")
     parser.add_argument("--out", required=True, help="the tile folder")
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--scheduler", help="address of a running Dask scheduler")
     parser.add_argument("flags", nargs=argparse.REMAINDER,
-                        help="after --: the forest example's flags (--area and --tile-size needed)")
+                        help="after --: sylva tiles' flags (--area and --tile-size needed)")
     args = parser.parse_args()
     flags = [f for f in args.flags if f != "--"]
     try:
         area = float(flags[flags.index("--area") + 1])
         tile = float(flags[flags.index("--tile-size") + 1])
     except (ValueError, IndexError):
-        sys.exit("give the forest flags --area METRES and --tile-size METRES after --")
+        sys.exit("give the tiles flags --area METRES and --tile-size METRES after --")
 
     from dask.distributed import Client, LocalCluster
 
@@ -72,11 +72,11 @@ def main():
         client = Client(cluster)
     ids = tile_ids(int(area), int(tile))
     start = time.monotonic()
-    futures = client.map(write_tile, [args.forest] * len(ids), [args.out] * len(ids),
+    futures = client.map(write_tile, [args.sylva] * len(ids), [args.out] * len(ids),
                          [flags] * len(ids), ids, pure=False)
     results = client.gather(futures)
     # The last step: the root and the shared geometry, once every tile is written.
-    subprocess.run([args.forest, *flags, "--tiles", args.out, "--tileset-only"], check=True,
+    subprocess.run([args.sylva, "tiles", *flags, "--out", args.out, "--tileset-only"], check=True,
                    stdout=subprocess.DEVNULL)
     wall = time.monotonic() - start
     workers = {}

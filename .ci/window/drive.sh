@@ -7,7 +7,7 @@
 # usage: .ci/window/drive.sh VIEWER FOREST_EXAMPLE WORKDIR
 # Needs Debian's xvfb and xdotool, and a Vulkan or GL driver (Mesa's lavapipe will do).
 set -euo pipefail
-viewer="$(realpath "$1")"; forest="$(realpath "$2")"; work="$3"
+viewer="$(realpath "$1")"; sylva="$(realpath "$2")"; work="$3"
 mkdir -p "$work"; cd "$work"; rm -rf paint_masks
 display=":$((100 + RANDOM % 400))"
 Xvfb "$display" -screen 0 800x600x24 -nolisten tcp > xvfb.log 2>&1 &
@@ -79,10 +79,10 @@ xdotool key p
 xdotool key g
 wait_until shows "guided walk"
 echo "window: the guided walk started"
-# The masks the window saved grow the same forest in the forest example.
-exported=$("$forest" --area 150 --paint paint_masks --out painted.glb --stats 2>/dev/null \
+# The masks the window saved grow the same forest in `sylva forest`.
+exported=$("$sylva" forest --area 150 --paint paint_masks --out painted.glb --stats 2>/dev/null \
   | sed -n 's/^{"trees":\([0-9]*\),.*/\1/p')
 if [ "$exported" != "$after" ]; then
   echo "the window showed $after trees; its masks grow $exported" >&2; exit 1
 fi
-echo "window: its saved masks grow the same $after trees in the forest example"
+echo "window: its saved masks grow the same $after trees in sylva forest"

@@ -151,10 +151,16 @@ impl AtomicFile {
         let writer = self.writer.take().ok_or_else(|| {
             FileError::new(&self.destination, io::Error::other("already committed"))
         })?;
-        let file = writer.into_inner().map_err(|e| at(e.into_error()))?;
-        file.sync_all().map_err(&at)?;
-        drop(file);
-        std::fs::rename(&self.temporary, &self.destination).map_err(&at)?;
+        let placed = writer
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .and_then(|file| file.sync_all())
+            .and_then(|()| std::fs::rename(&self.temporary, &self.destination));
+        if let Err(e) = placed {
+            // Not in place: the partial file must not stay behind.
+            let _ = std::fs::remove_file(&self.temporary);
+            return Err(at(e));
+        }
         sync_folder(parent_of(&self.destination)).map_err(at)
     }
 
@@ -321,6 +327,17 @@ mod tests {
         }
         assert!(!path.exists());
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn a_failed_rename_leaves_nothing_behind() {
+        let dir = scratch("rename");
+        let onto = dir.join("a-folder");
+        std::fs::create_dir(&onto).unwrap();
+        std::fs::write(onto.join("keep"), "x").unwrap();
+        assert!(write(&onto, |w| w.write_all(b"glTF")).is_err());
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().map(|e| e.file_name()).collect();
+        assert_eq!(names, ["a-folder"]);
     }
 
     #[test]

@@ -66,7 +66,8 @@ struct ActiveStroke {
 /// A paint layer and the strokes that edit it, with undo and redo.
 ///
 /// ```
-/// use sylva_forest::{Brush, BrushAction, PaintCanvas, PaintLayer, Rect};
+/// use sylva_forest::Rect;
+/// use sylva_paint::{Brush, BrushAction, PaintCanvas, PaintLayer};
 /// use sylva_terrain::glam::Vec2;
 ///
 /// let layer = PaintLayer::new(Rect::new(Vec2::ZERO, Vec2::splat(100.0)), 1.0, 1)?;

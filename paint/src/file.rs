@@ -3,7 +3,7 @@
 //! See [`load_masks`] for the format.
 
 use std::collections::BTreeMap;
-use std::io::{self, BufWriter};
+use std::io;
 use std::path::Path;
 
 use sylva_base::file::{FileError, previous_folder, replace_folder};
@@ -100,14 +100,12 @@ pub fn save_masks(layer: &PaintLayer, species: &[&str], dir: &Path) -> Result<()
     Ok(())
 }
 
-/// Writes channel `s` of `layer` as a 16-bit grayscale PNG.
+/// Writes channel `s` of `layer` as a 16-bit grayscale PNG. The image is encoded in memory
+/// and written in one call, so a full disk is reported (a buffered writer's last flush, on
+/// drop, would lose the error).
 fn write_mask(layer: &PaintLayer, s: usize, path: &Path) -> io::Result<()> {
-    let file = std::fs::File::create(path)?;
-    let mut encoder = png::Encoder::new(
-        BufWriter::new(file),
-        layer.width() as u32,
-        layer.depth() as u32,
-    );
+    let mut png = Vec::new();
+    let mut encoder = png::Encoder::new(&mut png, layer.width() as u32, layer.depth() as u32);
     encoder.set_color(png::ColorType::Grayscale);
     encoder.set_depth(png::BitDepth::Sixteen);
     let b = layer.bounds();
@@ -124,7 +122,8 @@ fn write_mask(layer: &PaintLayer, s: usize, path: &Path) -> io::Result<()> {
         .flat_map(u16::to_be_bytes)
         .collect();
     writer.write_image_data(&data).map_err(encoding_error)?;
-    writer.finish().map_err(encoding_error)
+    writer.finish().map_err(encoding_error)?;
+    std::fs::write(path, &png)
 }
 
 /// The system's error inside a PNG encoding error (a full disk), or the encoder's own.

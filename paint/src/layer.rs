@@ -25,14 +25,15 @@ pub const FULL: u16 = u16::MAX;
 /// the trees near its edge, through spacing).
 ///
 /// ```
-/// use sylva_forest::{PaintLayer, Rect};
+/// use sylva_forest::Rect;
+/// use sylva_paint::PaintLayer;
 /// use sylva_terrain::glam::Vec2;
 ///
 /// let bounds = Rect::new(Vec2::ZERO, Vec2::splat(100.0));
 /// let mut layer = PaintLayer::new(bounds, 2.0, 2)?;
 /// assert_eq!((layer.width(), layer.depth()), (50, 50));
 /// let cell = layer.cell_at(Vec2::new(11.0, 3.0)).unwrap();
-/// layer.set(cell, &[0, sylva_forest::FULL])?;
+/// layer.set(cell, &[0, sylva_paint::FULL])?;
 /// assert_eq!(layer.density(Vec2::new(11.0, 3.0)), 1.0);
 /// assert_eq!(layer.density(Vec2::new(30.0, 30.0)), 0.0);
 /// # Ok::<(), sylva_paint::PaintError>(())

@@ -46,7 +46,8 @@ pub struct StrokeReport {
 /// ([`ForestPainter::painted_builder`]), so it streams and exports like a generated one.
 ///
 /// ```
-/// use sylva_forest::{Brush, BrushAction, ForestBuilder, ForestConfig, ForestPainter, PaintLayer, Rect, Species};
+/// use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
+/// use sylva_paint::{Brush, BrushAction, ForestPainter, PaintLayer};
 /// use sylva_terrain::{FlatPlane, glam::Vec2};
 ///
 /// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;

@@ -263,9 +263,12 @@ fn bad_strokes_and_masks_are_refused_and_change_nothing() {
         e.contains("the mask covers") && e.contains("leafy.png"),
         "{e}"
     );
+    // A mask of another layer's size beside this layer's (saving replaces a set whole, so
+    // the odd one is copied in).
     let small = PaintLayer::new(bounds(), 2.0, 2).unwrap();
-    save_masks(&small, &["x", "plant"], &dir).unwrap();
-    std::fs::remove_file(dir.join("x.png")).unwrap();
+    let other_set = scratch("other-size");
+    save_masks(&small, &names, &other_set).unwrap();
+    std::fs::copy(other_set.join("plant.png"), dir.join("plant.png")).unwrap();
     let e = load_masks(&dir, &names, bounds()).unwrap_err().to_string();
     assert!(e.contains("share one size"), "{e}");
     let eight = {
