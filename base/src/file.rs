@@ -336,7 +336,11 @@ mod tests {
         std::fs::create_dir(&onto).unwrap();
         std::fs::write(onto.join("keep"), "x").unwrap();
         assert!(write(&onto, |w| w.write_all(b"glTF")).is_err());
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().map(|e| e.file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
         assert_eq!(names, ["a-folder"]);
     }
 

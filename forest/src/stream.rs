@@ -135,7 +135,7 @@ impl ForestBuilder {
             let variant = u32::from(tree.variant);
             let cache = &variants
                 .get(usize::from(tree.variant))
-                .ok_or_else(|| ForestError::UnknownVariant {
+                .ok_or(ForestError::UnknownVariant {
                     variant: tree.variant,
                     variants: variants.len(),
                 })?

@@ -21,7 +21,11 @@ fn noisy_layer(cell: f32, salt: u64) -> PaintLayer {
     let mut layer = PaintLayer::new(bounds(), cell, NAMES.len()).unwrap();
     for i in 0..layer.width() * layer.depth() {
         let h = sylva_base::hash::mix(i as u64 ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15));
-        let v = [(h & 0x3fff) as u16, ((h >> 16) & 0x3fff) as u16, ((h >> 32) & 0x3fff) as u16];
+        let v = [
+            (h & 0x3fff) as u16,
+            ((h >> 16) & 0x3fff) as u16,
+            ((h >> 32) & 0x3fff) as u16,
+        ];
         layer.set(i, &v).unwrap();
     }
     layer
@@ -88,6 +92,9 @@ fn masks_are_not_saved_over_a_folder_of_other_files() {
     std::fs::write(root.join("notes.txt"), "mine").unwrap();
     let err = save_masks(&noisy_layer(10.0, 4), &NAMES, &root).unwrap_err();
     assert!(matches!(err, PaintError::NotMaskFolder { .. }), "{err:?}");
-    assert_eq!(std::fs::read_to_string(root.join("notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(root.join("notes.txt")).unwrap(),
+        "mine"
+    );
     std::fs::remove_dir_all(&root).unwrap();
 }
