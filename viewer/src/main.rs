@@ -9,7 +9,7 @@
 //!
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
 //! (every branch) within 250 m and as whole-tree proxies to 1,500 m, so a world of millions
-//! of trees is walked like a small one. `--trees N` sizes the world as the forest example
+//! of trees is walked like a small one. `--trees N` sizes the world as `sylva forest`
 //! does, for N canopy trees (`--trees 1000000`: 6.2 km a side, 3.2 million trees with the
 //! seedlings).
 //!
@@ -24,7 +24,7 @@
 //! the masks (to `--paint DIR`, or `paint_masks/`); the right button looks around. G starts
 //! the guided walk (the Garden of Eden's): the camera is led from target to target around
 //! the trunks; the mouse looks around, A and D lean a little off the way. `--paint DIR`
-//! opens a painted forest (the masks the paint example, the tool or you wrote).
+//! opens a painted forest (the masks `sylva paint`, the tool or you wrote).
 //!
 //! Headless (`--screenshot`): renders one frame offscreen and writes a PNG, in a wind of
 //! strength `--wind` (1, a breeze, by default; 0 for still air) at `--time` seconds into its
