@@ -104,7 +104,7 @@ impl PaintLayer {
     }
 
     /// A layer that grows the forest the density model would grow without one: every cell
-    /// at full density, species mixed by `weights` (as [`crate::Species::weight`]).
+    /// at full density, species mixed by `weights` (as [`Species::weight`](sylva_forest::Species::weight)).
     pub fn filled(bounds: Rect, cell: f32, weights: &[f32]) -> Result<Self, PaintError> {
         let mut layer = Self::new(bounds, cell, weights.len())?;
         let total: f32 = weights.iter().map(|w| w.max(0.0)).sum();
