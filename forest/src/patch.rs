@@ -109,7 +109,7 @@ impl PatchDensity {
     /// let oak = PatchSpecies { canopy_radius: 6.0, weight: 1.0 };
     /// let none = PatchSpecies { canopy_radius: 3.0, weight: 0.0 };
     /// let model = PatchDensity::new(vec![oak, none]);
-    /// assert!((0..100).all(|h| model.pick_species(h * 0x9e37_79b9_7f4a_7c15) == 0));
+    /// assert!((0..100u64).all(|h| model.pick_species(h.wrapping_mul(0x9e37_79b9_7f4a_7c15)) == 0));
     /// ```
     pub fn pick_species(&self, h: u64) -> usize {
         let weight = |s: &PatchSpecies| s.weight.max(0.0);
