@@ -15,7 +15,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .nth(1)
         .unwrap_or_else(|| "small_forest.glb".into());
     let mut config = ForestConfig::new(sylva::presets::species()?);
-    config.budget = 8 << 20;
+    config.budget = 32 << 20;
     let builder = ForestBuilder::new(config)?;
     let terrain = sylva::presets::terrain(1, 200.0)?;
     let (lo, hi) = terrain.bounds();
@@ -37,8 +37,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         &GltfOptions::default(),
         out.as_ref(),
     )?;
-    // The file holds exactly the trees and placements the stream handed on.
-    assert_eq!((written.trees, written.placements), (trees, placements));
+    // The file holds exactly the trees and placements the stream handed on (placements of
+    // branches with no geometry yet are counted apart).
+    assert_eq!(written.trees, trees);
+    assert_eq!(written.placements + written.empty_placements, placements);
     println!(
         "{trees} trees, {placements} placements; wrote {out} ({:.1} MB)",
         written.bytes as f64 / 1e6
