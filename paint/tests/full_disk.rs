@@ -43,11 +43,11 @@ fn a_save_on_a_full_disk_keeps_the_previous_set() {
     };
     let dir = std::path::Path::new(&disk).join("masks");
     let _ = std::fs::remove_dir_all(&dir);
-    // 100 x 100 cells: three masks of about 60 KB fit in 1 MiB.
+    // 100 x 100 cells: three masks of at most 20 KB each fit in 1 MiB.
     let small = noisy_layer(3.0, 1);
     save_masks(&small, &NAMES, &dir).unwrap();
-    // 300 x 300 cells: three masks of about 540 KB each do not.
-    let large = noisy_layer(1.0, 2);
+    // 600 x 600 cells: three masks of about 600 KB each (noise barely compresses) do not.
+    let large = noisy_layer(0.5, 2);
     let err = save_masks(&large, &NAMES, &dir).unwrap_err();
     let PaintError::File(file) = &err else {
         panic!("expected a file error, got {err:?}");
