@@ -22,4 +22,5 @@
 
 pub mod file;
 pub mod hash;
+pub mod range;
 pub mod text_file;

@@ -2,6 +2,7 @@
 
 use glam::Vec2;
 use sylva_base::file::FileError;
+use sylva_base::range::OutOfRange;
 use sylva_forest::ForestError;
 
 /// Why a file could not be written. Nothing is left half-written: an error leaves the
@@ -57,16 +58,9 @@ pub enum ExportError {
         /// Its upper corner.
         max: Vec2,
     },
-    /// A setting is outside its range.
-    #[error("{name} = {value} is out of range: expected {expected}")]
-    OutOfRange {
-        /// The setting.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What it must be.
-        expected: &'static str,
-    },
+    /// A setting is outside its range: set it within what the message says.
+    #[error(transparent)]
+    OutOfRange(#[from] OutOfRange),
     /// The world would have more tiles than [`MAX_TILES`](crate::limits::MAX_TILES): use larger
     /// tiles.
     #[error("{columns} x {rows} tiles is more than the limit of {limit}; use larger tiles")]
@@ -133,22 +127,4 @@ pub enum Invalid {
     /// The JSON could not be serialised.
     #[error("JSON: {0}")]
     Json(String),
-}
-
-/// An error unless `value` is finite and `ok`.
-pub(crate) fn check(
-    name: &'static str,
-    value: f64,
-    ok: bool,
-    expected: &'static str,
-) -> Result<(), ExportError> {
-    if value.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(ExportError::OutOfRange {
-            name,
-            value,
-            expected,
-        })
-    }
 }

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use glam::Vec2;
 use sylva_base::file::FileError;
+use sylva_base::range::OutOfRange;
 use sylva_base::text_file::TextFileError;
 use sylva_instancing::InstancingError;
 use sylva_lsys::{DeriveError, ParseError};
@@ -76,16 +77,9 @@ pub enum ForestError {
     /// No species has a positive weight: give at least one species a weight above 0.
     #[error("a forest needs at least one species with a positive weight")]
     NoSpecies,
-    /// A setting is outside its range: set it within `expected`.
-    #[error("{name} = {value} is out of range: expected {expected}")]
-    OutOfRange {
-        /// The setting.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What it must be.
-        expected: &'static str,
-    },
+    /// A setting is outside its range: set it within what the message says.
+    #[error(transparent)]
+    OutOfRange(#[from] OutOfRange),
     /// A composition (a paint layer) was made for another number of species than the forest
     /// has: paint it for this forest's species.
     #[error("the composition is for {composition} species, the forest has {forest}")]
@@ -142,22 +136,4 @@ pub enum ForestError {
         /// The margin asked for.
         margin: f32,
     },
-}
-
-/// An error unless `value` is finite and `ok`.
-pub(crate) fn check(
-    name: &'static str,
-    value: f64,
-    ok: bool,
-    expected: &'static str,
-) -> Result<(), ForestError> {
-    if value.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(ForestError::OutOfRange {
-            name,
-            value,
-            expected,
-        })
-    }
 }

@@ -13,9 +13,10 @@ use sylva_base::hash::{mix, unit_f32 as unit};
 
 use crate::composition::Composition;
 use crate::density::{Candidate, DensityModel, Rect};
-use crate::error::{ForestError, check};
+use crate::error::ForestError;
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
+use sylva_base::range::check;
 
 /// Where on the terrain trees may stand.
 #[derive(Clone)]

@@ -9,8 +9,9 @@ use sylva_instancing::CompactTree;
 use sylva_terrain::HeightField;
 
 use crate::density::Rect;
-use crate::error::{ForestError, check};
+use crate::error::ForestError;
 use crate::forest::ForestBuilder;
+use sylva_base::range::check;
 
 /// Settings of a [`GuidedWalk`].
 #[derive(Debug, Clone, Copy, PartialEq)]

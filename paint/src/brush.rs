@@ -2,8 +2,9 @@
 
 use glam::Vec2;
 
-use crate::error::{PaintError, check};
+use crate::error::PaintError;
 use crate::layer::{FULL, quantize_mix};
+use sylva_base::range::check;
 
 /// Widest brush, metres.
 pub const MAX_BRUSH_RADIUS: f32 = 1000.0;
@@ -82,7 +83,8 @@ impl Brush {
             self.hardness.into(),
             (0.0..=1.0).contains(&self.hardness),
             "from 0 to 1",
-        )
+        )?;
+        Ok(())
     }
 
     /// The cover at distance `d` from the path, 0 to `strength`.

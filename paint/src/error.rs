@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use glam::Vec2;
 use sylva_base::file::FileError;
+use sylva_base::range::OutOfRange;
 use sylva_forest::{ForestError, Rect};
 
 /// Why a layer could not be made, a stroke painted or masks read or saved.
@@ -16,16 +17,9 @@ pub enum PaintError {
     /// Reading or writing a file failed.
     #[error("{0}")]
     File(#[from] FileError),
-    /// A setting (brush radius, strength, hardness, cell size) is outside its range.
-    #[error("{name} = {value} is out of range: expected {expected}")]
-    OutOfRange {
-        /// The setting.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What it must be.
-        expected: &'static str,
-    },
+    /// A setting is outside its range: set it within what the message says.
+    #[error(transparent)]
+    OutOfRange(#[from] OutOfRange),
     /// A layer's rectangle has no area: give the terrain's rectangle.
     #[error("a paint layer needs a rectangle with area, not {min} to {max}")]
     NoArea {
@@ -245,22 +239,4 @@ pub enum MaskProblem {
     /// The PNG could not be decoded (cut short, corrupt): save the masks again.
     #[error("not a readable PNG: {0}")]
     Decode(String),
-}
-
-/// An error unless `value` is finite and `ok`.
-pub(crate) fn check(
-    name: &'static str,
-    value: f64,
-    ok: bool,
-    expected: &'static str,
-) -> Result<(), PaintError> {
-    if value.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(PaintError::OutOfRange {
-            name,
-            value,
-            expected,
-        })
-    }
 }

@@ -5,7 +5,8 @@ use sylva_base::hash::unit_f32 as unit;
 
 use sylva_forest::{Composition, PatchDensity, Rect};
 
-use crate::error::{PaintError, check};
+use crate::error::PaintError;
+use sylva_base::range::check;
 
 /// Most values (cells times species) a layer may hold: 128 MB of 16-bit values.
 pub const MAX_PAINT_VALUES: usize = 1 << 26;

@@ -24,9 +24,10 @@ use sylva_forest::{Extent, ForestBuilder, Rect, tree_proxy};
 
 use sylva_base::file::FileError;
 
-use crate::error::{ExportError, Invalid, check};
+use crate::error::{ExportError, Invalid};
 use crate::gltf::{GltfOptions, write_coarse_glb, write_glb, write_shared_geometry};
 use ground::{height_range, tile_terrain};
+use sylva_base::range::check;
 use tileset::{bounding_box, east_north_up};
 
 /// Most tiles a world may have (fine tiles).
