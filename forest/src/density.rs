@@ -55,6 +55,23 @@ impl Rect {
     }
 }
 
+/// The distance from `p` to the segment from `a` to `b` in the x-z plane (the growth crate's
+/// segment distance, in the plane): how far a trunk is from a walker's step, a paint cell
+/// from a brush stroke.
+///
+/// ```
+/// use sylva_forest::distance_to_segment;
+/// use sylva_terrain::glam::Vec2;
+///
+/// let (a, b) = (Vec2::ZERO, Vec2::new(10.0, 0.0));
+/// assert_eq!(distance_to_segment(Vec2::new(5.0, 3.0), a, b), 3.0);
+/// assert_eq!(distance_to_segment(Vec2::new(-4.0, 3.0), a, b), 5.0);
+/// assert_eq!(distance_to_segment(Vec2::new(1.0, 0.0), a, a), 1.0);
+/// ```
+pub fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+    sylva_growth::distance_to_segment(p.extend(0.0), a.extend(0.0), b.extend(0.0))
+}
+
 /// A proposed tree.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Candidate {

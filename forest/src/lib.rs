@@ -52,7 +52,7 @@ mod walk;
 
 pub use appearance::{BarkPattern, LeafShape};
 pub use composition::{ComposedDensity, Composition};
-pub use density::{Candidate, DensityModel, Rect};
+pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,

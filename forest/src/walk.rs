@@ -8,7 +8,7 @@ use sylva_base::hash::{mix, unit_f32 as unit};
 use sylva_instancing::CompactTree;
 use sylva_terrain::HeightField;
 
-use crate::density::Rect;
+use crate::density::{Rect, distance_to_segment};
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
 use sylva_base::range::check;
@@ -435,7 +435,7 @@ impl GuidedWalk {
             && self
                 .near
                 .iter()
-                .all(|&(t, r)| distance_in_plane(t, a, b) >= r + self.options.body)
+                .all(|&(t, r)| distance_to_segment(t, a, b) >= r + self.options.body)
     }
 
     /// A point near `p` clear of every trunk (p itself when it is).
@@ -468,9 +468,4 @@ impl GuidedWalk {
         self.waiting = 0;
         self.targets += 1;
     }
-}
-
-/// The distance from `p` to the segment from `a` to `b`, in the plane.
-fn distance_in_plane(p: Vec2, a: Vec2, b: Vec2) -> f32 {
-    sylva_growth::distance_to_segment(p.extend(0.0), a.extend(0.0), b.extend(0.0))
 }

@@ -1,7 +1,5 @@
 //! Brushes: what a stroke does to the paint layer's cells, and how strongly where.
 
-use glam::Vec2;
-
 use crate::error::PaintError;
 use crate::layer::{FULL, quantize_mix};
 use sylva_base::range::check;
@@ -135,12 +133,6 @@ impl Brush {
     }
 }
 
-/// The distance from `p` to the segment from `a` to `b`, in the x-z plane (the growth crate's
-/// segment distance, in the plane).
-pub(crate) fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
-    sylva_growth::distance_to_segment(p.extend(0.0), a.extend(0.0), b.extend(0.0))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -192,13 +184,5 @@ mod tests {
         assert!(b.validate().is_err());
         b.hardness = 1.0;
         assert!(b.validate().is_ok());
-    }
-
-    #[test]
-    fn segment_distance() {
-        let (a, b) = (Vec2::ZERO, Vec2::new(10.0, 0.0));
-        assert_eq!(distance_to_segment(Vec2::new(5.0, 3.0), a, b), 3.0);
-        assert_eq!(distance_to_segment(Vec2::new(-4.0, 3.0), a, b), 5.0);
-        assert_eq!(distance_to_segment(Vec2::new(1.0, 0.0), a, a), 1.0);
     }
 }

@@ -5,9 +5,9 @@ use std::sync::Arc;
 
 use glam::Vec2;
 
-use sylva_forest::{ForestBuilder, Rect};
+use sylva_forest::{ForestBuilder, Rect, distance_to_segment};
 
-use crate::brush::{Brush, distance_to_segment};
+use crate::brush::Brush;
 use crate::error::PaintError;
 use crate::layer::PaintLayer;
 
