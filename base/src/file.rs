@@ -164,6 +164,25 @@ impl AtomicFile {
         sync_folder(parent_of(&self.destination)).map_err(at)
     }
 
+    /// Writes all of `bytes` at the current position; an error names the destination.
+    pub fn put(&mut self, bytes: &[u8]) -> Result<(), FileError> {
+        self.write_all(bytes)
+            .map_err(|e| FileError::new(&self.destination, e))
+    }
+
+    /// Writes all of `bytes` at byte `offset` of the file (for layouts decided beforehand).
+    pub fn put_at(&mut self, offset: u64, bytes: &[u8]) -> Result<(), FileError> {
+        self.seek(SeekFrom::Start(offset))
+            .map_err(|e| FileError::new(&self.destination, e))?;
+        self.put(bytes)
+    }
+
+    /// The file's size so far, in bytes.
+    pub fn size(&mut self) -> Result<u64, FileError> {
+        self.seek(SeekFrom::End(0))
+            .map_err(|e| FileError::new(&self.destination, e))
+    }
+
     fn writer(&mut self) -> io::Result<&mut BufWriter<File>> {
         self.writer
             .as_mut()

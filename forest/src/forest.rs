@@ -10,13 +10,13 @@ use sylva_instancing::{
 use sylva_terrain::HeightField;
 
 use sylva_base::hash::{mix, unit_f32 as unit};
+use sylva_base::range::check;
 
 use crate::composition::Composition;
 use crate::density::{Candidate, DensityModel, Rect};
 use crate::error::ForestError;
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
-use sylva_base::range::check;
 
 /// Where on the terrain trees may stand.
 #[derive(Clone)]

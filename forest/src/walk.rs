@@ -5,13 +5,13 @@ use std::collections::HashMap;
 
 use glam::Vec2;
 use sylva_base::hash::{mix, unit_f32 as unit};
+use sylva_base::range::check;
 use sylva_instancing::CompactTree;
 use sylva_terrain::HeightField;
 
 use crate::density::{Rect, distance_to_segment};
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
-use sylva_base::range::check;
 
 /// Settings of a [`GuidedWalk`].
 #[derive(Debug, Clone, Copy, PartialEq)]

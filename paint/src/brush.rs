@@ -1,8 +1,9 @@
 //! Brushes: what a stroke does to the paint layer's cells, and how strongly where.
 
+use sylva_base::range::check;
+
 use crate::error::PaintError;
 use crate::layer::{FULL, quantize_mix};
-use sylva_base::range::check;
 
 /// Widest brush, metres.
 pub const MAX_BRUSH_RADIUS: f32 = 1000.0;

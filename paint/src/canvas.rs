@@ -4,7 +4,6 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::Vec2;
-
 use sylva_forest::{ForestBuilder, Rect, distance_to_segment};
 
 use crate::brush::Brush;

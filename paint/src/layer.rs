@@ -2,11 +2,10 @@
 
 use glam::Vec2;
 use sylva_base::hash::unit_f32 as unit;
-
+use sylva_base::range::check;
 use sylva_forest::{Composition, PatchDensity, Rect};
 
 use crate::error::PaintError;
-use sylva_base::range::check;
 
 /// Most values (cells times species) a layer may hold: 128 MB of 16-bit values.
 pub const MAX_PAINT_VALUES: usize = 1 << 26;

@@ -6,10 +6,9 @@ use std::time::{Duration, Instant};
 
 use glam::Vec2;
 use rayon::prelude::*;
+use sylva_forest::{Composition, Forest, ForestBuilder, Rect};
 use sylva_instancing::CompactTree;
 use sylva_terrain::HeightField;
-
-use sylva_forest::{Composition, Forest, ForestBuilder, Rect};
 
 use crate::brush::Brush;
 use crate::canvas::{Change, PaintCanvas};

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use serde_json::{Value, json};
+use sylva_forest::{Species, tree_tint};
 use sylva_instancing::CompactTree;
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Mesh;
@@ -11,8 +12,6 @@ use sylva_turtle::Mesh;
 use super::FLOAT;
 use super::json_glb::{Builder, write_glb_file};
 use crate::error::ExportError;
-use sylva_forest::Species;
-use sylva_forest::tree_tint;
 
 /// Writes `trees` as instances of `proxies` (one mesh per variant; a tree's variant picks
 /// it), coloured by their species (bark, leaves) and tinted per tree, over `terrain`.

@@ -3,14 +3,14 @@
 
 use std::fmt::Write as _;
 
+use sylva_forest::ForestBuilder;
+use sylva_instancing::Similarity;
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use super::shared::{self, SharedLayout};
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfOptions, Node, UNSIGNED_INT};
 use crate::error::ExportError;
-use sylva_forest::ForestBuilder;
-use sylva_instancing::Similarity;
 
 /// The JSON chunk and the binary layout, decided before any byte is written.
 #[derive(Debug)]

@@ -1,21 +1,16 @@
 //! Writing a laid-out GLB: the header and JSON chunk, the geometry and textures, then the
 //! placements chunk by chunk, each chunk gathered from one streaming pass.
 
-use std::io::{Seek, SeekFrom, Write};
 use std::path::Path;
 
+use sylva_base::file::AtomicFile;
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, Variant, tree_tint, tree_wind};
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::document::{Document, padding};
 use super::tangent::tangents;
-use sylva_base::file::{AtomicFile, FileError};
-
-use super::{Node, PLACEMENT_BYTES};
+use super::{Node, PLACEMENT_BYTES, glb_header};
 use crate::error::{ExportError, Invalid};
-use sylva_forest::PlacementBlock;
-use sylva_forest::Rect;
-use sylva_forest::{ForestBuilder, Variant};
-use sylva_forest::{tree_tint, tree_wind};
 
 /// Writes `path` whole or not at all: the GLB header, the JSON chunk and the BIN chunk
 /// header, then the binary content by `body`; returns what `body` returns.
@@ -24,25 +19,15 @@ pub(super) fn write_file(
     document: &Document,
     body: impl FnOnce(&mut AtomicFile) -> Result<usize, ExportError>,
 ) -> Result<usize, ExportError> {
-    let total = u32::try_from(document.total).map_err(|_| ExportError::TooLarge {
-        bytes: document.total as u64,
-    })?;
-    let io = FileError::at(path);
+    let header = glb_header(
+        document.total,
+        &document.json,
+        (document.bin_len > 0).then_some(document.bin_len),
+    )?;
     let mut w = AtomicFile::create(path)?;
-    w.write_all(b"glTF").map_err(&io)?;
-    w.write_all(&2u32.to_le_bytes()).map_err(&io)?;
-    w.write_all(&total.to_le_bytes()).map_err(&io)?;
-    w.write_all(&(document.json.len() as u32).to_le_bytes())
-        .map_err(&io)?;
-    w.write_all(b"JSON").map_err(&io)?;
-    w.write_all(document.json.as_bytes()).map_err(&io)?;
-    if document.bin_len > 0 {
-        w.write_all(&(document.bin_len as u32).to_le_bytes())
-            .map_err(&io)?;
-        w.write_all(b"BIN\0").map_err(&io)?;
-    }
+    w.put(&header)?;
     let passes = body(&mut w)?;
-    let end = w.seek(SeekFrom::End(0)).map_err(&io)?;
+    let end = w.size()?;
     if end != document.total as u64 {
         return Err(Invalid::Layout {
             written: end,
@@ -61,11 +46,9 @@ pub(super) fn write_geometry(
     terrain: Option<&TerrainMesh>,
     document: &Document,
 ) -> Result<(), ExportError> {
-    let destination = w.destination().to_path_buf();
-    let io = FileError::at(&destination);
     let mut written = 0usize;
     let mut put = |w: &mut AtomicFile, bytes: &[u8]| -> Result<(), ExportError> {
-        w.write_all(bytes).map_err(&io)?;
+        w.put(bytes)?;
         written += bytes.len();
         Ok(())
     };
@@ -112,8 +95,6 @@ pub(super) fn write_placements(
     total: usize,
     chunk_bytes: usize,
 ) -> Result<usize, ExportError> {
-    let destination = w.destination().to_path_buf();
-    let io = FileError::at(&destination);
     let (t_base, r_base, s_base, c_base, w_base) = (
         base,
         base + 12 * total,
@@ -170,9 +151,7 @@ pub(super) fn write_placements(
             (c_base, &c, 12),
             (w_base, &wind, 16),
         ] {
-            w.seek(SeekFrom::Start((section + first * width) as u64))
-                .map_err(&io)?;
-            w.write_all(bytemuck::cast_slice(data)).map_err(&io)?;
+            w.put_at((section + first * width) as u64, bytemuck::cast_slice(data))?;
         }
         passes += 1;
         start = end;

@@ -1,7 +1,6 @@
 //! Small GLB files assembled in memory with serde_json: grown stands and the coarse tiles of a
 //! world (tens of meshes, where the streamed writer serves millions of placements).
 
-use std::io::Write;
 use std::path::Path;
 
 use serde_json::{Value, json};
@@ -9,7 +8,9 @@ use sylva_turtle::{Mesh, Vertex};
 
 use super::document::padding;
 use super::tangent::tangents;
-use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT};
+use sylva_base::file::AtomicFile;
+
+use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, glb_header};
 use crate::error::{ExportError, Invalid};
 
 /// The binary buffer and the JSON arrays that point into it.
@@ -161,27 +162,18 @@ impl Builder {
     }
 }
 
-/// Writes the glTF JSON `doc` and the binary chunk `bin` as a GLB at `path`, under a
-/// temporary name renamed when complete. Returns the file's size.
+/// Writes the glTF JSON `doc` and the binary chunk `bin` as a GLB at `path`, whole or not at
+/// all. Returns the file's size.
 pub(super) fn write_glb_file(doc: &Value, bin: &[u8], path: &Path) -> Result<usize, ExportError> {
     let mut text = serde_json::to_string(doc).map_err(|e| Invalid::Json(e.to_string()))?;
     while !text.len().is_multiple_of(4) {
         text.push(' ');
     }
     let total = 12 + 8 + text.len() + 8 + bin.len();
-    let total32 = u32::try_from(total).map_err(|_| ExportError::TooLarge {
-        bytes: total as u64,
-    })?;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total32.to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(text.as_bytes());
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(bin);
-    sylva_base::file::write(path, |w| w.write_all(&out))?;
+    let header = glb_header(total, &text, Some(bin.len()))?;
+    let mut file = AtomicFile::create(path)?;
+    file.put(&header)?;
+    file.put(bin)?;
+    file.commit()?;
     Ok(total)
 }

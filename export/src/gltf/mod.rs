@@ -289,6 +289,28 @@ pub fn write_glb(
     })
 }
 
+/// The GLB header, the JSON chunk (`json`, already padded to a whole number of words) and,
+/// with `bin` bytes of binary content, the BIN chunk's header: everything before the binary
+/// content of a file of `total` bytes.
+fn glb_header(total: usize, json: &str, bin: Option<usize>) -> Result<Vec<u8>, ExportError> {
+    let too_large = |_| ExportError::TooLarge {
+        bytes: total as u64,
+    };
+    let total = u32::try_from(total).map_err(too_large)?;
+    let mut out = Vec::with_capacity(28 + json.len());
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&total.to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(json.as_bytes());
+    if let Some(bin) = bin {
+        out.extend_from_slice(&(bin as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+    }
+    Ok(out)
+}
+
 /// Streams `builder`'s forest of `region` into `sink`, whose own errors come back as they
 /// are (the forest's sink interface carries only forest errors).
 pub(crate) fn stream_checked(

@@ -3,17 +3,16 @@
 //! holds its instance geometry once instead of once per tile.
 
 use std::collections::HashMap;
-use std::io::Write;
 use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
+
+use sylva_base::file::{AtomicFile, FileError};
+use sylva_forest::{BarkPattern, ForestBuilder, LeafShape};
 
 use super::document::padding;
 use super::tangent::tangents;
 use crate::error::ExportError;
 use crate::texture::Texture;
-use sylva_base::file::{AtomicFile, FileError};
-use sylva_forest::ForestBuilder;
-use sylva_forest::{BarkPattern, LeafShape};
 
 /// Where one variant's buffers sit in the shared file (byte offsets).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -126,24 +125,21 @@ pub(super) fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Arc<Vec<
 /// ```
 pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usize, ExportError> {
     let layout = SharedLayout::of(builder);
-    let io = FileError::at(path);
     let mut w = AtomicFile::create(path)?;
-    {
-        let mut put = |bytes: &[u8]| -> Result<(), FileError> {
-            w.write_all(bytes).map_err(&io)?;
-            w.write_all(&[0; 3][..padding(bytes.len())]).map_err(&io)
-        };
-        for v in builder.variants() {
-            let c = &v.cache;
-            put(bytemuck::cast_slice(&c.vertices))?;
-            // Bark triangles give the tangents (the leaves' normals need none).
-            put(bytemuck::cast_slice(&tangents(&c.vertices, &c.bark)))?;
-            put(bytemuck::cast_slice(&c.bark))?;
-            put(bytemuck::cast_slice(&c.leaves))?;
-        }
-        for png in images(&layout.shapes, &layout.patterns).iter() {
-            put(png)?;
-        }
+    let mut put = |bytes: &[u8]| -> Result<(), FileError> {
+        w.put(bytes)?;
+        w.put(&[0; 3][..padding(bytes.len())])
+    };
+    for v in builder.variants() {
+        let c = &v.cache;
+        put(bytemuck::cast_slice(&c.vertices))?;
+        // Bark triangles give the tangents (the leaves' normals need none).
+        put(bytemuck::cast_slice(&tangents(&c.vertices, &c.bark)))?;
+        put(bytemuck::cast_slice(&c.bark))?;
+        put(bytemuck::cast_slice(&c.leaves))?;
+    }
+    for png in images(&layout.shapes, &layout.patterns).iter() {
+        put(png)?;
     }
     w.commit()?;
     Ok(layout.len)

@@ -4,15 +4,13 @@
 use std::path::Path;
 
 use serde_json::{Value, json};
+use sylva_forest::{BarkPattern, GrownStand, LeafShape, Species};
 use sylva_terrain::TerrainMesh;
 
 use super::json_glb::{Builder, write_glb_file};
 use super::{ARRAY_BUFFER, FLOAT};
 use crate::error::ExportError;
 use crate::texture::Texture;
-use sylva_forest::GrownStand;
-use sylva_forest::Species;
-use sylva_forest::{BarkPattern, LeafShape};
 
 /// Writes `stand` (meshed with its `species`' turtle settings) and optionally `terrain` as a
 /// binary glTF at `path`: one node per tree, bark with colour and normal textures, leaf cards

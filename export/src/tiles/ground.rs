@@ -2,9 +2,8 @@
 //! height field, so that neighbouring tiles meet edge to edge.
 
 use glam::Vec2;
-use sylva_terrain::{HeightField, TerrainMesh, TerrainVertex};
-
 use sylva_forest::Rect;
+use sylva_terrain::{HeightField, TerrainMesh, TerrainVertex};
 
 /// A mesh of `cells` x `cells` quads over `rect`, heights and normals from `terrain`, uv
 /// across `world`.

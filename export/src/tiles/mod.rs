@@ -18,16 +18,14 @@ use std::str::FromStr;
 
 use glam::Vec2;
 use serde_json::json;
-use sylva_terrain::HeightField;
-
-use sylva_forest::{Extent, ForestBuilder, Rect, tree_proxy};
-
 use sylva_base::file::FileError;
+use sylva_base::range::check;
+use sylva_forest::{Extent, ForestBuilder, Rect, tree_proxy};
+use sylva_terrain::HeightField;
 
 use crate::error::{ExportError, Invalid};
 use crate::gltf::{GltfOptions, write_coarse_glb, write_glb, write_shared_geometry};
 use ground::{height_range, tile_terrain};
-use sylva_base::range::check;
 use tileset::{bounding_box, east_north_up};
 
 /// Most tiles a world may have (fine tiles).
