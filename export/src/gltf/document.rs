@@ -9,7 +9,9 @@ use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use super::shared::{self, SharedLayout};
-use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfOptions, Node, UNSIGNED_INT};
+use super::{
+    ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfOptions, Node, UNSIGNED_INT, position_bounds,
+};
 use crate::error::ExportError;
 
 /// The JSON chunk and the binary layout, decided before any byte is written.
@@ -137,16 +139,7 @@ impl Arrays {
         positions: impl Iterator<Item = [f32; 3]>,
         tree: Option<usize>,
     ) -> String {
-        let mut lo = [f32::INFINITY; 3];
-        let mut hi = [f32::NEG_INFINITY; 3];
-        let mut count = 0;
-        for p in positions {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-            count += 1;
-        }
+        let (lo, hi, count) = position_bounds(positions);
         let position = self.accessor(view, 0, FLOAT, count, "VEC3", Some((lo, hi)));
         let normal = self.accessor(view, 12, FLOAT, count, "VEC3", None);
         let uv = self.accessor(view, 24, FLOAT, count, "VEC2", None);

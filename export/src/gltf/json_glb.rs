@@ -10,7 +10,7 @@ use super::document::padding;
 use super::tangent::tangents;
 use sylva_base::file::AtomicFile;
 
-use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, glb_header};
+use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, glb_header, position_bounds};
 use crate::error::{ExportError, Invalid};
 
 /// The binary buffer and the JSON arrays that point into it.
@@ -58,16 +58,12 @@ impl Builder {
     }
 
     /// Position (with bounds), normal and uv accessors over `vertices` of `stride` bytes.
-    pub(super) fn attributes(&mut self, view: usize, positions: &[[f32; 3]]) -> Value {
-        let mut lo = [f32::INFINITY; 3];
-        let mut hi = [f32::NEG_INFINITY; 3];
-        for p in positions {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let n = positions.len();
+    pub(super) fn attributes(
+        &mut self,
+        view: usize,
+        positions: impl IntoIterator<Item = [f32; 3]>,
+    ) -> Value {
+        let (lo, hi, n) = position_bounds(positions);
         let position = self.accessor(view, 0, FLOAT, n, "VEC3");
         self.accessors[position]["min"] = json!(lo);
         self.accessors[position]["max"] = json!(hi);
@@ -99,8 +95,7 @@ impl Builder {
             Some(stride),
             Some(ARRAY_BUFFER),
         );
-        let positions: Vec<[f32; 3]> = mesh.vertices.iter().map(|v| v.position).collect();
-        let mut attributes = self.attributes(view, &positions);
+        let mut attributes = self.attributes(view, mesh.vertices.iter().map(|v| v.position));
         let wind = self.accessor(view, 32, FLOAT, mesh.vertices.len(), "VEC4");
         let t = tangents(&mesh.vertices, &mesh.bark);
         let tview = self.view(bytemuck::cast_slice(&t), None, Some(ARRAY_BUFFER));
@@ -152,8 +147,7 @@ impl Builder {
             Some(32),
             Some(ARRAY_BUFFER),
         );
-        let positions: Vec<[f32; 3]> = terrain.vertices.iter().map(|v| v.position).collect();
-        let mut attributes = self.attributes(view, &positions);
+        let mut attributes = self.attributes(view, terrain.vertices.iter().map(|v| v.position));
         let colours = terrain.ground_colours();
         let cview = self.view(bytemuck::cast_slice(&colours), None, Some(ARRAY_BUFFER));
         attributes["COLOR_0"] = json!(self.accessor(cview, 0, FLOAT, colours.len(), "VEC3"));

@@ -289,6 +289,22 @@ pub fn write_glb(
     })
 }
 
+/// The lowest and highest corner of `positions` (glTF requires them on POSITION accessors)
+/// and how many there are.
+fn position_bounds(positions: impl IntoIterator<Item = [f32; 3]>) -> ([f32; 3], [f32; 3], usize) {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    let mut count = 0;
+    for p in positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+        count += 1;
+    }
+    (lo, hi, count)
+}
+
 /// The GLB header, the JSON chunk (`json`, already padded to a whole number of words) and,
 /// with `bin` bytes of binary content, the BIN chunk's header: everything before the binary
 /// content of a file of `total` bytes.

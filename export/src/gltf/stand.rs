@@ -8,7 +8,7 @@ use sylva_forest::{BarkPattern, GrownStand, LeafShape, Species};
 use sylva_terrain::TerrainMesh;
 
 use super::json_glb::{Builder, write_glb_file};
-use super::{ARRAY_BUFFER, FLOAT};
+use super::{ARRAY_BUFFER, FLOAT, position_bounds};
 use crate::error::ExportError;
 use crate::texture::Texture;
 
@@ -45,15 +45,7 @@ pub fn write_stand_glb(
             let points: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
             let view = b.view(bytemuck::cast_slice(&points), None, Some(ARRAY_BUFFER));
             let position = b.accessor(view, 0, FLOAT, points.len(), "VEC3");
-            let (lo, hi) = points.iter().fold(
-                ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
-                |(lo, hi), p| {
-                    (
-                        [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
-                        [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
-                    )
-                },
-            );
+            let (lo, hi, _) = position_bounds(points.iter().copied());
             b.accessors[position]["min"] = json!(lo);
             b.accessors[position]["max"] = json!(hi);
             let whole = indices.len() / 3 * 3;
