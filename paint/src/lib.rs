@@ -60,13 +60,13 @@ pub use painter::{ForestPainter, PAINT_TILE_PATCHES, StrokeReport};
 use sylva_forest::{ForestBuilder, Rect};
 use sylva_terrain::HeightField;
 
-/// `builder` painted with the masks saved in `dir` (see [`load_masks`]), stretched over
+/// The masks saved in `dir` (see [`load_masks`]) for `builder`'s species, stretched over
 /// `terrain`: one mask per species, named after it.
-pub fn with_masks(
+pub fn load_masks_for(
     builder: &ForestBuilder,
     dir: &Path,
     terrain: &dyn HeightField,
-) -> Result<ForestBuilder, PaintError> {
+) -> Result<PaintLayer, PaintError> {
     let names: Vec<&str> = builder
         .config()
         .species
@@ -74,6 +74,16 @@ pub fn with_masks(
         .map(|s| s.name.as_str())
         .collect();
     let (lo, hi) = terrain.bounds();
-    let layer = load_masks(dir, &names, Rect::new(lo, hi))?;
+    load_masks(dir, &names, Rect::new(lo, hi))
+}
+
+/// `builder` painted with the masks saved in `dir` for its species, stretched over
+/// `terrain` (see [`load_masks_for`]).
+pub fn with_masks(
+    builder: &ForestBuilder,
+    dir: &Path,
+    terrain: &dyn HeightField,
+) -> Result<ForestBuilder, PaintError> {
+    let layer = load_masks_for(builder, dir, terrain)?;
     Ok(builder.with_composition(Some(Arc::new(layer)))?)
 }

@@ -5,8 +5,7 @@ use bytemuck::{Pod, Zeroable};
 use std::sync::{Arc, PoisonError, RwLock};
 
 use sylva::forest::{
-    BarkPattern, Composition, Extent, ForestBuilder, ForestConfig, LeafShape, Rect, Species,
-    tree_proxy,
+    BarkPattern, Composition, Extent, ForestBuilder, ForestConfig, LeafShape, Species, tree_proxy,
 };
 use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
@@ -61,16 +60,21 @@ pub(crate) struct Proxy {
     pub(crate) sphere: (Vec3, f32),
 }
 
+/// The forest as it is painted: its builder, how many times it has been repainted (cells
+/// remember the version they were generated from) and the layer it is painted with (the
+/// builder holds it only as a composition, so the painting tool keeps it here to edit).
+struct Recipe {
+    builder: Arc<ForestBuilder>,
+    version: u64,
+    layer: Option<Arc<PaintLayer>>,
+}
+
 /// What never changes while the camera moves: the forest's recipe (but for the painting
 /// tool's layer), the terrain, and the geometry every placement refers to. Shared with the
 /// thread that generates cells.
 pub(crate) struct World {
-    /// The forest's recipe and how many times it has been repainted (cells remember the
-    /// version they were generated from); swapped whole when the painting tool paints.
-    forest: RwLock<(Arc<ForestBuilder>, u64)>,
-    /// The layer the forest is painted with, if any (the forest keeps it only as a
-    /// composition).
-    layer: RwLock<Option<Arc<PaintLayer>>>,
+    /// The forest's recipe; swapped whole when the painting tool paints.
+    forest: RwLock<Recipe>,
     pub(crate) heightmap: Heightmap,
     pub(crate) side: f32,
     pub(crate) variants: Vec<VariantGeometry>,
@@ -146,15 +150,8 @@ impl World {
         let heightmap = sylva::presets::terrain(options.seed, side).map_err(|e| e.to_string())?;
         let mut layer = None;
         if let Some(dir) = &options.paint {
-            let names: Vec<&str> = builder
-                .config()
-                .species
-                .iter()
-                .map(|s| s.name.as_str())
-                .collect();
-            let (lo, hi) = heightmap.bounds();
             let loaded = Arc::new(
-                sylva::paint::load_masks(dir, &names, Rect::new(lo, hi))
+                sylva::paint::load_masks_for(&builder, dir, &heightmap)
                     .map_err(|e| e.to_string())?,
             );
             let composition: Arc<dyn Composition> = loaded.clone();
@@ -223,8 +220,11 @@ impl World {
             .collect();
         let seedling = builder.variants().iter().map(|v| v.seedling).collect();
         Ok(World {
-            forest: RwLock::new((Arc::new(builder), 0)),
-            layer: RwLock::new(layer),
+            forest: RwLock::new(Recipe {
+                builder: Arc::new(builder),
+                version: 0,
+                layer,
+            }),
             heightmap,
             side,
             variants,
@@ -239,16 +239,14 @@ impl World {
 impl World {
     /// The forest's recipe as it stands, and its version.
     pub(crate) fn forest(&self) -> (Arc<ForestBuilder>, u64) {
-        let guard = self.forest.read().unwrap_or_else(PoisonError::into_inner);
-        (Arc::clone(&guard.0), guard.1)
+        let recipe = self.forest.read().unwrap_or_else(PoisonError::into_inner);
+        (Arc::clone(&recipe.builder), recipe.version)
     }
 
     /// The layer the forest is painted with, if any.
     pub(crate) fn layer(&self) -> Option<Arc<PaintLayer>> {
-        self.layer
-            .read()
-            .unwrap_or_else(PoisonError::into_inner)
-            .clone()
+        let recipe = self.forest.read().unwrap_or_else(PoisonError::into_inner);
+        recipe.layer.clone()
     }
 
     /// Paints the forest with `layer` from now on; returns the new version.
@@ -258,11 +256,11 @@ impl World {
         let painted = builder
             .with_composition(Some(composition))
             .map_err(|e| e.to_string())?;
-        *self.layer.write().unwrap_or_else(PoisonError::into_inner) = Some(layer);
-        let mut guard = self.forest.write().unwrap_or_else(PoisonError::into_inner);
-        guard.1 += 1;
-        guard.0 = Arc::new(painted);
-        Ok(guard.1)
+        let mut recipe = self.forest.write().unwrap_or_else(PoisonError::into_inner);
+        recipe.version += 1;
+        recipe.builder = Arc::new(painted);
+        recipe.layer = Some(layer);
+        Ok(recipe.version)
     }
 }
 
