@@ -19,6 +19,7 @@ mod corpus;
 mod derive;
 mod failure;
 mod forest;
+mod grammar;
 mod grow;
 mod paint;
 mod progress;

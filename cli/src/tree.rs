@@ -3,11 +3,10 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use sylva::lsys::preset;
-use sylva::turtle::{BranchShape, MeshBuilder, SymbolTable, TurtleOptions, interpret, write_obj};
+use sylva::turtle::{BranchShape, MeshBuilder, interpret, write_obj};
 
 use crate::Failure;
-use crate::derive::{grammar, presets_help};
+use crate::grammar::{GrammarArgs, presets_help};
 
 /// Branch shapes on the command line.
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -22,18 +21,8 @@ enum Shape {
 #[derive(Debug, Args)]
 #[command(after_help = presets_help())]
 pub(crate) struct TreeArgs {
-    /// A grammar file (sylva's notation, cpfg's .l or L-Py's .lpy).
-    #[arg(conflicts_with = "preset")]
-    file: Option<PathBuf>,
-    /// A bundled grammar (default abop-ternary).
-    #[arg(long, value_name = "NAME")]
-    preset: Option<String>,
-    /// Generations to derive (default: the grammar's own).
-    #[arg(long, value_name = "N")]
-    generations: Option<u32>,
-    /// Seed of stochastic productions.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
+    #[command(flatten)]
+    grammar: GrammarArgs,
     /// Turning angle in degrees (default: the grammar's).
     #[arg(long, value_name = "DEG")]
     angle: Option<f32>,
@@ -55,17 +44,8 @@ pub(crate) struct TreeArgs {
 }
 
 pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
-    let (grammar, default_generations) =
-        grammar(args.file.as_ref(), args.preset.as_deref(), "abop-ternary")?;
-    let mut options = match &args.file {
-        // cpfg models draw with cpfg's turtle.
-        Some(_) => {
-            TurtleOptions::default().with_symbols(SymbolTable::for_dialect(grammar.dialect()))
-        }
-        None => preset(args.preset.as_deref().unwrap_or("abop-ternary"))
-            .map(TurtleOptions::for_preset)
-            .unwrap_or_default(),
-    };
+    let grammar = args.grammar.load("abop-ternary")?;
+    let mut options = grammar.turtle();
     if let Some(a) = args.angle {
         options.angle = a;
     }
@@ -77,9 +57,10 @@ pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
         .with_shape(shape)
         .with_radial_segments(args.sides)
         .with_caps(args.caps);
-    let word = grammar
-        .derive(args.generations.unwrap_or(default_generations), args.seed)
-        .and_then(|w| grammar.interpretation(&w, args.seed))?;
+    let (lsystem, seed) = (&grammar.lsystem, args.grammar.seed);
+    let word = lsystem
+        .derive(grammar.generations, seed)
+        .and_then(|w| lsystem.interpretation(&w, seed))?;
     let mut builder = MeshBuilder::new(&options);
     let stats = interpret(&word, &options, &mut builder)?;
     let mesh = builder.finish();
