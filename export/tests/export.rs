@@ -1,14 +1,12 @@
 //! glTF export: well-formed files whose counts match the forest, the same bytes at any chunk
 //! size and thread count, nothing left behind on error, and the procedural textures.
 
-mod common;
-
 use std::path::Path;
 
-use common::{export_case, scratch};
 use sylva_export::{ExportError, GltfOptions, Texture, write_glb};
 use sylva_forest::{BarkPattern, LeafShape, Rect, Species};
 use sylva_terrain::glam::Vec2;
+use sylva_testkit::{export_case, scratch};
 
 #[test]
 fn exported_glb_is_well_formed_and_counts_match() {
@@ -225,7 +223,7 @@ fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
     }
     // Too many placements for nodes are refused, and nothing is written.
     let big = scratch("nodes-big");
-    let (large, ground) = (common::builder(7), common::plane(2000.0));
+    let (large, ground) = (sylva_testkit::builder(7), sylva_testkit::plane(2000.0));
     let world = Rect::new(Vec2::splat(-2000.0), Vec2::splat(2000.0));
     let e = write_glb(&large, &ground, world, None, &options, &big).unwrap_err();
     assert!(e.to_string().contains("limit"), "{e}");

@@ -1,8 +1,6 @@
 //! Worlds as tiles: a tile is the same bytes whichever process, thread or order writes it;
 //! the tileset's structure; bad tile ids and schemes.
 
-mod common;
-
 use serde_json::Value;
 use sylva_export::{
     Level, TileId, TileScheme, TilesetOptions, tile_path, write_tile, write_tileset,
@@ -19,7 +17,7 @@ fn world() -> (sylva_forest::ForestBuilder, Heightmap, TileScheme) {
         .generate()
         .unwrap();
     let scheme = TileScheme::new(Rect::new(Vec2::ZERO, Vec2::splat(240.0)), 60.0, 2).unwrap();
-    (common::builder(5), map, scheme)
+    (sylva_testkit::builder(5), map, scheme)
 }
 
 fn dir(name: &str) -> std::path::PathBuf {

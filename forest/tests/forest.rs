@@ -1,8 +1,6 @@
 //! Density management, seams, constraints, species files and bad input.
 
-mod common;
-
-use common::{builder, plane, small_species};
+use sylva_testkit::{builder, plane, small_species};
 
 use std::path::Path;
 

@@ -1,11 +1,9 @@
 //! Streamed forests: blocks tile the region, hold the whole forest, keep copies apart, and
 //! degenerate regions stream nothing.
 
-mod common;
-
-use common::{bare_species, builder, export_case, plane, small_species};
 use sylva_forest::{ForestBuilder, ForestConfig, ForestError, PlacementBlock, Rect};
 use sylva_terrain::glam::Vec2;
+use sylva_testkit::{bare_species, builder, export_case, plane, small_species};
 
 /// A streamed forest is the in-memory forest cut into blocks: the same trees and the same
 /// placements, in block order.

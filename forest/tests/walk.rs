@@ -1,8 +1,6 @@
 //! The guided walk through real forests: never through a trunk, always on the terrain, never
 //! stalled, the same walk from the same seed, and the same with trunks generated on demand.
 
-mod common;
-
 use proptest::prelude::*;
 use sylva_forest::{ForestTrunks, GuidedWalk, Rect, TrunkGrid, Trunks, WalkOptions, WalkStep};
 use sylva_terrain::HeightField;
@@ -14,8 +12,8 @@ const SEEDLING: f32 = 0.25;
 
 /// The forest's trunks as a fixed grid, and the walk's bounds.
 fn forest() -> (Vec<(Vec2, f32)>, Rect) {
-    let builder = common::builder(11);
-    let ground = common::plane(SIDE);
+    let builder = sylva_testkit::builder(11);
+    let ground = sylva_testkit::plane(SIDE);
     let (lo, hi) = ground.bounds();
     let bounds = Rect::new(lo, hi);
     let variants = builder.variants();
@@ -118,8 +116,8 @@ fn walks_are_pure_functions_of_the_seed_and_trunks_on_demand_give_the_same_walk(
     assert!(a == b);
     let c = walk(&mut grid, bounds, 9, 3000, 0.0);
     assert!(a != c);
-    let builder = common::builder(11);
-    let ground = common::plane(SIDE);
+    let builder = sylva_testkit::builder(11);
+    let ground = sylva_testkit::plane(SIDE);
     let mut on_demand = ForestTrunks::by_maturity(&builder, &ground, CANOPY, SEEDLING);
     let d = walk(&mut on_demand, bounds, 8, 3000, 0.0);
     assert!(a == d, "trunks on demand led elsewhere");

@@ -2,8 +2,6 @@
 //! painted forest streamed like a generated one, and bad input refused with the forest
 //! unchanged.
 
-mod common;
-
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -17,7 +15,7 @@ use sylva_terrain::glam::Vec2;
 const SIDE: f32 = 120.0;
 
 fn ground() -> FlatPlane {
-    common::plane(SIDE)
+    sylva_testkit::plane(SIDE)
 }
 
 fn bounds() -> Rect {
@@ -60,7 +58,7 @@ fn sorted(trees: impl Iterator<Item = CompactTree>) -> Vec<CompactTree> {
 #[test]
 fn a_stroke_grows_the_generated_forest_inside_and_nothing_outside() {
     // One species grows, so the generated forest is what full paint of it should grow.
-    let mut config = common::builder(3).config().clone();
+    let mut config = sylva_testkit::builder(3).config().clone();
     config.species[1].weight = 0.0;
     let builder = ForestBuilder::new(config).unwrap();
     let patch = builder.density().patch;
@@ -114,7 +112,7 @@ fn a_stroke_grows_the_generated_forest_inside_and_nothing_outside() {
 
 #[test]
 fn erase_removes_trees_and_undo_restores_the_exact_forest() {
-    let mut painter = painter(common::builder(5));
+    let mut painter = painter(sylva_testkit::builder(5));
     let add = hard(BrushAction::Add { species: 1 }, 30.0);
     painter
         .stroke(add, &[Vec2::new(-40.0, 0.0), Vec2::new(40.0, 0.0)])
@@ -150,7 +148,7 @@ fn erase_removes_trees_and_undo_restores_the_exact_forest() {
 
 #[test]
 fn the_species_brush_turns_trees_and_keeps_their_places() {
-    let mut painter = painter(common::builder(9));
+    let mut painter = painter(sylva_testkit::builder(9));
     painter
         .stroke(hard(BrushAction::Add { species: 0 }, 40.0), &[Vec2::ZERO])
         .unwrap();
@@ -173,7 +171,7 @@ fn the_species_brush_turns_trees_and_keeps_their_places() {
 
 #[test]
 fn saved_masks_load_and_stream_the_same_trees() {
-    let mut painter = painter(common::builder(4));
+    let mut painter = painter(sylva_testkit::builder(4));
     let mut brush = Brush::new(BrushAction::Add { species: 0 }, 25.0);
     brush.strength = 0.8;
     painter
@@ -209,7 +207,7 @@ fn saved_masks_load_and_stream_the_same_trees() {
 
 #[test]
 fn bad_strokes_and_masks_are_refused_and_change_nothing() {
-    let mut config = common::builder(2).config().clone();
+    let mut config = sylva_testkit::builder(2).config().clone();
     config.species[1].weight = 0.0;
     let mut painter = painter(ForestBuilder::new(config).unwrap());
     painter
@@ -315,7 +313,7 @@ fn bad_strokes_and_masks_are_refused_and_change_nothing() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("no masks"), "{e}");
-    let mut config = common::builder(2).config().clone();
+    let mut config = sylva_testkit::builder(2).config().clone();
     config.composition = Some(Arc::new(PaintLayer::new(bounds(), 4.0, 3).unwrap()));
     let e = ForestBuilder::new(config).unwrap_err();
     assert_eq!(
@@ -341,7 +339,7 @@ proptest! {
             1..5,
         )
     ) {
-        let builder = common::builder(6);
+        let builder = sylva_testkit::builder(6);
         let mut painter = painter(builder.clone());
         for (action, x, z, radius, strength, hardness) in strokes {
             let action = match action {
@@ -363,7 +361,7 @@ proptest! {
 
 #[test]
 fn a_full_layer_in_the_species_proportions_grows_the_generated_forest() {
-    let builder = common::builder(12);
+    let builder = sylva_testkit::builder(12);
     let weights: Vec<f32> = builder.config().species.iter().map(|s| s.weight).collect();
     let layer = PaintLayer::filled(bounds(), 1.0, &weights).unwrap();
     let unpainted = builder.trees(&ground(), bounds());
@@ -382,7 +380,7 @@ fn a_full_layer_in_the_species_proportions_grows_the_generated_forest() {
     // Past the layer's edge trees grow as unpainted; an empty layer over half the terrain
     // keeps nothing on that half.
     let half = Rect::new(Vec2::splat(-SIDE), Vec2::new(0.0, SIDE));
-    let builder = common::builder(12);
+    let builder = sylva_testkit::builder(12);
     let empty =
         ForestPainter::new(builder, ground(), PaintLayer::new(half, 1.0, 2).unwrap()).unwrap();
     assert!(empty.trees().all(|t| t.position[0] >= 0.0));

@@ -1,11 +1,15 @@
-//! Helpers shared by the forest crate's integration tests.
-#![allow(dead_code, reason = "each test file uses only some of these helpers")]
+//! Fixtures the forest, paint and export crates' integration tests share: two small species
+//! that derive and mesh in milliseconds, builders over them, flat and fractal ground, and
+//! scratch files.
+//!
+//! Test code: these unwrap, as a failing fixture should fail the test that called it.
 
 use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
 use sylva_terrain::glam::Vec2;
 use sylva_terrain::{DiamondSquare, FlatPlane, HeightField};
 
-pub(crate) fn small_species() -> Vec<Species> {
+/// A leafy tree (weight 2) and an ABOP plant, four generations each, small steps.
+pub fn small_species() -> Vec<Species> {
     let mut leafy = Species::from_preset("kenwood-leafy", 4).unwrap();
     leafy.turtle.step = 0.6;
     leafy.weight = 2.0;
@@ -14,14 +18,16 @@ pub(crate) fn small_species() -> Vec<Species> {
     vec![leafy, plant]
 }
 
-pub(crate) fn builder(seed: u64) -> ForestBuilder {
+/// A builder over [`small_species`] with 2 MiB of cache and `seed`.
+pub fn builder(seed: u64) -> ForestBuilder {
     let mut config = ForestConfig::new(small_species());
     config.budget = 2 << 20;
     config.seed = seed;
     ForestBuilder::new(config).unwrap()
 }
 
-pub(crate) fn plane(side: f32) -> FlatPlane {
+/// Flat ground at height 0 from `-side` to `side` in x and z.
+pub fn plane(side: f32) -> FlatPlane {
     FlatPlane {
         height: 0.0,
         min: Vec2::splat(-side),
@@ -29,14 +35,22 @@ pub(crate) fn plane(side: f32) -> FlatPlane {
     }
 }
 
-/// A file path in a fresh temporary directory of this test.
-pub(crate) fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("sylva-forest-test-{}-{name}", std::process::id()));
+/// A file path (`forest.glb`) in a fresh temporary directory named after the test binary,
+/// this process and `name`.
+pub fn scratch(name: &str) -> std::path::PathBuf {
+    let binary = std::env::current_exe()
+        .ok()
+        .and_then(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .unwrap_or_else(|| "test".into());
+    let dir =
+        std::env::temp_dir().join(format!("sylva-test-{binary}-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join("forest.glb")
 }
 
-pub(crate) fn export_case() -> (ForestBuilder, sylva_terrain::Heightmap, Rect) {
+/// A builder (seed 7) over a 65 x 65 fractal heightmap 3 m apart, and the heightmap's
+/// rectangle.
+pub fn export_case() -> (ForestBuilder, sylva_terrain::Heightmap, Rect) {
     let map = DiamondSquare::new(65)
         .with_spacing(3.0)
         .with_seed(1)
@@ -48,7 +62,7 @@ pub(crate) fn export_case() -> (ForestBuilder, sylva_terrain::Heightmap, Rect) {
 }
 
 /// A species whose grammar never moves the turtle: its trees draw nothing.
-pub(crate) fn bare_species() -> Species {
+pub fn bare_species() -> Species {
     let text = "name: bare\ngrammar: bare.lsys\ngenerations: 3\n";
     let dir = std::env::temp_dir().join(format!("sylva-bare-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
