@@ -73,16 +73,17 @@ struct TilesFigures {
 
 pub(crate) fn run(args: TilesArgs) -> Result<(), Failure> {
     let hidden = args.quiet || args.stats;
+    let dir = args.out.as_path();
+    // The folder and the tile id are checked before the world is built.
+    check_tileset_folder(dir)?;
+    let tile: Option<TileId> = args.tile.as_deref().map(str::parse).transpose()?;
     let world = args.world.world(hidden)?;
     let (builder, map) = (&world.builder, &world.map);
-    let dir = args.out.as_path();
     let scheme = TileScheme::new(world.region, args.tile_size, 4)?;
-    check_tileset_folder(dir)?;
     let mut options = TilesetOptions::default();
     options.origin = args.origin;
     let start = Instant::now();
-    if let Some(id) = &args.tile {
-        let id: TileId = id.parse()?;
+    if let Some(id) = tile {
         let s = write_tile(builder, map, &scheme, id, dir)?;
         if !args.quiet {
             println!(

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use clap::Args;
+use sylva::base::file::FileError;
 use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
 use sylva::terrain::glam::Vec2;
 use sylva::terrain::{HeightRange, Heightmap};
@@ -67,8 +68,29 @@ pub(crate) fn parse_pair<T: std::str::FromStr>(v: &str) -> Result<(T, T), String
 }
 
 impl WorldArgs {
-    /// Builds the caches, the terrain and, with --paint, the painted builder.
+    /// Builds the caches, the terrain and, with --paint, the painted builder. Flags and the
+    /// user's files are checked first, so a mistake is reported before seconds of hero trees.
     pub(crate) fn world(&self, quiet: bool) -> Result<World, Failure> {
+        if let Some(d) = self.density.filter(|d| !(*d > 0.0 && *d <= 10_000.0)) {
+            return Err(Failure::usage(format!(
+                "--density {d}: expected 0 < trees per hectare <= 10000"
+            )));
+        }
+        if let Some(a) = self.area.filter(|a| !(*a > 0.0 && *a <= 20_000.0)) {
+            return Err(Failure::usage(format!(
+                "--area {a}: expected a side length from 0 to 20000 metres"
+            )));
+        }
+        if let Some(n) = self.trees.filter(|n| *n == 0 || *n > 10_000_000) {
+            return Err(Failure::usage(format!(
+                "--trees {n}: expected 1 to 10000000"
+            )));
+        }
+        let budget = self
+            .budget_mb
+            .checked_mul(1 << 20)
+            .filter(|&b| b > 0)
+            .ok_or_else(|| Failure::usage("--budget-mb must be positive"))?;
         let species = if self.species.is_empty() {
             sylva::presets::species()?
         } else {
@@ -77,49 +99,36 @@ impl WorldArgs {
                 .map(Species::from_file)
                 .collect::<Result<Vec<_>, _>>()?
         };
+        let user_map = match &self.terrain {
+            Some(file) => Some(read_terrain(file, self.spacing, self.height_range)?),
+            None => None,
+        };
         let mut config = ForestConfig::new(species);
         config.seed = self.seed;
-        config.budget = self
-            .budget_mb
-            .checked_mul(1 << 20)
-            .filter(|&b| b > 0)
-            .ok_or_else(|| Failure::usage("--budget-mb must be positive"))?;
+        config.budget = budget;
         let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
             ForestBuilder::new(config)
         });
         let mut builder = builder?;
         if let Some(d) = self.density {
-            if !(d > 0.0 && d <= 10_000.0) {
-                return Err(Failure::usage(format!(
-                    "--density {d}: expected 0 < trees per hectare <= 10000"
-                )));
-            }
             builder.density_mut().patch = (10_000.0 / d).sqrt();
         }
-        let patch = builder.density().patch;
-        let side = match (self.area, self.trees) {
-            (Some(a), _) if a > 0.0 && a <= 20_000.0 => a,
-            (Some(a), _) => {
-                return Err(Failure::usage(format!(
-                    "--area {a}: expected a side length from 0 to 20000 metres"
-                )));
+        let (map, side) = match user_map {
+            Some(map) => {
+                let side = map.spacing() * (map.size() - 1) as f32;
+                (map, side)
             }
-            (None, Some(n)) if n == 0 || n > 10_000_000 => {
-                return Err(Failure::usage(format!(
-                    "--trees {n}: expected 1 to 10000000"
-                )));
+            None => {
+                let side = match (self.area, self.trees) {
+                    (Some(a), _) => a,
+                    (None, Some(n)) => (n as f32).sqrt() * builder.density().patch,
+                    (None, None) => 800.0,
+                };
+                let (map, _) = phase(quiet, "generating terrain", || {
+                    sylva::presets::terrain(self.seed, side)
+                });
+                (map?, side)
             }
-            (None, Some(n)) => (n as f32).sqrt() * patch,
-            (None, None) => 800.0,
-        };
-        let (map, _) = phase(quiet, "generating terrain", || match &self.terrain {
-            Some(file) => read_terrain(file, self.spacing, self.height_range),
-            None => Ok(sylva::presets::terrain(self.seed, side)?),
-        });
-        let map = map?;
-        let side = match &self.terrain {
-            Some(_) => map.spacing() * (map.size() - 1) as f32,
-            None => side,
         };
         if let Some(dir) = &self.paint {
             builder = sylva::paint::with_masks(&builder, dir, &map)?;
@@ -144,9 +153,7 @@ fn read_terrain(
     // A 8193 x 8193 map of 16-bit samples is 134 MB; refuse files well beyond any map.
     const MAX_BYTES: u64 = 512 << 20;
     let name = file.display();
-    let size = std::fs::metadata(file)
-        .map_err(|e| Failure::job(format!("{name}: {e}")))?
-        .len();
+    let size = std::fs::metadata(file).map_err(FileError::at(file))?.len();
     if size > MAX_BYTES {
         return Err(Failure::job(format!(
             "{name}: {size} bytes is more than the limit of {MAX_BYTES}"
@@ -166,10 +173,10 @@ fn read_terrain(
                 "{name}: a RAW heightmap needs --height-range LO,HI and --spacing M"
             ))
         })?;
-        let bytes = std::fs::read(file).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+        let bytes = std::fs::read(file).map_err(FileError::at(file))?;
         Heightmap::from_raw16(&bytes, range, spacing)
     } else {
-        let f = std::fs::File::open(file).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+        let f = std::fs::File::open(file).map_err(FileError::at(file))?;
         Heightmap::read_png16(std::io::BufReader::new(f), fallback)
     };
     let map = map.map_err(|e| Failure::job(format!("{name}: {e}")))?;
