@@ -314,6 +314,27 @@ pub fn replace_folder(
     Ok(())
 }
 
+/// The first entry of `folder` whose name `ours` does not accept, if any (none when the
+/// folder does not exist): a writer that replaces a folder's files checks with it that the
+/// folder holds nobody else's.
+///
+/// ```
+/// let dir = std::env::temp_dir().join(format!("sylva-foreign-doctest-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// std::fs::write(dir.join("oak.png"), "").unwrap();
+/// assert_eq!(sylva_base::file::foreign_entry(&dir, |n| n.ends_with(".png")), None);
+/// std::fs::write(dir.join("notes.txt"), "").unwrap();
+/// assert_eq!(sylva_base::file::foreign_entry(&dir, |n| n.ends_with(".png")).as_deref(), Some("notes.txt"));
+/// # std::fs::remove_dir_all(&dir).ok();
+/// ```
+pub fn foreign_entry(folder: &Path, ours: impl Fn(&str) -> bool) -> Option<String> {
+    std::fs::read_dir(folder)
+        .ok()?
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .find(|name| !ours(name))
+}
+
 /// Flushes every file of a folder to disk.
 fn sync_files(folder: &Path) -> io::Result<()> {
     for entry in std::fs::read_dir(folder)? {

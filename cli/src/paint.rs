@@ -81,9 +81,10 @@ fn unit(seed: u64, k: u64) -> f32 {
     ))
 }
 
+/// The median of `v`, in milliseconds.
 fn median(v: &mut [Duration]) -> f64 {
     v.sort();
-    v.get(v.len() / 2).map_or(0.0, |d| d.as_secs_f64() * 1e3)
+    v.get(v.len() / 2).copied().map_or(0.0, ms)
 }
 
 pub(crate) fn run(args: PaintArgs) -> Result<(), Failure> {
@@ -130,8 +131,8 @@ pub(crate) fn run(args: PaintArgs) -> Result<(), Failure> {
             trees_at_start,
             painter.layer().width(),
             painter.layer().depth(),
-            grown.as_secs_f64() * 1e3,
-            setup.as_secs_f64() * 1e3
+            ms(grown),
+            ms(setup)
         );
     }
 
@@ -185,7 +186,7 @@ pub(crate) fn run(args: PaintArgs) -> Result<(), Failure> {
     let out = args.out.as_path();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     save_masks(painter.layer(), &names, out)?;
-    let slowest = |v: &[Duration]| v.iter().max().map_or(0.0, |d| d.as_secs_f64() * 1e3);
+    let slowest = |v: &[Duration]| v.iter().max().copied().map_or(0.0, ms);
     let (most_move, most_stroke) = (slowest(&moves), slowest(&strokes));
     let mean_tiles = regenerated_tiles as f64 / moves.len().max(1) as f64;
     let (move_ms, stroke_ms, undo_ms) =

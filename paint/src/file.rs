@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
 
-use sylva_base::file::{FileError, previous_folder, replace_folder};
+use sylva_base::file::{FileError, foreign_entry, previous_folder, replace_folder};
 use sylva_forest::Rect;
 
 use crate::error::{MaskProblem, PaintError};
@@ -80,16 +80,11 @@ pub fn save_masks(layer: &PaintLayer, species: &[&str], dir: &Path) -> Result<()
         });
     }
     let names = file_names(species)?;
-    if let Ok(entries) = std::fs::read_dir(dir) {
-        for entry in entries.flatten() {
-            let name = entry.file_name().to_string_lossy().into_owned();
-            if !name.ends_with(".png") {
-                return Err(PaintError::NotMaskFolder {
-                    folder: dir.to_path_buf(),
-                    entry: name,
-                });
-            }
-        }
+    if let Some(entry) = foreign_entry(dir, |name| name.ends_with(".png")) {
+        return Err(PaintError::NotMaskFolder {
+            folder: dir.to_path_buf(),
+            entry,
+        });
     }
     replace_folder(dir, |folder| {
         for (s, name) in names.iter().enumerate() {

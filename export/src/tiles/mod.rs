@@ -18,7 +18,7 @@ use std::str::FromStr;
 
 use glam::Vec2;
 use serde_json::json;
-use sylva_base::file::FileError;
+use sylva_base::file::{FileError, foreign_entry};
 use sylva_base::range::check;
 use sylva_forest::{Extent, ForestBuilder, Rect, tree_proxy};
 use sylva_terrain::HeightField;
@@ -208,21 +208,16 @@ impl TileScheme {
 /// (`tileset.json`, `shared.bin`, `tiles/` and hidden files): a folder with anything else is
 /// somebody else's, and writing a world into it would mix the two.
 pub fn check_tileset_folder(dir: &Path) -> Result<(), ExportError> {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return Ok(());
+    let ours = |name: &str| {
+        matches!(name, "tileset.json" | "shared.bin" | "tiles") || name.starts_with('.')
     };
-    for entry in entries.flatten() {
-        let name = entry.file_name().to_string_lossy().into_owned();
-        if !matches!(name.as_str(), "tileset.json" | "shared.bin" | "tiles")
-            && !name.starts_with('.')
-        {
-            return Err(ExportError::NotTilesetFolder {
-                folder: dir.to_path_buf(),
-                entry: name,
-            });
-        }
+    match foreign_entry(dir, ours) {
+        Some(entry) => Err(ExportError::NotTilesetFolder {
+            folder: dir.to_path_buf(),
+            entry,
+        }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// The path of a tile's GLB in a tile folder.
