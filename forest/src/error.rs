@@ -107,10 +107,6 @@ pub enum ForestError {
         /// The most blocks a region may have ([`MAX_BLOCKS`](crate::limits::MAX_BLOCKS)).
         limit: usize,
     },
-    /// A [`PlacementSink`](crate::PlacementSink) stopped the stream; a sink that returns this
-    /// keeps its own reason (the exporters return theirs in place of this).
-    #[error("the placement sink stopped the stream")]
-    Stopped,
     /// A stand was asked for with no plantings: plant at least one tree.
     #[error("no trees to grow: plant at least one")]
     NoPlantings,

@@ -199,6 +199,43 @@ impl ForestBuilder {
         expand: &(dyn Fn(u16) -> bool + Sync),
         sink: &mut dyn PlacementSink,
     ) -> Result<StreamStats, ForestError> {
+        self.stream_with(terrain, region, expand, &mut |block| sink.block(block))
+    }
+
+    /// As [`ForestBuilder::stream_variants`], into a sink whose errors are its own: a
+    /// consumer that fails for reasons of its own (a file it writes, a placement it refuses)
+    /// stops the stream with its error, which comes back as it was.
+    ///
+    /// ```
+    /// use sylva_forest::{ForestBuilder, ForestConfig, ForestError, PlacementBlock, Rect, Species};
+    /// use sylva_terrain::{FlatPlane, glam::Vec2};
+    ///
+    /// #[derive(Debug)]
+    /// enum MyError { Forest(ForestError), Full }
+    /// impl From<ForestError> for MyError {
+    ///     fn from(e: ForestError) -> Self { MyError::Forest(e) }
+    /// }
+    ///
+    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
+    /// config.budget = 1 << 20;
+    /// let builder = ForestBuilder::new(config)?;
+    /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(400.0) };
+    /// let mut kept = 0;
+    /// let region = Rect::new(Vec2::ZERO, Vec2::splat(400.0));
+    /// let stopped = builder.stream_with(&ground, region, &|_| true, &mut |b: &PlacementBlock| {
+    ///     kept += b.placements.len();
+    ///     if kept > 1000 { Err(MyError::Full) } else { Ok(()) }
+    /// });
+    /// assert!(matches!(stopped, Err(MyError::Full)));
+    /// # Ok::<(), ForestError>(())
+    /// ```
+    pub fn stream_with<E: From<ForestError>>(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        region: Rect,
+        expand: &(dyn Fn(u16) -> bool + Sync),
+        sink: &mut dyn FnMut(&PlacementBlock) -> Result<(), E>,
+    ) -> Result<StreamStats, E> {
         let blocks = self.blocks(region)?;
         let wave = rayon::current_num_threads().max(1) * 2;
         let mut stats = StreamStats::default();
@@ -225,7 +262,7 @@ impl ForestBuilder {
                     })
                     .count();
                 stats.placements += block.placements.len();
-                sink.block(&block)?;
+                sink(&block)?;
             }
         }
         Ok(stats)

@@ -27,7 +27,7 @@ use std::path::Path;
 use sylva_terrain::{HeightField, TerrainMesh};
 use sylva_turtle::Vertex;
 
-use sylva_forest::{ForestBuilder, ForestError, PlacementBlock, Rect, StreamStats};
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats};
 
 use crate::error::{ExportError, Invalid};
 use document::Document;
@@ -180,20 +180,25 @@ pub fn write_glb(
         .iter()
         .map(|v| vec![0; v.cache.instances.len()])
         .collect();
-    let counted = stream_checked(builder, terrain, region, |block: &PlacementBlock| {
-        for p in &block.placements {
-            let t = &p.transform;
-            if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
-                return Err(Invalid::Transform(format!("{t:?}")).into());
+    let counted = builder.stream_with::<ExportError>(
+        terrain,
+        region,
+        &|_| true,
+        &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let t = &p.transform;
+                if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
+                    return Err(Invalid::Transform(format!("{t:?}")).into());
+                }
+                let slot = counts
+                    .get_mut(p.variant as usize)
+                    .and_then(|c| c.get_mut(p.instance as usize))
+                    .ok_or(Invalid::UnknownInstance)?;
+                *slot = slot.saturating_add(1);
             }
-            let slot = counts
-                .get_mut(p.variant as usize)
-                .and_then(|c| c.get_mut(p.instance as usize))
-                .ok_or(Invalid::UnknownInstance)?;
-            *slot = slot.saturating_add(1);
-        }
-        Ok(())
-    })?;
+            Ok(())
+        },
+    )?;
 
     // The layout: which instances become nodes, and where every byte goes.
     let mut nodes = Vec::new();
@@ -325,27 +330,6 @@ fn glb_header(total: usize, json: &str, bin: Option<usize>) -> Result<Vec<u8>, E
         out.extend_from_slice(b"BIN\0");
     }
     Ok(out)
-}
-
-/// Streams `builder`'s forest of `region` into `sink`, whose own errors come back as they
-/// are (the forest's sink interface carries only forest errors).
-pub(crate) fn stream_checked(
-    builder: &ForestBuilder,
-    terrain: &(dyn HeightField + Sync),
-    region: Rect,
-    mut sink: impl FnMut(&PlacementBlock) -> Result<(), ExportError>,
-) -> Result<StreamStats, ExportError> {
-    let mut failure = None;
-    let streamed = builder.stream(terrain, region, &mut |block: &PlacementBlock| {
-        sink(block).map_err(|e| {
-            failure = Some(e);
-            ForestError::Stopped
-        })
-    });
-    match (streamed, failure) {
-        (_, Some(e)) => Err(e),
-        (streamed, None) => Ok(streamed?),
-    }
 }
 
 /// Every vertex finite with a unit normal, every index in range.
