@@ -100,6 +100,13 @@ fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
     };
     let (one_pass, reference) = write("one", 1, usize::MAX);
     assert_eq!(one_pass, 2);
+    // Known answer: the bytes of this seed's file. A change here is a change of format (or of
+    // the forest); say which in the commit.
+    assert_eq!(
+        (reference.len(), fnv1a(&reference)),
+        (3_430_800, 11_934_041_987_395_898_706),
+        "the pinned file changed"
+    );
     let (passes, chunked) = write("chunked", 1, 4096);
     assert!(passes > 10, "{passes} passes");
     assert!(chunked == reference, "chunked writing changed the file");
@@ -228,4 +235,11 @@ fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
     let e = write_glb(&large, &ground, world, None, &options, &big).unwrap_err();
     assert!(e.to_string().contains("limit"), "{e}");
     assert!(!big.exists());
+}
+
+/// FNV-1a, 64 bits: a pin for a file's bytes.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
 }

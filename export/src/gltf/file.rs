@@ -7,7 +7,8 @@ use sylva_base::file::AtomicFile;
 use sylva_forest::{ForestBuilder, PlacementBlock, Rect, Variant, tree_tint, tree_wind};
 use sylva_terrain::{HeightField, TerrainMesh};
 
-use super::document::{Document, padding};
+use super::builder::padding;
+use super::document::Document;
 use super::tangent::tangents;
 use super::{Node, PLACEMENT_BYTES, glb_header};
 use crate::error::{ExportError, Invalid};

@@ -10,10 +10,12 @@
 //! complete ([`sylva_base::file::AtomicFile`]), so an error (a bad path, a full disk) never
 //! leaves a half-written file.
 
+mod builder;
 mod coarse;
 mod document;
 mod file;
-mod json_glb;
+mod in_memory;
+mod schema;
 mod shared;
 mod stand;
 mod tangent;

@@ -9,7 +9,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use sylva_base::file::{AtomicFile, FileError};
 use sylva_forest::{BarkPattern, ForestBuilder, LeafShape};
 
-use super::document::padding;
+use super::builder::padding;
 use super::tangent::tangents;
 use crate::error::ExportError;
 use crate::texture::Texture;

@@ -1,0 +1,320 @@
+//! One way to build a glTF document: views, accessors, attributes, materials, meshes and
+//! nodes added to a typed [`Root`], and the length of the GLB's own buffer so far. The
+//! streamed writer lays out sections it writes later; [`InMemory`](super::in_memory::InMemory)
+//! appends their bytes as it goes.
+
+use super::schema::{
+    Accessor, Attributes, Buffer, BufferView, GPU_INSTANCING, GpuInstancing, Image,
+    InstanceAttributes, Material, Mesh, Node, NodeExtensions, Pbr, Primitive, Root, Sampler, Scene,
+    Texture, TextureRef,
+};
+use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, position_bounds};
+use crate::error::{ExportError, Invalid};
+
+/// Zero bytes that bring `len` to a whole number of 4-byte words.
+pub(super) fn padding(len: usize) -> usize {
+    (4 - len % 4) % 4
+}
+
+/// A glTF document being assembled.
+#[derive(Debug, Default)]
+pub(super) struct DocumentBuilder {
+    pub(super) root: Root,
+    /// Bytes of buffer 0 (the GLB's BIN chunk) laid out so far, a whole number of words.
+    pub(super) bin_len: usize,
+}
+
+/// Where the four buffers of a tree mesh are: one vertex view (positions, normals, uvs, wind),
+/// the tangents, and the bark and leaf indices (none when empty).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TreeViews {
+    pub(super) vertices: usize,
+    pub(super) tangents: usize,
+    pub(super) bark: Option<usize>,
+    pub(super) leaves: Option<usize>,
+}
+
+impl DocumentBuilder {
+    /// Reserves `len` bytes at the end of buffer 0, padded to a word; returns their offset.
+    pub(super) fn reserve(&mut self, len: usize) -> usize {
+        let at = self.bin_len;
+        self.bin_len += len + padding(len);
+        at
+    }
+
+    /// A view of `len` new bytes at the end of buffer 0.
+    pub(super) fn view(&mut self, len: usize, stride: Option<u32>, target: Option<u32>) -> usize {
+        let at = self.reserve(len);
+        self.view_in(0, at, len, stride, target)
+    }
+
+    /// A view into `buffer`: 0 is the GLB's own, 1 the shared geometry file of a world.
+    pub(super) fn view_in(
+        &mut self,
+        buffer: usize,
+        offset: usize,
+        length: usize,
+        stride: Option<u32>,
+        target: Option<u32>,
+    ) -> usize {
+        self.root.buffer_views.push(BufferView {
+            buffer,
+            byte_offset: offset,
+            byte_length: length,
+            byte_stride: stride,
+            target,
+        });
+        self.root.buffer_views.len() - 1
+    }
+
+    /// An accessor of `count` elements of `kind` (`"VEC3"`, …) at `offset` in `view`.
+    pub(super) fn accessor(
+        &mut self,
+        view: usize,
+        offset: usize,
+        component: u32,
+        count: usize,
+        kind: &'static str,
+    ) -> usize {
+        self.root.accessors.push(Accessor {
+            buffer_view: view,
+            byte_offset: offset,
+            component_type: component,
+            count,
+            kind,
+            min: None,
+            max: None,
+        });
+        self.root.accessors.len() - 1
+    }
+
+    /// A float VEC3 accessor of `positions` in `view` at `offset`, with the bounds glTF asks
+    /// of positions.
+    pub(super) fn positions(
+        &mut self,
+        view: usize,
+        offset: usize,
+        positions: impl IntoIterator<Item = [f32; 3]>,
+    ) -> usize {
+        let (lo, hi, count) = position_bounds(positions);
+        let a = self.accessor(view, offset, FLOAT, count, "VEC3");
+        self.root.accessors[a].min = Some(lo);
+        self.root.accessors[a].max = Some(hi);
+        a
+    }
+
+    /// `count` indices at `offset` bytes into `view`.
+    pub(super) fn indices(&mut self, view: usize, offset: usize, count: usize) -> usize {
+        self.accessor(view, offset, UNSIGNED_INT, count, "SCALAR")
+    }
+
+    /// An index view of `len` bytes at `offset` in `buffer`, none when empty.
+    pub(super) fn index_view(&mut self, buffer: usize, offset: usize, len: usize) -> Option<usize> {
+        (len > 0).then(|| self.view_in(buffer, offset, len, None, Some(ELEMENT_ARRAY_BUFFER)))
+    }
+
+    /// Position (with bounds), normal and uv accessors over interleaved vertices that start
+    /// with those three (terrain vertices, 32 bytes).
+    fn surface_attributes(
+        &mut self,
+        view: usize,
+        positions: impl Iterator<Item = [f32; 3]>,
+    ) -> Attributes {
+        let position = self.positions(view, 0, positions);
+        let count = self.root.accessors[position].count;
+        Attributes {
+            position,
+            normal: Some(self.accessor(view, 12, FLOAT, count, "VEC3")),
+            uv: Some(self.accessor(view, 24, FLOAT, count, "VEC2")),
+            ..Attributes::default()
+        }
+    }
+
+    /// The attributes of tree vertices (48 bytes): the surface's three, then `_WIND`
+    /// ([`sylva_turtle::Vertex::wind`], after the uv) and the `TANGENT`s in their own view.
+    pub(super) fn tree_attributes(
+        &mut self,
+        views: TreeViews,
+        positions: impl Iterator<Item = [f32; 3]>,
+    ) -> Attributes {
+        let mut attributes = self.surface_attributes(views.vertices, positions);
+        let count = self.root.accessors[attributes.position].count;
+        attributes.wind = Some(self.accessor(views.vertices, 32, FLOAT, count, "VEC4"));
+        attributes.tangent = Some(self.accessor(views.tangents, 0, FLOAT, count, "VEC4"));
+        attributes
+    }
+
+    /// The terrain's mesh and node: its vertices (32 bytes each) in `vertices`, `indices`
+    /// indices in `index_view`, and its ground colours by slope and altitude as `COLOR_0`
+    /// (`colours` of them in `colour_view`), drawn with `material`.
+    pub(super) fn terrain(
+        &mut self,
+        vertices: usize,
+        positions: impl Iterator<Item = [f32; 3]>,
+        (index_view, indices): (Option<usize>, usize),
+        (colour_view, colours): (usize, usize),
+        material: usize,
+    ) {
+        let mut attributes = self.surface_attributes(vertices, positions);
+        let indices = index_view.map(|v| self.indices(v, 0, indices));
+        attributes.colour = Some(self.accessor(colour_view, 0, FLOAT, colours, "VEC3"));
+        let mesh = self.mesh(
+            "terrain".into(),
+            vec![Primitive {
+                attributes,
+                indices,
+                material,
+            }],
+        );
+        self.root.nodes.push(Node::of_mesh("terrain", mesh));
+    }
+
+    /// A dielectric material of `colour`, over `texture` when given, with a tangent-space
+    /// normal texture when given. A leaf card is double-sided, its texture's alpha cut at one
+    /// half.
+    pub(super) fn material(
+        &mut self,
+        name: String,
+        colour: [f32; 3],
+        roughness: f32,
+        (texture, normal): (Option<usize>, Option<usize>),
+        leaf_card: bool,
+    ) -> usize {
+        let [r, g, b] = colour;
+        self.root.materials.push(Material {
+            name,
+            pbr_metallic_roughness: Pbr {
+                base_color_factor: Some([r, g, b, 1.0]),
+                base_color_texture: texture.map(|index| TextureRef { index }),
+                metallic_factor: 0.0,
+                roughness_factor: roughness,
+            },
+            normal_texture: normal.map(|index| TextureRef { index }),
+            alpha_mode: leaf_card.then_some("MASK"),
+            alpha_cutoff: leaf_card.then_some(0.5),
+            double_sided: leaf_card,
+        });
+        self.root.materials.len() - 1
+    }
+
+    /// A mesh; returns its index.
+    pub(super) fn mesh(&mut self, name: String, primitives: Vec<Primitive>) -> usize {
+        self.root.meshes.push(Mesh { name, primitives });
+        self.root.meshes.len() - 1
+    }
+
+    /// A node drawing `mesh` once per element of the instancing accessors: translation,
+    /// rotation, scale, tint and (when given) wind.
+    pub(super) fn instanced_node(
+        &mut self,
+        name: String,
+        mesh: usize,
+        [translation, rotation, scale, colour]: [usize; 4],
+        wind: Option<usize>,
+    ) {
+        self.root.nodes.push(Node {
+            name: Some(name),
+            mesh: Some(mesh),
+            extensions: Some(NodeExtensions {
+                gpu_instancing: GpuInstancing {
+                    attributes: InstanceAttributes {
+                        translation,
+                        rotation,
+                        scale,
+                        colour,
+                        wind,
+                    },
+                },
+            }),
+            ..Node::default()
+        });
+    }
+
+    /// PNG images stored in buffer views, each a texture of its own: `(view, tiled)`, with
+    /// sampler 0 (edges clamped, for leaf cards) or when `tiled` 1 (repeated, for bark).
+    pub(super) fn images(&mut self, views: impl IntoIterator<Item = (usize, bool)>) {
+        for (buffer_view, tiled) in views {
+            self.root.images.push(Image {
+                buffer_view,
+                mime_type: "image/png",
+            });
+            self.root.textures.push(Texture {
+                sampler: usize::from(tiled),
+                source: self.root.images.len() - 1,
+            });
+        }
+        if !self.root.images.is_empty() {
+            self.root.samplers = Sampler::clamped_and_repeated();
+        }
+    }
+
+    /// Adds buffer 0 when anything was laid out in it (at least `min` bytes long, so that a
+    /// file with a second buffer always has a first).
+    pub(super) fn own_buffer(&mut self, min: usize) {
+        if self.bin_len > 0 || min > 0 {
+            self.root.buffers.push(Buffer {
+                uri: None,
+                byte_length: self.bin_len.max(min),
+            });
+        }
+    }
+
+    /// The JSON chunk: one scene of every node, `EXT_mesh_gpu_instancing` declared when a
+    /// node uses it, padded with spaces to a whole number of words.
+    pub(super) fn into_json(mut self) -> Result<String, ExportError> {
+        self.root.scenes = vec![Scene {
+            nodes: (0..self.root.nodes.len()).collect(),
+        }];
+        if self.root.nodes.iter().any(|n| n.extensions.is_some()) {
+            self.root.extensions_used.push(GPU_INSTANCING.into());
+        }
+        let mut json =
+            serde_json::to_string(&self.root).map_err(|e| Invalid::Json(e.to_string()))?;
+        json.extend(std::iter::repeat_n(' ', padding(json.len())));
+        Ok(json)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The JSON text of a small document, key for key: absent options and empty arrays left
+    /// out, the chunk padded to a word.
+    #[test]
+    fn a_small_document_serialises_as_the_schema_asks() {
+        let mut d = DocumentBuilder::default();
+        let view = d.view(6, None, Some(ELEMENT_ARRAY_BUFFER));
+        assert_eq!(d.bin_len, 8, "views are padded to words");
+        let indices = d.indices(view, 0, 3);
+        let positions = d.view(36, Some(12), None);
+        let position = d.positions(positions, 0, [[0.0, 1.0, 0.5], [2.0, -1.0, 0.0], [1.0; 3]]);
+        let material = d.material("leaf".into(), [0.5, 0.25, 1.0], 0.9, (Some(0), None), true);
+        let attributes = Attributes {
+            position,
+            ..Attributes::default()
+        };
+        let primitives = vec![Primitive {
+            attributes,
+            indices: Some(indices),
+            material,
+        }];
+        let mesh = d.mesh("card".into(), primitives);
+        d.instanced_node("cards".into(), mesh, [1, 1, 1, 1], None);
+        d.own_buffer(0);
+        let json = d.into_json().unwrap();
+        assert_eq!(json.len() % 4, 0);
+        assert_eq!(
+            json.trim_end(),
+            concat!(
+                r#"{"asset":{"version":"2.0","generator":"sylva"},"scene":0,"scenes":[{"nodes":[0]}],"#,
+                r#""nodes":[{"name":"cards","mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":1,"ROTATION":1,"SCALE":1,"_COLOR_0":1}}}}],"#,
+                r#""meshes":[{"name":"card","primitives":[{"attributes":{"POSITION":1},"indices":0,"material":0}]}],"#,
+                r#""materials":[{"name":"leaf","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,1.0,1.0],"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":0.9},"alphaMode":"MASK","alphaCutoff":0.5,"doubleSided":true}],"#,
+                r#""accessors":[{"bufferView":0,"byteOffset":0,"componentType":5125,"count":3,"type":"SCALAR"},{"bufferView":1,"byteOffset":0,"componentType":5126,"count":3,"type":"VEC3","min":[0.0,-1.0,0.0],"max":[2.0,1.0,1.0]}],"#,
+                r#""bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":6,"target":34963},{"buffer":0,"byteOffset":8,"byteLength":36,"byteStride":12}],"#,
+                r#""buffers":[{"byteLength":44}],"extensionsUsed":["EXT_mesh_gpu_instancing"]}"#
+            )
+        );
+    }
+}
