@@ -63,158 +63,295 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     sink: &mut S,
 ) -> Result<InterpretStats, TurtleError> {
     let table = options.symbols.resolve(word.alphabet());
-    let mut stats = InterpretStats::default();
-    let mut state = State {
-        frame: Frame::IDENTITY,
-        width: sanitize_width(options.width),
-        step: options.step,
-        angle: options.angle.to_radians(),
-        last: None,
-        same_axis: false,
-        last_radius: 0.0,
-        depth: 0,
-        tropism: options.tropism,
-        colour: 0,
-    };
-    let mut stack: Vec<State> = Vec::new();
-    let mut polygons: Vec<Vec<Vec3>> = Vec::new();
-    // The control points of the generalized cylinder being traced, and the frame it
-    // started with.
-    let mut curve: Option<(Vec<(Vec3, f32)>, Frame)> = None;
-    // The step, width and scale before each open sub-L-system (cpfg's `?(id, scale)` ...
-    // `$`), and the scale in force: explicit lengths are multiplied by it.
-    let mut sub_scales: Vec<(f32, f32, f32)> = Vec::new();
-    let mut scale = 1.0f32;
-    let mut next_id = 0u32;
-    sink.begin();
+    let mut turtle = Turtle::new(options, sink);
+    turtle.sink.begin();
     for (index, module) in word.iter().enumerate() {
         let Some(command) = table.get(module.id.index()).copied().flatten() else {
             continue;
         };
-        let arg = |k: usize| -> Result<Option<f32>, TurtleError> {
-            match module.params.get(k) {
-                None => Ok(None),
-                Some(&v) if v.is_finite() && v.abs() <= f64::from(MAX_COORDINATE) => {
-                    Ok(Some(v as f32))
-                }
-                Some(&v) => Err(TurtleError::OutOfRange {
-                    index,
-                    symbol: module.symbol,
-                    value: v,
-                }),
-            }
+        let args = Args {
+            params: module.params,
+            index,
+            symbol: module.symbol,
         };
         match command {
-            Command::Draw | Command::Move => {
-                let length = arg(0)?.map_or(state.step, |l| l * options.length_unit * scale);
-                let start = state.frame;
-                state.frame.position += state.frame.heading() * length;
-                let reach = state.frame.position.abs().max_element();
-                if reach.is_nan() || reach > MAX_COORDINATE {
-                    return Err(TurtleError::OutOfRange {
-                        index,
-                        symbol: module.symbol,
-                        value: f64::from(length),
-                    });
-                }
-                if curve.is_some() {
-                    // Inside a generalized cylinder the turtle only moves; the tube comes
-                    // from the control points.
-                } else if let Some(poly) = polygons.last_mut() {
-                    // Inside a polygon, moves trace its outline instead of drawing branches.
-                    if poly.is_empty() {
-                        poly.push(start.position);
-                    }
-                    poly.push(state.frame.position);
-                } else if command == Command::Draw {
-                    let radius = (state.width * 0.5).max(options.min_radius);
-                    let continues = state.same_axis && state.last.is_some();
-                    let start_radius = match (continues, options.shape) {
-                        (true, crate::BranchShape::Frustum) => state.last_radius,
-                        _ => radius,
-                    };
-                    let segment = Segment {
-                        id: next_id,
-                        parent: state.last,
-                        continues_parent: continues,
-                        frame: start,
-                        length,
-                        start_radius,
-                        end_radius: radius,
-                        depth: state.depth,
-                    };
-                    sink.segment(&segment);
-                    state.last = Some(next_id);
-                    state.same_axis = true;
-                    state.last_radius = radius;
-                    next_id = next_id.saturating_add(1);
-                    stats.segments += 1;
-                } else {
-                    end_axis(&mut state, sink);
-                }
-                if let Some(t) = state.tropism {
-                    state
-                        .frame
-                        .bend_towards(t.direction.normalize_or_zero(), t.susceptibility);
-                }
+            Command::Draw | Command::Move => turtle.advance(args, command == Command::Draw)?,
+            Command::Yaw(_)
+            | Command::Pitch(_)
+            | Command::Roll(_)
+            | Command::TurnAround
+            | Command::RollToHorizontal => turtle.turn(command, args)?,
+            Command::Push => turtle.push(index)?,
+            Command::Pop => turtle.pop(index)?,
+            Command::Width | Command::ScaleLength | Command::ScaleAngle => {
+                turtle.scale(command, args)?;
             }
-            Command::Yaw(sign) => state.frame.yaw(sign.factor() * angle(arg(0)?, state.angle)),
-            Command::Pitch(sign) => state
+            Command::PolygonStart | Command::PolygonVertex | Command::PolygonEnd => {
+                turtle.polygon(command, index)?;
+            }
+            Command::Leaf | Command::Sphere | Command::Disc => turtle.organ(command, args)?,
+            Command::Marker => {
+                turtle
+                    .sink
+                    .marker(module.symbol, module.params, &turtle.state.frame);
+                turtle.stats.markers += 1;
+            }
+            Command::Query => turtle.sink.query(index, &turtle.state.frame),
+            Command::CurveStart | Command::CurvePoint | Command::CurveEnd => turtle.curve(command),
+            Command::Colour(sign) => turtle.colour(sign, args)?,
+            Command::SubStart => turtle.sub_start(args)?,
+            Command::SubEnd => turtle.sub_end(),
+            Command::TropismDirection | Command::TropismSusceptibility => {
+                turtle.tropism(command, args)?;
+            }
+            Command::Ignore => {}
+        }
+    }
+    Ok(turtle.finish())
+}
+
+/// One module's actual parameters, with where it is for errors.
+#[derive(Debug, Clone, Copy)]
+struct Args<'a> {
+    params: &'a [f64],
+    index: usize,
+    symbol: char,
+}
+
+impl Args<'_> {
+    /// Parameter `k` as a length or angle: none when absent, an error when not finite or
+    /// beyond [`MAX_COORDINATE`].
+    fn get(&self, k: usize) -> Result<Option<f32>, TurtleError> {
+        match self.params.get(k) {
+            None => Ok(None),
+            Some(&v) if v.is_finite() && v.abs() <= f64::from(MAX_COORDINATE) => Ok(Some(v as f32)),
+            Some(&v) => Err(self.out_of_range(v)),
+        }
+    }
+
+    fn out_of_range(&self, value: f64) -> TurtleError {
+        TurtleError::OutOfRange {
+            index: self.index,
+            symbol: self.symbol,
+            value,
+        }
+    }
+}
+
+/// The turtle walking a word: its state, the branches it will return to, the open polygons,
+/// curve and sub-L-systems, and what it emitted so far.
+struct Turtle<'o, 's, S: GeometrySink + ?Sized> {
+    options: &'o TurtleOptions,
+    sink: &'s mut S,
+    state: State,
+    stack: Vec<State>,
+    polygons: Vec<Vec<Vec3>>,
+    /// The control points of the generalized cylinder being traced, and the frame it
+    /// started with.
+    curve: Option<(Vec<(Vec3, f32)>, Frame)>,
+    /// The step, width and scale before each open sub-L-system (cpfg's `?(id, scale)` ...
+    /// `$`).
+    sub_scales: Vec<(f32, f32, f32)>,
+    /// The scale in force: explicit lengths are multiplied by it.
+    scale: f32,
+    next_id: u32,
+    stats: InterpretStats,
+}
+
+impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
+    fn new(options: &'o TurtleOptions, sink: &'s mut S) -> Self {
+        Turtle {
+            options,
+            sink,
+            state: State {
+                frame: Frame::IDENTITY,
+                width: sanitize_width(options.width),
+                step: options.step,
+                angle: options.angle.to_radians(),
+                last: None,
+                same_axis: false,
+                last_radius: 0.0,
+                depth: 0,
+                tropism: options.tropism,
+                colour: 0,
+            },
+            stack: Vec::new(),
+            polygons: Vec::new(),
+            curve: None,
+            sub_scales: Vec::new(),
+            scale: 1.0,
+            next_id: 0,
+            stats: InterpretStats::default(),
+        }
+    }
+
+    /// Ends the open axes (this path's and every unclosed branch's) and the sink.
+    fn finish(mut self) -> InterpretStats {
+        end_axis(&mut self.state, self.sink);
+        while let Some(mut saved) = self.stack.pop() {
+            end_axis(&mut saved, self.sink);
+        }
+        self.sink.end();
+        self.stats
+    }
+
+    /// The radius of a branch drawn now.
+    fn radius(&self) -> f32 {
+        (self.state.width * 0.5).max(self.options.min_radius)
+    }
+
+    /// An error if `open` more of something would pass the nesting limit.
+    fn check_depth(&self, open: usize, index: usize) -> Result<(), TurtleError> {
+        if open >= self.options.max_depth {
+            return Err(TurtleError::TooDeep {
+                index,
+                limit: self.options.max_depth,
+            });
+        }
+        Ok(())
+    }
+
+    /// `F` and `f`: a step forward (parameter: its length), drawing a segment when `draw`,
+    /// tracing a polygon's outline inside one, only moving inside a generalized cylinder;
+    /// then bent by the tropism in force.
+    fn advance(&mut self, args: Args, draw: bool) -> Result<(), TurtleError> {
+        let length = args.get(0)?.map_or(self.state.step, |l| {
+            l * self.options.length_unit * self.scale
+        });
+        let start = self.state.frame;
+        self.state.frame.position += self.state.frame.heading() * length;
+        let reach = self.state.frame.position.abs().max_element();
+        if reach.is_nan() || reach > MAX_COORDINATE {
+            return Err(args.out_of_range(f64::from(length)));
+        }
+        if self.curve.is_some() {
+            // Inside a generalized cylinder the turtle only moves; the tube comes from the
+            // control points.
+        } else if let Some(poly) = self.polygons.last_mut() {
+            // Inside a polygon, moves trace its outline instead of drawing branches.
+            if poly.is_empty() {
+                poly.push(start.position);
+            }
+            poly.push(self.state.frame.position);
+        } else if draw {
+            self.draw(start, length);
+        } else {
+            end_axis(&mut self.state, self.sink);
+        }
+        if let Some(t) = self.state.tropism {
+            self.state
                 .frame
-                .pitch(sign.factor() * angle(arg(0)?, state.angle)),
-            Command::Roll(sign) => state
-                .frame
-                .roll(sign.factor() * angle(arg(0)?, state.angle)),
-            Command::TurnAround => state.frame.yaw(std::f32::consts::PI),
-            Command::RollToHorizontal => state.frame.roll_to_horizontal(),
-            Command::Push => {
-                if stack.len() >= options.max_depth {
-                    return Err(TurtleError::TooDeep {
-                        index,
-                        limit: options.max_depth,
-                    });
-                }
-                stack.push(state);
-                state.same_axis = false;
-                state.depth += 1;
-                stats.max_depth = stats.max_depth.max(state.depth);
-            }
-            Command::Pop => {
-                let Some(saved) = stack.pop() else {
-                    return Err(TurtleError::UnbalancedPop { index });
-                };
-                end_axis(&mut state, sink);
-                if saved.colour != state.colour {
-                    sink.colour(saved.colour);
-                }
-                state = saved;
-            }
+                .bend_towards(t.direction.normalize_or_zero(), t.susceptibility);
+        }
+        Ok(())
+    }
+
+    /// A segment of `length` from `start`, continuing the axis of the last one when nothing
+    /// branched off between them.
+    fn draw(&mut self, start: Frame, length: f32) {
+        let radius = self.radius();
+        let continues = self.state.same_axis && self.state.last.is_some();
+        let start_radius = match (continues, self.options.shape) {
+            (true, crate::BranchShape::Frustum) => self.state.last_radius,
+            _ => radius,
+        };
+        self.sink.segment(&Segment {
+            id: self.next_id,
+            parent: self.state.last,
+            continues_parent: continues,
+            frame: start,
+            length,
+            start_radius,
+            end_radius: radius,
+            depth: self.state.depth,
+        });
+        self.state.last = Some(self.next_id);
+        self.state.same_axis = true;
+        self.state.last_radius = radius;
+        self.next_id = self.next_id.saturating_add(1);
+        self.stats.segments += 1;
+    }
+
+    /// The rotations: yaw, pitch and roll by the parameter (degrees) or the angle in force,
+    /// turning around, rolling level.
+    fn turn(&mut self, command: Command, args: Args) -> Result<(), TurtleError> {
+        let by = |sign: Sign| -> Result<f32, TurtleError> {
+            Ok(sign.factor() * angle(args.get(0)?, self.state.angle))
+        };
+        match command {
+            Command::Yaw(sign) => self.state.frame.yaw(by(sign)?),
+            Command::Pitch(sign) => self.state.frame.pitch(by(sign)?),
+            Command::Roll(sign) => self.state.frame.roll(by(sign)?),
+            Command::TurnAround => self.state.frame.yaw(std::f32::consts::PI),
+            Command::RollToHorizontal => self.state.frame.roll_to_horizontal(),
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `[`: a branch starts; the state is kept to return to.
+    fn push(&mut self, index: usize) -> Result<(), TurtleError> {
+        self.check_depth(self.stack.len(), index)?;
+        self.stack.push(self.state);
+        self.state.same_axis = false;
+        self.state.depth += 1;
+        self.stats.max_depth = self.stats.max_depth.max(self.state.depth);
+        Ok(())
+    }
+
+    /// `]`: the branch ends; back to the state at its `[`, and its colour.
+    fn pop(&mut self, index: usize) -> Result<(), TurtleError> {
+        let Some(saved) = self.stack.pop() else {
+            return Err(TurtleError::UnbalancedPop { index });
+        };
+        end_axis(&mut self.state, self.sink);
+        if saved.colour != self.state.colour {
+            self.sink.colour(saved.colour);
+        }
+        self.state = saved;
+        Ok(())
+    }
+
+    /// `!`, `"` and `;`-like scalings: the width set (parameter, in width units) or
+    /// multiplied by the options' factor; the step and the angle multiplied.
+    fn scale(&mut self, command: Command, args: Args) -> Result<(), TurtleError> {
+        let options = self.options;
+        match command {
             Command::Width => {
-                state.width = match arg(0)? {
+                self.state.width = match args.get(0)? {
                     Some(w) => sanitize_width(w * options.width_unit),
-                    None => sanitize_width(state.width * options.width_factor),
+                    None => sanitize_width(self.state.width * options.width_factor),
                 };
             }
-            Command::ScaleLength => state.step *= arg(0)?.unwrap_or(options.length_factor),
-            Command::ScaleAngle => state.angle *= arg(0)?.unwrap_or(options.angle_factor),
+            Command::ScaleLength => {
+                self.state.step *= args.get(0)?.unwrap_or(options.length_factor);
+            }
+            Command::ScaleAngle => {
+                self.state.angle *= args.get(0)?.unwrap_or(options.angle_factor);
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `{`, `.` and `}`: a polygon opened, a vertex recorded, the polygon closed and emitted
+    /// when it has three or more vertices.
+    fn polygon(&mut self, command: Command, index: usize) -> Result<(), TurtleError> {
+        let position = self.state.frame.position;
+        match command {
             Command::PolygonStart => {
-                if polygons.len() >= options.max_depth {
-                    return Err(TurtleError::TooDeep {
-                        index,
-                        limit: options.max_depth,
-                    });
-                }
-                polygons.push(Vec::new());
+                self.check_depth(self.polygons.len(), index)?;
+                self.polygons.push(Vec::new());
             }
             Command::PolygonVertex => {
-                if let Some(poly) = polygons.last_mut()
-                    && poly.last() != Some(&state.frame.position)
+                if let Some(poly) = self.polygons.last_mut()
+                    && poly.last() != Some(&position)
                 {
-                    poly.push(state.frame.position);
+                    poly.push(position);
                 }
             }
             Command::PolygonEnd => {
-                if let Some(mut poly) = polygons.pop() {
+                if let Some(mut poly) = self.polygons.pop() {
                     // An outline that returns to its start closes itself; drop the duplicate.
                     if let (Some(&a), Some(&b)) = (poly.first(), poly.last())
                         && poly.len() > 1
@@ -223,138 +360,144 @@ pub fn interpret<S: GeometrySink + ?Sized>(
                         poly.pop();
                     }
                     if poly.len() >= 3 {
-                        sink.polygon(&poly);
-                        stats.polygons += 1;
+                        self.sink.polygon(&poly);
+                        self.stats.polygons += 1;
                     }
                 }
             }
-            Command::Leaf => {
-                let scale = arg(0)?.unwrap_or(1.0).abs();
-                sink.leaf(
-                    &state.frame.facing_sky(options.leaf_facing),
-                    [options.leaf_size[0] * scale, options.leaf_size[1] * scale],
-                );
-                stats.leaves += 1;
-            }
-            Command::Marker => {
-                sink.marker(module.symbol, module.params, &state.frame);
-                stats.markers += 1;
-            }
-            Command::Sphere | Command::Disc => {
-                let diameter = arg(0)?.map_or(state.width, |d| d * options.width_unit);
-                let radius = (diameter * 0.5).abs().max(options.min_radius);
-                let faces = if command == Command::Sphere {
-                    crate::shapes::sphere(state.frame.position, radius, &state.frame)
-                } else {
-                    vec![crate::shapes::disc(
-                        state.frame.position,
-                        radius,
-                        &state.frame,
-                    )]
-                };
-                for face in &faces {
-                    sink.polygon(face);
-                }
-                stats.polygons = stats.polygons.saturating_add(faces.len() as u32);
-            }
-            Command::CurveStart => {
-                let radius = (state.width * 0.5).max(options.min_radius);
-                curve = Some((vec![(state.frame.position, radius)], state.frame));
-            }
-            Command::CurvePoint | Command::CurveEnd => {
-                let radius = (state.width * 0.5).max(options.min_radius);
-                if let Some((points, _)) = &mut curve
-                    && points.last().map(|p| p.0) != Some(state.frame.position)
-                    && points.len() < MAX_CURVE_POINTS
-                {
-                    points.push((state.frame.position, radius));
-                }
-                if command == Command::CurveEnd
-                    && let Some((points, frame)) = curve.take()
-                {
-                    let mut parent = state.last;
-                    for (k, piece) in crate::shapes::curve(&points, &frame).iter().enumerate() {
-                        let segment = Segment {
-                            id: next_id,
-                            parent,
-                            continues_parent: k > 0,
-                            frame: piece.frame,
-                            length: piece.length,
-                            start_radius: piece.radii.0,
-                            end_radius: piece.radii.1,
-                            depth: state.depth,
-                        };
-                        sink.segment(&segment);
-                        parent = Some(next_id);
-                        next_id = next_id.saturating_add(1);
-                        stats.segments += 1;
-                    }
-                    if let Some(id) = parent.filter(|_| points.len() > 1) {
-                        sink.axis_end(id);
-                    }
-                }
-            }
-            Command::Query => sink.query(index, &state.frame),
-            Command::Colour(sign) => {
-                let colour = match arg(0)? {
-                    Some(n) => n.max(0.0).min(u32::MAX as f32) as u32,
-                    None if sign == Sign::Positive => state.colour.saturating_add(1),
-                    None => state.colour.saturating_sub(1),
-                };
-                if colour != state.colour {
-                    state.colour = colour;
-                    sink.colour(colour);
-                }
-            }
-            Command::SubStart => {
-                if sub_scales.len() >= options.max_depth {
-                    return Err(TurtleError::TooDeep {
-                        index,
-                        limit: options.max_depth,
-                    });
-                }
-                let factor = arg(1)?.unwrap_or(1.0);
-                sub_scales.push((state.step, state.width, scale));
-                state.step *= factor;
-                state.width = sanitize_width(state.width * factor);
-                scale *= factor;
-            }
-            Command::SubEnd => {
-                if let Some((step, width, before)) = sub_scales.pop() {
-                    state.step = step;
-                    state.width = width;
-                    scale = before;
-                }
-            }
-            Command::TropismDirection => {
-                let direction = Vec3::new(
-                    arg(0)?.unwrap_or(0.0),
-                    arg(1)?.unwrap_or(-1.0),
-                    arg(2)?.unwrap_or(0.0),
-                );
-                let susceptibility = state.tropism.map_or(0.0, |t| t.susceptibility);
-                state.tropism = Some(Tropism {
-                    direction,
-                    susceptibility,
-                });
-            }
-            Command::TropismSusceptibility => {
-                let susceptibility = arg(0)?.unwrap_or(0.0);
-                let direction = state.tropism.map_or(Vec3::NEG_Y, |t| t.direction);
-                state.tropism = Some(Tropism {
-                    direction,
-                    susceptibility,
-                });
-            }
-            Command::Ignore => {}
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// A leaf (parameter: its scale), a sphere or a disc (parameter: the diameter, in width
+    /// units) at the turtle.
+    fn organ(&mut self, command: Command, args: Args) -> Result<(), TurtleError> {
+        let (options, frame) = (self.options, self.state.frame);
+        if command == Command::Leaf {
+            let scale = args.get(0)?.unwrap_or(1.0).abs();
+            self.sink.leaf(
+                &frame.facing_sky(options.leaf_facing),
+                [options.leaf_size[0] * scale, options.leaf_size[1] * scale],
+            );
+            self.stats.leaves += 1;
+            return Ok(());
+        }
+        let diameter = args
+            .get(0)?
+            .map_or(self.state.width, |d| d * options.width_unit);
+        let radius = (diameter * 0.5).abs().max(options.min_radius);
+        let faces = if command == Command::Sphere {
+            crate::shapes::sphere(frame.position, radius, &frame)
+        } else {
+            vec![crate::shapes::disc(frame.position, radius, &frame)]
+        };
+        for face in &faces {
+            self.sink.polygon(face);
+        }
+        self.stats.polygons = self.stats.polygons.saturating_add(faces.len() as u32);
+        Ok(())
+    }
+
+    /// A generalized cylinder: started, a control point added, or ended and emitted as
+    /// segments along the smooth curve through its points.
+    fn curve(&mut self, command: Command) {
+        let radius = self.radius();
+        let position = self.state.frame.position;
+        if command == Command::CurveStart {
+            self.curve = Some((vec![(position, radius)], self.state.frame));
+            return;
+        }
+        if let Some((points, _)) = &mut self.curve
+            && points.last().map(|p| p.0) != Some(position)
+            && points.len() < MAX_CURVE_POINTS
+        {
+            points.push((position, radius));
+        }
+        if command != Command::CurveEnd {
+            return;
+        }
+        let Some((points, frame)) = self.curve.take() else {
+            return;
+        };
+        let mut parent = self.state.last;
+        for (k, piece) in crate::shapes::curve(&points, &frame).iter().enumerate() {
+            self.sink.segment(&Segment {
+                id: self.next_id,
+                parent,
+                continues_parent: k > 0,
+                frame: piece.frame,
+                length: piece.length,
+                start_radius: piece.radii.0,
+                end_radius: piece.radii.1,
+                depth: self.state.depth,
+            });
+            parent = Some(self.next_id);
+            self.next_id = self.next_id.saturating_add(1);
+            self.stats.segments += 1;
+        }
+        if let Some(id) = parent.filter(|_| points.len() > 1) {
+            self.sink.axis_end(id);
         }
     }
-    end_axis(&mut state, sink);
-    while let Some(mut saved) = stack.pop() {
-        end_axis(&mut saved, sink);
+
+    /// `;` and `,`: the colour index set (parameter) or stepped up or down.
+    fn colour(&mut self, sign: Sign, args: Args) -> Result<(), TurtleError> {
+        let colour = match args.get(0)? {
+            Some(n) => n.max(0.0).min(u32::MAX as f32) as u32,
+            None if sign == Sign::Positive => self.state.colour.saturating_add(1),
+            None => self.state.colour.saturating_sub(1),
+        };
+        if colour != self.state.colour {
+            self.state.colour = colour;
+            self.sink.colour(colour);
+        }
+        Ok(())
     }
-    sink.end();
-    Ok(stats)
+
+    /// cpfg's `?(id, scale)`: a sub-L-system starts, its lengths and widths scaled.
+    fn sub_start(&mut self, args: Args) -> Result<(), TurtleError> {
+        self.check_depth(self.sub_scales.len(), args.index)?;
+        let factor = args.get(1)?.unwrap_or(1.0);
+        self.sub_scales
+            .push((self.state.step, self.state.width, self.scale));
+        self.state.step *= factor;
+        self.state.width = sanitize_width(self.state.width * factor);
+        self.scale *= factor;
+        Ok(())
+    }
+
+    /// `$`: the sub-L-system ends; back to the step, width and scale before it.
+    fn sub_end(&mut self) {
+        if let Some((step, width, before)) = self.sub_scales.pop() {
+            self.state.step = step;
+            self.state.width = width;
+            self.scale = before;
+        }
+    }
+
+    /// The tropism's direction (parameters x, y, z) or susceptibility (parameter) changed,
+    /// the other kept.
+    fn tropism(&mut self, command: Command, args: Args) -> Result<(), TurtleError> {
+        let before = self.state.tropism;
+        let tropism = if command == Command::TropismDirection {
+            Tropism {
+                direction: Vec3::new(
+                    args.get(0)?.unwrap_or(0.0),
+                    args.get(1)?.unwrap_or(-1.0),
+                    args.get(2)?.unwrap_or(0.0),
+                ),
+                susceptibility: before.map_or(0.0, |t| t.susceptibility),
+            }
+        } else {
+            Tropism {
+                direction: before.map_or(Vec3::NEG_Y, |t| t.direction),
+                susceptibility: args.get(0)?.unwrap_or(0.0),
+            }
+        };
+        self.state.tropism = Some(tropism);
+        Ok(())
+    }
 }
 
 /// Most control points one generalized cylinder keeps: the rest are dropped.
