@@ -12,9 +12,9 @@ use sylva_terrain::HeightField;
 use sylva_base::hash::{mix, unit_f32 as unit};
 use sylva_base::range::check;
 
-use crate::composition::Composition;
 use crate::density::{Candidate, DensityModel, Rect};
 use crate::error::ForestError;
+use crate::patch::Composition;
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
 

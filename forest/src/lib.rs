@@ -51,13 +51,13 @@ mod variety;
 mod walk;
 
 pub use appearance::{BarkPattern, LeafShape};
-pub use composition::{ComposedDensity, Composition};
+pub use composition::ComposedDensity;
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
-pub use patch::{PatchDensity, PatchSpecies};
+pub use patch::{Composition, PatchDensity, PatchSpecies};
 pub use proxy::{Extent, tree_proxy};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};

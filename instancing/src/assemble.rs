@@ -6,7 +6,7 @@ use glam::{Quat, Vec3};
 
 use crate::cache::InstanceCache;
 use crate::error::InstancingError;
-use crate::hero::ROOT;
+use crate::options::ROOT;
 use crate::similarity::Similarity;
 use sylva_base::hash::mix;
 

@@ -6,7 +6,7 @@ use sylva_turtle::{Command, TurtleOptions, interpret};
 
 use crate::cache::{CANDIDATE_BYTES, EXIT_BYTES, Exit, INSTANCE_BYTES, Instance, InstanceCache};
 use crate::error::InstancingError;
-use crate::hero::{HeroOptions, ROOT};
+use crate::options::{HeroOptions, ROOT};
 use crate::recorder::HeroRecorder;
 use crate::rewrite::{InstancingGrammar, Markers, probability_at_ages};
 use crate::span::Span;

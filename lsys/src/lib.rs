@@ -130,12 +130,13 @@ pub use engine::environment::Environment;
 pub use engine::lsystem::LSystem;
 pub use error::{DeriveError, GrammarError, GrammarFileError, Location, ParseError};
 pub use model::alphabet::{Alphabet, CUT, MAX_NAME_CHARS, POP, PUSH, RESERVED, SymbolId};
+pub use model::dialect::Dialect;
 pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 pub use model::statement::{Blocks, Statement};
 pub use model::word::{Module, Word};
 pub use presets::{PRESETS, Preset, preset};
-pub use syntax::parser::{Dialect, MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};
+pub use syntax::parser::{MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};
 
 impl LSystem {
     /// Parses grammar text. Errors name the line and column and say what was expected.
@@ -148,7 +149,7 @@ impl LSystem {
     /// The dialect is the one the text declares ([`Dialect::declared_in`]): cpfg when a line
     /// starts with `Lsystem:`, else sylva's notation.
     pub fn parse(text: &str) -> Result<LSystem, ParseError> {
-        syntax::parser::parse(text)
+        syntax::read::parse(text)
     }
 
     /// Parses grammar text written in `dialect`.
@@ -170,7 +171,7 @@ impl LSystem {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
-        syntax::parser::parse_dialect(text, dialect)
+        syntax::read::parse_dialect(text, dialect)
     }
 }
 
@@ -203,6 +204,6 @@ impl LSystem {
 impl std::str::FromStr for LSystem {
     type Err = ParseError;
     fn from_str(text: &str) -> Result<LSystem, ParseError> {
-        syntax::parser::parse(text)
+        syntax::read::parse(text)
     }
 }

@@ -1,7 +1,7 @@
 //! What covers a material-id render: the share of its pixels showing terrain, bark, leaves,
 //! sky, or anything else (which a correct render never shows).
 
-use crate::render::{ID_BARK, ID_LEAF, ID_TERRAIN};
+use crate::materials::{ID_BARK, ID_LEAF, ID_TERRAIN};
 
 /// Fractions of a picture's pixels, summing to 1.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,8 +4,9 @@
 
 use sylva::terrain::glam::{Mat4, Vec3, Vec4};
 
-use crate::cells::{Level, world_sphere};
-use crate::scene::{InstanceRaw, Scene};
+use crate::cell::Level;
+use crate::scene::Scene;
+use crate::world::{InstanceRaw, world_sphere};
 
 /// A convex view volume as inward-facing planes `n . p + d >= 0`.
 #[derive(Debug, Clone, Copy)]
@@ -32,26 +33,6 @@ impl Volume {
             .iter()
             .all(|p| p.truncate().dot(centre) + p.w >= -radius)
     }
-}
-
-/// A bounding sphere in an instance's own space, as (centre, radius).
-pub(crate) fn bounding_sphere(points: impl Iterator<Item = Vec3>) -> (Vec3, f32) {
-    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    let mut all = Vec::new();
-    for p in points {
-        lo = lo.min(p);
-        hi = hi.max(p);
-        all.push(p);
-    }
-    if all.is_empty() {
-        return (Vec3::ZERO, 0.0);
-    }
-    let centre = (lo + hi) * 0.5;
-    let radius = all
-        .iter()
-        .map(|p| p.distance(centre))
-        .fold(0.0f32, f32::max);
-    (centre, radius)
 }
 
 /// Placements smaller on screen than this many pixels across are not drawn: far twigs and
@@ -135,16 +116,5 @@ mod tests {
         // its distance to the plane, is kept.
         assert!(v.touches(Vec3::new(50.0, 0.0, 31.0), 5.0));
         assert!(!v.touches(Vec3::new(600.0, 0.0, 0.0), 1.0));
-    }
-
-    #[test]
-    fn the_sphere_holds_every_point() {
-        let points = [
-            Vec3::ZERO,
-            Vec3::new(4.0, 1.0, 0.0),
-            Vec3::new(-1.0, 6.0, 2.0),
-        ];
-        let (c, r) = bounding_sphere(points.into_iter());
-        assert!(points.iter().all(|p| p.distance(c) <= r + 1e-5));
     }
 }

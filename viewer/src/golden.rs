@@ -9,7 +9,8 @@
 use crate::coverage::Coverage;
 use crate::offscreen::Offscreen;
 use crate::render::Mode;
-use crate::scene::{self, Camera, Scene, SceneOptions};
+use crate::scene::{Camera, Scene};
+use crate::world::{self, SceneOptions};
 
 const SIZE: (u32, u32) = (320, 180);
 const GOLDEN: &str = concat!(
@@ -37,7 +38,7 @@ fn default_scene() -> Scene {
         seed: 1,
         side: 800.0,
         trees: None,
-        species: scene::default_species().expect("bundled species"),
+        species: world::default_species().expect("bundled species"),
         budget: 32 << 20,
         paint: None,
     })
@@ -152,7 +153,7 @@ fn default_scene_renders_terrain_and_trees() {
 /// in still air they are the same picture.
 #[test]
 fn wind_sways_trees_and_still_air_does_not() {
-    let birch = scene::default_species().expect("bundled species")[1].clone();
+    let birch = world::default_species().expect("bundled species")[1].clone();
     let mut scene = Scene::build(SceneOptions {
         seed: 3,
         side: 60.0,
@@ -197,7 +198,7 @@ fn wind_sways_trees_and_still_air_does_not() {
 /// is the same picture, pixel for pixel.
 #[test]
 fn a_view_streamed_again_is_the_same_picture() {
-    let species = scene::default_species().expect("bundled species");
+    let species = world::default_species().expect("bundled species");
     let mut scene = Scene::build(SceneOptions {
         seed: 4,
         side: 2400.0,

@@ -4,7 +4,7 @@
 use sylva::turtle::Vertex;
 use wgpu::util::DeviceExt;
 
-use crate::scene::InstanceRaw;
+use crate::world::InstanceRaw;
 
 /// The format of every depth target, the shadow map's included.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

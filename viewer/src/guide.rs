@@ -7,7 +7,8 @@ use sylva::forest::{ForestTrunks, GuidedWalk, Rect, Trunks, WalkOptions};
 use sylva::instancing::CompactTree;
 use sylva::terrain::glam::Vec2;
 
-use crate::scene::{Camera, World};
+use crate::scene::Camera;
+use crate::world::World;
 
 /// Trunk radii the walk keeps clear of (metres, times each tree's scale).
 const CANOPY_TRUNK: f32 = 0.5;
@@ -123,7 +124,8 @@ impl Guide {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Scene, SceneOptions};
+    use crate::scene::Scene;
+    use crate::world::SceneOptions;
 
     /// A guided walk through a real streamed world keeps clear of every trunk, keeps moving and
     /// keeps the camera at eye height on the terrain.

@@ -5,8 +5,8 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use std::thread::JoinHandle;
 
-use crate::cells::{Cell, CellKey};
-use crate::scene::World;
+use crate::cell::{Cell, CellKey};
+use crate::world::World;
 
 /// What the thread is to do next.
 #[derive(Default)]

@@ -36,6 +36,7 @@
 //! to `PATH_0000.png` and on, and prints what the walk did. Without a GPU it runs on Mesa's
 //! software drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
+mod cell;
 mod cells;
 mod cli;
 mod coverage;
@@ -53,11 +54,13 @@ mod scene;
 mod shadow;
 mod textures;
 mod window;
+mod world;
 
 use std::process::ExitCode;
 use std::time::Instant;
 
-use scene::{Camera, Scene, SceneOptions};
+use scene::{Camera, Scene};
+use world::SceneOptions;
 
 struct Args {
     scene: SceneOptions,
@@ -180,7 +183,7 @@ fn parse() -> Result<Args, String> {
             .map(sylva::forest::Species::from_file)
             .collect::<Result<_, _>>()
             .map_err(|e| e.to_string())?,
-        (None, true) => scene::default_species()?,
+        (None, true) => world::default_species()?,
     };
     Ok(Args {
         scene_seed: seed,
@@ -216,7 +219,7 @@ fn run() -> Result<(), String> {
         scene.side(),
         scene.world.groups.len(),
         start.elapsed().as_secs_f64() * 1e3,
-        cells::CELL,
+        cell::CELL,
         cells::LOD_DISTANCE,
         cells::VIEW_DISTANCE,
     );

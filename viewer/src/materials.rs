@@ -7,9 +7,16 @@
 //! 190 KB of it until the device is dropped, which made software frames about six times slower
 //! and grew the viewer by up to a gigabyte a frame.
 
-use crate::render::{ID_BARK, ID_LEAF, ID_TERRAIN, TERRAIN};
-use crate::scene::World;
 use crate::textures::{bark_layer, leaf_layer};
+use crate::world::World;
+
+/// The terrain's base colour (linear RGB), under its ground colours.
+pub(crate) const TERRAIN: [f32; 3] = [0.36, 0.33, 0.20];
+
+/// Flat colours of the id mode: terrain, bark, leaves (sky is the clear colour, black).
+pub(crate) const ID_TERRAIN: [f32; 3] = [1.0, 0.0, 0.0];
+pub(crate) const ID_BARK: [f32; 3] = [0.0, 1.0, 0.0];
+pub(crate) const ID_LEAF: [f32; 3] = [0.0, 0.0, 1.0];
 
 /// Bytes per material in the shader's array: colour (rgb, texture layer plus one) and id.
 pub(crate) const MATERIAL_BYTES: usize = 32;
@@ -99,7 +106,7 @@ impl Materials {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::SceneOptions;
+    use crate::world::SceneOptions;
 
     /// Variants of one species share their materials; each material is stored once; the
     /// terrain is material 0 and the proxies are untextured.

@@ -225,7 +225,7 @@ impl Painting {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{SceneOptions, default_species};
+    use crate::world::{SceneOptions, default_species};
 
     fn scene() -> Scene {
         Scene::build(SceneOptions::small(2, 400.0)).expect("scene builds")

@@ -12,21 +12,16 @@ use crate::cells::{LOD_DISTANCE, Streamed, VIEW_DISTANCE};
 use crate::cull::{Volume, visible_instances};
 use crate::gpu::{DEPTH, buffer, index_buffer, scene_pipeline};
 use crate::materials::Materials;
-use crate::scene::{InstanceRaw, Scene};
+use crate::scene::Scene;
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::textures;
+use crate::world::InstanceRaw;
 
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
 const ZENITH: [f32; 3] = [0.22, 0.42, 0.75];
 /// Towards the sun: high in the south-west, so trunks cast long-ish shadows.
 const SUN: Vec3 = Vec3::new(0.45, 0.75, 0.35);
-pub(crate) const TERRAIN: [f32; 3] = [0.36, 0.33, 0.20];
-
-/// Flat colours of the id mode: terrain, bark, leaves (sky is the clear colour, black).
-pub(crate) const ID_TERRAIN: [f32; 3] = [1.0, 0.0, 0.0];
-pub(crate) const ID_BARK: [f32; 3] = [0.0, 1.0, 0.0];
-pub(crate) const ID_LEAF: [f32; 3] = [0.0, 0.0, 1.0];
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]

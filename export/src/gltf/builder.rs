@@ -1,6 +1,6 @@
 //! One way to build a glTF document: views, accessors, attributes, materials, meshes and
 //! nodes added to a typed [`Root`], and the length of the GLB's own buffer so far. The
-//! streamed writer lays out sections it writes later; [`InMemory`](super::in_memory::InMemory)
+//! streamed writer lays out sections it writes later; the in-memory writer
 //! appends their bytes as it goes.
 
 use super::schema::{

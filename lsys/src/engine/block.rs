@@ -1,7 +1,6 @@
 //! Statement blocks compiled to flat programs with jumps, and their runner.
 
-use crate::engine::compile::Span;
-use crate::engine::eval::{Op, eval};
+use crate::engine::eval::{Op, Span, eval};
 use crate::engine::random::Random;
 use crate::model::statement::Statement;
 

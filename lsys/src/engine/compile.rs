@@ -1,13 +1,10 @@
 //! The compiled form of a grammar that the engine runs: flat programs and per-symbol tables.
 
 use crate::engine::block::{self, Instruction};
-use crate::engine::eval::Op;
+use crate::engine::eval::{Op, Span};
 use crate::model::alphabet::{Alphabet, SymbolId};
 use crate::model::grammar::{Pattern, Production, SuccessorItem};
 use crate::model::statement::Statement;
-
-/// A range into one of the flat tables.
-pub(crate) type Span = (u32, u32);
 
 #[derive(Debug, Clone)]
 pub(crate) enum CItem {

@@ -3,6 +3,9 @@
 use crate::engine::random::Random;
 use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp};
 
+/// A range (start, end) into one of the compiled flat tables: ops, items, instructions.
+pub(crate) type Span = (u32, u32);
+
 /// One instruction of a compiled expression (postfix).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Op {

@@ -2,14 +2,15 @@
 
 use std::sync::Arc;
 
-use crate::engine::compile::{Compiled, Span};
+use crate::engine::compile::Compiled;
+use crate::engine::eval::Span;
 use crate::error::{GrammarError, Location};
 use crate::model::alphabet::{Alphabet, SymbolId};
+use crate::model::dialect::Dialect;
 use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
 use crate::model::statement::{Blocks, Statement, expressions};
 use crate::model::word::Word;
-use crate::syntax::parser::Dialect;
 
 /// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
 ///

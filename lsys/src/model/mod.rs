@@ -2,6 +2,7 @@
 //! Nothing here parses, prints or derives.
 
 pub(crate) mod alphabet;
+pub(crate) mod dialect;
 pub(crate) mod expr;
 pub(crate) mod grammar;
 pub(crate) mod statement;

@@ -51,3 +51,19 @@ pub(crate) fn strip_block_comments(src: &[char]) -> Result<Vec<char>, ParseError
     }
     Ok(out)
 }
+
+/// `text` without its `//` comments (to the end of each line).
+pub(crate) fn strip_line_comments(text: &[char]) -> Vec<char> {
+    let mut out = Vec::with_capacity(text.len());
+    let mut comment = false;
+    for (i, &c) in text.iter().enumerate() {
+        if c == '\n' {
+            comment = false;
+        } else if c == '/' && text.get(i + 1) == Some(&'/') {
+            comment = true;
+        }
+        // Characters become spaces so that columns stay where they were.
+        out.push(if comment { ' ' } else { c });
+    }
+    out
+}

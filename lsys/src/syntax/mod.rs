@@ -8,5 +8,6 @@ pub(crate) mod lpy;
 pub(crate) mod parser;
 pub(crate) mod preprocessor;
 pub(crate) mod print;
+pub(crate) mod read;
 pub(crate) mod statement_parser;
 pub(crate) mod word_text;

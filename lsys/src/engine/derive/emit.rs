@@ -2,7 +2,8 @@
 //! copied, and cut symbols applied.
 
 use super::Deriver;
-use crate::engine::compile::{CItem, Span};
+use crate::engine::compile::CItem;
+use crate::engine::eval::Span;
 use crate::engine::eval::eval;
 use crate::error::DeriveError;
 use crate::model::alphabet::{CUT, POP, PUSH};

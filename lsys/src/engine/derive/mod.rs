@@ -1,7 +1,8 @@
 //! The rewriting engine: one derivation step streams the current word into the next.
 
 use crate::engine::block::{self, MAX_BLOCK_STATEMENTS};
-use crate::engine::compile::{CProduction, Compiled, Span};
+use crate::engine::compile::{CProduction, Compiled};
+use crate::engine::eval::Span;
 use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
 use crate::engine::random::Random;

@@ -9,6 +9,7 @@ use std::collections::HashMap;
 use crate::engine::lsystem::LSystem;
 use crate::error::{GrammarError, Location, ParseError};
 use crate::model::alphabet::{Alphabet, MAX_NAME_CHARS, POP, PUSH, SymbolId};
+use crate::model::dialect::Dialect;
 use crate::model::expr::{Expr, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 use crate::model::statement::Blocks;
@@ -16,7 +17,7 @@ use crate::model::word::Word;
 use crate::syntax::comments::strip_block_comments;
 use crate::syntax::cursor::Cursor;
 use crate::syntax::expr_parser::{Scope, parse_expr};
-use crate::syntax::statement_parser::{assigned_names, parse_block};
+use crate::syntax::statement_parser::parse_block;
 
 /// Longest grammar text accepted, in bytes, so that a parse always finishes quickly.
 pub const MAX_GRAMMAR_BYTES: usize = 1 << 22;
@@ -73,22 +74,6 @@ fn no_vars() -> &'static HashMap<String, u16> {
     EMPTY.get_or_init(HashMap::new)
 }
 
-/// `text` without its `//` comments (to the end of each line).
-fn strip_line_comments(text: &[char]) -> Vec<char> {
-    let mut out = Vec::with_capacity(text.len());
-    let mut comment = false;
-    for (i, &c) in text.iter().enumerate() {
-        if c == '\n' {
-            comment = false;
-        } else if c == '/' && text.get(i + 1) == Some(&'/') {
-            comment = true;
-        }
-        // Characters become spaces so that columns stay where they were.
-        out.push(if comment { ' ' } else { c });
-    }
-    out
-}
-
 /// Whether the cursor is at an arrow (`-->`, `->` or `→`), after whitespace.
 fn arrow_next(cur: &mut Cursor<'_>) -> bool {
     cur.skip_ws();
@@ -98,32 +83,7 @@ fn arrow_next(cur: &mut Cursor<'_>) -> bool {
     )
 }
 
-/// The notations grammar text may be written in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Dialect {
-    /// sylva's notation (ABOP's, one production per line): [`LSystem::parse`]'s default.
-    Sylva,
-    /// cpfg's `.l` files (the virtual laboratory): `Lsystem:` ... `endlsystem`, `-->`,
-    /// `derivation length:`, `consider:`, trigonometry in degrees, `*` for the empty word.
-    Cpfg,
-    /// The declarative subset of L-Py's `.lpy` files (OpenAlea): `module` declarations,
-    /// constants, `Axiom:`, `production:`/`interpretation:`/`decomposition:` sections with
-    /// `-->` productions; Python code is refused.
-    LPy,
-}
-
 impl Dialect {
-    /// The dialect a file's extension names: `.l` is cpfg, `.lpy` L-Py; anything else
-    /// sylva's notation.
-    pub fn of_path(path: &std::path::Path) -> Dialect {
-        match path.extension().and_then(|e| e.to_str()) {
-            Some("l") => Dialect::Cpfg,
-            Some("lpy") => Dialect::LPy,
-            _ => Dialect::Sylva,
-        }
-    }
-
     /// The dialect a text declares: cpfg when a line starts with `Lsystem:` (outside
     /// comments), else sylva's notation.
     pub fn declared_in(text: &str) -> Dialect {
@@ -137,154 +97,126 @@ impl Dialect {
     }
 }
 
-pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
-    parse_dialect(text, Dialect::declared_in(text))
-}
+impl GrammarParser {
+    /// A parser of `dialect` text whose block variables are `globals`.
+    pub(crate) fn new(dialect: Dialect, globals: Vec<String>) -> GrammarParser {
+        GrammarParser {
+            dialect,
+            subsystem: None,
+            sub_productions: Vec::new(),
+            globals,
+            blocks: Blocks::default(),
+            derivation_length: None,
+            consider: None,
+            long_names: Vec::new(),
+            section: Section::Main,
+            rule_sets: [RuleSet::default(), RuleSet::default()].map(|mut set| {
+                set.max_depth = DEFAULT_MAX_DEPTH;
+                set
+            }),
+            alphabet: Alphabet::new(),
+            constants: Vec::new(),
+            values: HashMap::new(),
+            constant_at: Vec::new(),
+            ignore: Vec::new(),
+            axiom: None,
+            productions: Vec::new(),
+        }
+    }
 
-pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
-    if text.len() > MAX_GRAMMAR_BYTES {
-        return Err(ParseError::new(
-            1,
-            1,
-            format!("grammar text longer than {MAX_GRAMMAR_BYTES} bytes"),
-        ));
+    /// Adds symbols of several characters that the dialect has of its own.
+    pub(crate) fn add_long_names<'a>(&mut self, names: impl IntoIterator<Item = &'a str>) {
+        for name in names {
+            self.long_names.push((name.chars().collect(), None));
+        }
+        self.long_names
+            .sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
     }
-    // Editors on Windows may start the file with a byte-order mark; it is not text.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let src: Vec<char> = text.chars().collect();
-    let src = strip_block_comments(&src)?;
-    let mut p = GrammarParser {
-        dialect,
-        subsystem: None,
-        sub_productions: Vec::new(),
-        globals: assigned_names(&src),
-        blocks: Blocks::default(),
-        derivation_length: None,
-        consider: None,
-        long_names: Vec::new(),
-        section: Section::Main,
-        rule_sets: [RuleSet::default(), RuleSet::default()].map(|mut set| {
-            set.max_depth = DEFAULT_MAX_DEPTH;
-            set
-        }),
-        alphabet: Alphabet::new(),
-        constants: Vec::new(),
-        values: HashMap::new(),
-        constant_at: Vec::new(),
-        ignore: Vec::new(),
-        axiom: None,
-        productions: Vec::new(),
-    };
-    match dialect {
-        Dialect::Sylva => {
-            for (n, line) in src.split(|&c| c == '\n').enumerate() {
-                let line = line.strip_suffix(&['\r']).unwrap_or(line);
-                p.line(&mut Cursor::new(line, n + 1))?;
-            }
+
+    /// The L-system of everything read, checked; errors point at the line they were made
+    /// on.
+    pub(crate) fn finish(self) -> Result<LSystem, ParseError> {
+        let mut p = self;
+        let dialect = p.dialect;
+        if let Some(consider) = p.consider.take() {
+            // cpfg's `consider:` names the symbols contexts see: every other one is ignored
+            // (brackets always delimit branches).
+            p.ignore = (0..p.alphabet.len() as u16)
+                .map(SymbolId)
+                .filter(|s| !consider.contains(s) && *s != PUSH && *s != POP)
+                .collect();
         }
-        Dialect::Cpfg => {
-            // cpfg files go through the C preprocessor, which ends a line at '//' and
-            // expands macros.
-            let src = strip_line_comments(&src);
-            let lines = crate::syntax::preprocessor::preprocess(&src)?.lines;
-            let src = lines.join(&'\n');
-            p.globals = assigned_names(&src);
-            for name in CPFG_LONG_NAMES {
-                p.long_names.push((name.chars().collect(), None));
-            }
-            p.long_names
-                .sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
-            crate::syntax::cpfg::read(&src, &mut p)?;
+        let Some((axiom, axiom_at)) = p.axiom else {
+            return Err(ParseError::new(
+                1,
+                1,
+                "the grammar has no axiom: add a line 'axiom: ...'",
+            ));
+        };
+        // Productions by section, main first, as `from_parts` and `with_rule_sets` number them.
+        let mut sections: [Vec<(Production, Location)>; 3] = Default::default();
+        for (production, at, section) in p.productions {
+            sections[section as usize].push((production, at));
         }
-        Dialect::LPy => {
-            // The declarative subset has no statement blocks: a name assigned in Python
-            // code is Python's, not a block variable.
-            p.globals.clear();
-            // L-Py's own modules of several characters ('#' starts a comment there).
-            for name in CPFG_LONG_NAMES.iter().filter(|n| **n != "#") {
-                p.long_names.push((name.chars().collect(), None));
-            }
-            p.long_names
-                .sort_by_key(|(n, _)| std::cmp::Reverse(n.len()));
-            crate::syntax::lpy::read(&src, &mut p)?
-        }
-    }
-    if let Some(consider) = p.consider.take() {
-        // cpfg's `consider:` names the symbols contexts see: every other one is ignored
-        // (brackets always delimit branches).
-        p.ignore = (0..p.alphabet.len() as u16)
-            .map(SymbolId)
-            .filter(|s| !consider.contains(s) && *s != PUSH && *s != POP)
+        let [main, decomposition, homomorphism] = sections;
+        let production_at: Vec<Location> = main
+            .iter()
+            .chain(&decomposition)
+            .chain(&homomorphism)
+            .map(|(_, at)| *at)
             .collect();
-    }
-    let Some((axiom, axiom_at)) = p.axiom else {
-        return Err(ParseError::new(
-            1,
-            1,
-            "the grammar has no axiom: add a line 'axiom: ...'",
-        ));
-    };
-    // Productions by section, main first, as `from_parts` and `with_rule_sets` number them.
-    let mut sections: [Vec<(Production, Location)>; 3] = Default::default();
-    for (production, at, section) in p.productions {
-        sections[section as usize].push((production, at));
-    }
-    let [main, decomposition, homomorphism] = sections;
-    let production_at: Vec<Location> = main
-        .iter()
-        .chain(&decomposition)
-        .chain(&homomorphism)
-        .map(|(_, at)| *at)
-        .collect();
-    let [mut decomposition_set, mut homomorphism_set] = p.rule_sets;
-    decomposition_set.productions = decomposition.into_iter().map(|(p, _)| p).collect();
-    homomorphism_set.productions = homomorphism.into_iter().map(|(p, _)| p).collect();
-    let productions = main.into_iter().map(|(p, _)| p).collect();
-    // The parser checks everything `from_parts` checks, at the place it happens; should a
-    // check only `from_parts` makes ever fail, the error still points at the right line.
-    let derivation_length = p.derivation_length;
-    let mut subsystems: Vec<(u32, Vec<Production>)> = Vec::new();
-    let mut locations = production_at.clone();
-    let mut sub_productions = std::mem::take(&mut p.sub_productions);
-    // Grouped by id in order of first appearance; productions keep their order.
-    let mut ids: Vec<u32> = Vec::new();
-    for (id, _, _) in &sub_productions {
-        if !ids.contains(id) {
-            ids.push(*id);
+        let [mut decomposition_set, mut homomorphism_set] = p.rule_sets;
+        decomposition_set.productions = decomposition.into_iter().map(|(p, _)| p).collect();
+        homomorphism_set.productions = homomorphism.into_iter().map(|(p, _)| p).collect();
+        let productions = main.into_iter().map(|(p, _)| p).collect();
+        // The parser checks everything `from_parts` checks, at the place it happens; should a
+        // check only `from_parts` makes ever fail, the error still points at the right line.
+        let derivation_length = p.derivation_length;
+        let mut subsystems: Vec<(u32, Vec<Production>)> = Vec::new();
+        let mut locations = production_at.clone();
+        let mut sub_productions = std::mem::take(&mut p.sub_productions);
+        // Grouped by id in order of first appearance; productions keep their order.
+        let mut ids: Vec<u32> = Vec::new();
+        for (id, _, _) in &sub_productions {
+            if !ids.contains(id) {
+                ids.push(*id);
+            }
         }
+        for id in ids {
+            let (mine, rest): (Vec<_>, Vec<_>) =
+                sub_productions.into_iter().partition(|(k, _, _)| *k == id);
+            sub_productions = rest;
+            locations.extend(mine.iter().map(|(_, _, at)| *at));
+            subsystems.push((id, mine.into_iter().map(|(_, p, _)| p).collect()));
+        }
+        let (globals, blocks) = (p.globals, p.blocks);
+        LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
+            .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
+            .and_then(|system| system.with_blocks(globals, blocks))
+            .and_then(|system| system.with_subsystems(subsystems))
+            .map(|system| {
+                system
+                    .with_derivation_length(derivation_length)
+                    .with_dialect(dialect)
+                    .with_locations(locations)
+            })
+            .map_err(|e| {
+                let at = match &e {
+                    GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
+                    GrammarError::InvalidProduction { index, .. } => {
+                        production_at.get(*index).copied()
+                    }
+                    GrammarError::InvalidConstant { name, .. } => p
+                        .constant_at
+                        .iter()
+                        .find(|(n, _)| n == name)
+                        .map(|&(_, at)| at),
+                    _ => None,
+                };
+                let at = at.unwrap_or(Location { line: 1, column: 1 });
+                ParseError::new(at.line, at.column, e.to_string())
+            })
     }
-    for id in ids {
-        let (mine, rest): (Vec<_>, Vec<_>) =
-            sub_productions.into_iter().partition(|(k, _, _)| *k == id);
-        sub_productions = rest;
-        locations.extend(mine.iter().map(|(_, _, at)| *at));
-        subsystems.push((id, mine.into_iter().map(|(_, p, _)| p).collect()));
-    }
-    let (globals, blocks) = (p.globals, p.blocks);
-    LSystem::from_parts(p.alphabet, p.constants, p.ignore, axiom, productions)
-        .and_then(|system| system.with_rule_sets(decomposition_set, homomorphism_set))
-        .and_then(|system| system.with_blocks(globals, blocks))
-        .and_then(|system| system.with_subsystems(subsystems))
-        .map(|system| {
-            system
-                .with_derivation_length(derivation_length)
-                .with_dialect(dialect)
-                .with_locations(locations)
-        })
-        .map_err(|e| {
-            let at = match &e {
-                GrammarError::InvalidAxiom { module, .. } => axiom_at.get(*module).copied(),
-                GrammarError::InvalidProduction { index, .. } => production_at.get(*index).copied(),
-                GrammarError::InvalidConstant { name, .. } => p
-                    .constant_at
-                    .iter()
-                    .find(|(n, _)| n == name)
-                    .map(|&(_, at)| at),
-                _ => None,
-            };
-            let at = at.unwrap_or(Location { line: 1, column: 1 });
-            ParseError::new(at.line, at.column, e.to_string())
-        })
 }
 
 /// Parses a word (modules with constant arguments) onto `word`; a module is the longest of
@@ -389,7 +321,7 @@ pub(crate) fn long_name_at<T: Copy>(
 /// cpfg's modules of several characters (L-Py shares most of them): spheres, circles,
 /// generalized cylinders, texture and tropism controls, and the query and communication
 /// modules.
-const CPFG_LONG_NAMES: &[&str] = &[
+pub(crate) const CPFG_LONG_NAMES: &[&str] = &[
     // Width and colour: sylva's notation reserves these characters, cpfg draws with them;
     // '?' opens a sub-L-system.
     "#", ",", "?", "@o", "@O", "@c", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@v", "@!", "@#", "@Ts",

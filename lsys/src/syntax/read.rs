@@ -1,0 +1,59 @@
+//! Reading grammar text: the dialect's front end (sylva's lines, cpfg's `.l` sections, L-Py's
+//! declarative subset) feeding the shared [`GrammarParser`], which checks and builds the
+//! L-system.
+
+use crate::engine::lsystem::LSystem;
+use crate::error::ParseError;
+use crate::model::dialect::Dialect;
+use crate::syntax::comments::{strip_block_comments, strip_line_comments};
+use crate::syntax::cursor::Cursor;
+use crate::syntax::parser::{CPFG_LONG_NAMES, GrammarParser, MAX_GRAMMAR_BYTES};
+use crate::syntax::statement_parser::assigned_names;
+
+/// Parses `text` in the dialect it declares ([`Dialect::declared_in`]).
+pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
+    parse_dialect(text, Dialect::declared_in(text))
+}
+
+/// Parses `text` as `dialect`.
+pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
+    if text.len() > MAX_GRAMMAR_BYTES {
+        return Err(ParseError::new(
+            1,
+            1,
+            format!("grammar text longer than {MAX_GRAMMAR_BYTES} bytes"),
+        ));
+    }
+    // Editors on Windows may start the file with a byte-order mark; it is not text.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let src: Vec<char> = text.chars().collect();
+    let src = strip_block_comments(&src)?;
+    let mut p = GrammarParser::new(dialect, assigned_names(&src));
+    match dialect {
+        Dialect::Sylva => {
+            for (n, line) in src.split(|&c| c == '\n').enumerate() {
+                let line = line.strip_suffix(&['\r']).unwrap_or(line);
+                p.line(&mut Cursor::new(line, n + 1))?;
+            }
+        }
+        Dialect::Cpfg => {
+            // cpfg files go through the C preprocessor, which ends a line at '//' and
+            // expands macros.
+            let src = strip_line_comments(&src);
+            let lines = crate::syntax::preprocessor::preprocess(&src)?.lines;
+            let src = lines.join(&'\n');
+            p.globals = assigned_names(&src);
+            p.add_long_names(CPFG_LONG_NAMES.iter().copied());
+            crate::syntax::cpfg::read(&src, &mut p)?;
+        }
+        Dialect::LPy => {
+            // The declarative subset has no statement blocks: a name assigned in Python
+            // code is Python's, not a block variable.
+            p.globals.clear();
+            // L-Py's own modules of several characters ('#' starts a comment there).
+            p.add_long_names(CPFG_LONG_NAMES.iter().copied().filter(|n| *n != "#"));
+            crate::syntax::lpy::read(&src, &mut p)?
+        }
+    }
+    p.finish()
+}
