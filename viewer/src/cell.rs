@@ -1,7 +1,7 @@
 //! One streamed cell of the world: its key (column, row and level of detail), and its
 //! instances generated from the forest, a pure function of the world and the key.
 
-use sylva::forest::{PlacementBlock, Rect, tree_tint, tree_wind};
+use sylva::forest::{ForestError, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva::instancing::CompactTree;
 use sylva::terrain::glam::{Vec2, Vec3};
 
@@ -165,7 +165,7 @@ fn tree_instance(tree: &CompactTree) -> InstanceRaw {
 
 impl World {
     /// Generates one cell: a pure function of the world and the key.
-    pub(crate) fn cell(&self, key: CellKey) -> Result<Cell, String> {
+    pub(crate) fn cell(&self, key: CellKey) -> Result<Cell, ForestError> {
         let rect = key.rect(self.side);
         let variants = self.proxies.len();
         let proxies = |trees: &[CompactTree]| {
@@ -190,40 +190,38 @@ impl World {
             ));
         }
         let (mut tagged, mut trees) = (Vec::new(), Vec::new());
-        forest
-            .stream(&self.heightmap, rect, &mut |block: &PlacementBlock| {
-                for p in &block.placements {
-                    let Some(group) = self
-                        .group_of
-                        .get(p.variant as usize)
-                        .and_then(|g| g.get(p.instance as usize))
-                        .copied()
-                        .flatten()
-                    else {
-                        continue;
-                    };
-                    let tree = block.trees.get(p.tree as usize);
-                    let tint = tree.map_or([1.0; 3], tree_tint);
-                    let t = &p.transform;
-                    tagged.push((
-                        group,
-                        InstanceRaw {
-                            rotation: t.rotation.to_array(),
-                            translation_scale: [
-                                t.translation.x,
-                                t.translation.y,
-                                t.translation.z,
-                                t.scale,
-                            ],
-                            tint: [tint[0], tint[1], tint[2], 1.0],
-                            tree: tree.map_or([0.0; 4], tree_wind),
-                        },
-                    ));
-                }
-                trees.extend_from_slice(&block.trees);
-                Ok(())
-            })
-            .map_err(|e| e.to_string())?;
+        forest.stream(&self.heightmap, rect, &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let Some(group) = self
+                    .group_of
+                    .get(p.variant as usize)
+                    .and_then(|g| g.get(p.instance as usize))
+                    .copied()
+                    .flatten()
+                else {
+                    continue;
+                };
+                let tree = block.trees.get(p.tree as usize);
+                let tint = tree.map_or([1.0; 3], tree_tint);
+                let t = &p.transform;
+                tagged.push((
+                    group,
+                    InstanceRaw {
+                        rotation: t.rotation.to_array(),
+                        translation_scale: [
+                            t.translation.x,
+                            t.translation.y,
+                            t.translation.z,
+                            t.scale,
+                        ],
+                        tint: [tint[0], tint[1], tint[2], 1.0],
+                        tree: tree.map_or([0.0; 4], tree_wind),
+                    },
+                ));
+            }
+            trees.extend_from_slice(&block.trees);
+            Ok(())
+        })?;
         let placements = Runs::gather(tagged, self.groups.len());
         Ok(Cell::new(
             self,

@@ -17,7 +17,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use rayon::prelude::*;
-use sylva::forest::Rect;
+use sylva::forest::{ForestError, Rect};
 use sylva::terrain::glam::Vec3;
 
 use crate::cell::{CELL, Cell, CellKey, Level};
@@ -113,7 +113,7 @@ impl Cells {
         eye: Vec3,
         fine_everywhere: bool,
         wait: bool,
-    ) -> Result<Streamed, String> {
+    ) -> Result<Streamed, ForestError> {
         let start = Instant::now();
         let wanted = world.wanted(eye, fine_everywhere);
         let missing: Vec<CellKey> = wanted
@@ -123,7 +123,7 @@ impl Cells {
             .collect();
         let mut generated = 0;
         if wait {
-            let made: Vec<(CellKey, Result<Cell, String>)> =
+            let made: Vec<(CellKey, Result<Cell, ForestError>)> =
                 missing.par_iter().map(|&k| (k, world.cell(k))).collect();
             for (k, cell) in made {
                 self.resident.insert(k, cell?);
@@ -201,7 +201,7 @@ impl Cells {
         world: &World,
         region: Rect,
         version: u64,
-    ) -> Result<usize, String> {
+    ) -> Result<usize, ForestError> {
         self.repaints.push((version, region));
         if self.repaints.len() > MAX_REPAINTS {
             self.repaints.remove(0);
@@ -212,7 +212,7 @@ impl Cells {
             .filter(|k| !k.rect(world.side).intersect(&region).is_empty())
             .copied()
             .collect();
-        let made: Vec<(CellKey, Result<Cell, String>)> =
+        let made: Vec<(CellKey, Result<Cell, ForestError>)> =
             touched.par_iter().map(|&k| (k, world.cell(k))).collect();
         for (k, cell) in made {
             self.resident.insert(k, cell?);

@@ -4,6 +4,7 @@
 use sylva::turtle::Vertex;
 use wgpu::util::DeviceExt;
 
+use crate::error::ViewerError;
 use crate::world::InstanceRaw;
 
 /// The format of every depth target, the shadow map's included.
@@ -158,7 +159,7 @@ pub(crate) fn targets(
 pub(crate) async fn device(
     instance: &wgpu::Instance,
     surface: Option<&wgpu::Surface<'_>>,
-) -> Result<(wgpu::Adapter, wgpu::Device, wgpu::Queue), String> {
+) -> Result<(wgpu::Adapter, wgpu::Device, wgpu::Queue), ViewerError> {
     let adapter = instance
         .request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
@@ -167,9 +168,7 @@ pub(crate) async fn device(
             ..Default::default()
         })
         .await
-        .map_err(|e| {
-            format!("no graphics adapter ({e}); without a GPU install Mesa's software drivers (Debian: libvulkan1 mesa-vulkan-drivers, or libegl1 libegl-mesa0 libgl1-mesa-dri with WGPU_BACKEND=gl)")
-        })?;
+        .map_err(ViewerError::NoAdapter)?;
     let (device, queue) = adapter
         .request_device(&wgpu::DeviceDescriptor {
             label: Some("sylva viewer"),
@@ -177,6 +176,6 @@ pub(crate) async fn device(
             ..Default::default()
         })
         .await
-        .map_err(|e| format!("cannot open the graphics device: {e}"))?;
+        .map_err(ViewerError::Device)?;
     Ok((adapter, device, queue))
 }

@@ -8,6 +8,8 @@ use sylva::instancing::CompactTree;
 use sylva::terrain::glam::Vec2;
 
 use crate::scene::Camera;
+use sylva::forest::ForestError;
+
 use crate::world::World;
 
 /// Trunk radii the walk keeps clear of (metres, times each tree's scale).
@@ -35,7 +37,7 @@ pub(crate) struct Guide {
 
 impl Guide {
     /// A walk from `start` over the world, its targets drawn from `seed`.
-    pub(crate) fn new(world: &Arc<World>, start: Vec2, seed: u64) -> Result<Guide, String> {
+    pub(crate) fn new(world: &Arc<World>, start: Vec2, seed: u64) -> Result<Guide, ForestError> {
         let trees_of = Arc::clone(world);
         let sizes_of = Arc::clone(world);
         let mut trunks = ForestTrunks::new(
@@ -51,8 +53,7 @@ impl Guide {
         );
         let options = WalkOptions::default();
         let bounds = Rect::new(Vec2::ZERO, Vec2::splat(world.side));
-        let walk = GuidedWalk::new(bounds, &mut trunks, start, seed, options)
-            .map_err(|e| e.to_string())?;
+        let walk = GuidedWalk::new(bounds, &mut trunks, start, seed, options)?;
         let heading = walk.heading();
         Ok(Guide {
             walk,

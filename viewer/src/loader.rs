@@ -5,6 +5,8 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use std::thread::JoinHandle;
 
+use sylva::forest::ForestError;
+
 use crate::cell::{Cell, CellKey};
 use crate::world::World;
 
@@ -24,7 +26,7 @@ type Shared = Arc<(Mutex<Queue>, Condvar)>;
 /// A generator thread; dropping it stops the thread after the cell in hand.
 pub(crate) struct Loader {
     shared: Shared,
-    done: Receiver<(CellKey, Result<Cell, String>)>,
+    done: Receiver<(CellKey, Result<Cell, ForestError>)>,
     thread: Option<JoinHandle<()>>,
 }
 
@@ -46,7 +48,10 @@ impl Loader {
 
     /// Hands over the cells finished since the last call, and asks for `missing` (nearest
     /// first) instead of whatever was asked before.
-    pub(crate) fn ask(&mut self, missing: Vec<CellKey>) -> Vec<(CellKey, Result<Cell, String>)> {
+    pub(crate) fn ask(
+        &mut self,
+        missing: Vec<CellKey>,
+    ) -> Vec<(CellKey, Result<Cell, ForestError>)> {
         let (lock, wake) = &*self.shared;
         let mut queue = lock.lock().unwrap_or_else(PoisonError::into_inner);
         // Under the lock the thread cannot be between sending a cell and forgetting it is
@@ -62,7 +67,7 @@ impl Loader {
     }
 }
 
-fn generate(world: &World, shared: &Shared, send: &Sender<(CellKey, Result<Cell, String>)>) {
+fn generate(world: &World, shared: &Shared, send: &Sender<(CellKey, Result<Cell, ForestError>)>) {
     let (lock, wake) = &**shared;
     loop {
         let key = {

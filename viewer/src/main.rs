@@ -41,6 +41,7 @@ mod cells;
 mod cli;
 mod coverage;
 mod cull;
+mod error;
 #[cfg(test)]
 mod golden;
 mod gpu;
@@ -59,11 +60,44 @@ mod world;
 use std::process::ExitCode;
 use std::time::Instant;
 
+use error::ViewerError;
 use scene::{Camera, Scene};
 use world::SceneOptions;
 
+/// Where the forest's species come from.
+enum SpeciesSource {
+    /// A grammar preset by name (`--grammar`).
+    Preset(String),
+    /// Species files (`--species`).
+    Files(Vec<String>),
+    /// The bundled species.
+    Bundled,
+}
+
+impl SpeciesSource {
+    fn load(self) -> Result<Vec<sylva::forest::Species>, ViewerError> {
+        Ok(match self {
+            SpeciesSource::Preset(name) => {
+                let p = sylva::lsys::preset(&name)
+                    .ok_or_else(|| ViewerError::Usage(format!("no preset called '{name}'")))?;
+                vec![sylva::forest::Species::from_preset(
+                    p.name,
+                    p.generations.min(6),
+                )?]
+            }
+            SpeciesSource::Files(files) => files
+                .iter()
+                .map(sylva::forest::Species::from_file)
+                .collect::<Result<_, _>>()?,
+            SpeciesSource::Bundled => world::default_species()?,
+        })
+    }
+}
+
 struct Args {
+    /// The world to build, its species still to load from `species`.
     scene: SceneOptions,
+    species: SpeciesSource,
     scene_seed: u64,
     camera: Option<Camera>,
     screenshot: Option<String>,
@@ -171,19 +205,9 @@ fn parse() -> Result<Args, String> {
     }
     let species = match (grammar, files.is_empty()) {
         (Some(_), false) => return Err(format!("give --grammar or --species, not both\n{USAGE}")),
-        (Some(name), true) => {
-            let p = sylva::lsys::preset(&name).ok_or(format!("no preset called '{name}'"))?;
-            vec![
-                sylva::forest::Species::from_preset(p.name, p.generations.min(6))
-                    .map_err(|e| e.to_string())?,
-            ]
-        }
-        (None, false) => files
-            .iter()
-            .map(sylva::forest::Species::from_file)
-            .collect::<Result<_, _>>()
-            .map_err(|e| e.to_string())?,
-        (None, true) => world::default_species()?,
+        (Some(name), true) => SpeciesSource::Preset(name),
+        (None, false) => SpeciesSource::Files(files),
+        (None, true) => SpeciesSource::Bundled,
     };
     Ok(Args {
         scene_seed: seed,
@@ -191,10 +215,11 @@ fn parse() -> Result<Args, String> {
             seed,
             side,
             trees,
-            species,
+            species: Vec::new(),
             budget: budget_mb.max(1) << 20,
             paint: paint.clone(),
         },
+        species,
         camera,
         screenshot,
         size,
@@ -209,8 +234,9 @@ fn parse() -> Result<Args, String> {
     })
 }
 
-fn run() -> Result<(), String> {
-    let args = parse()?;
+fn run() -> Result<(), ViewerError> {
+    let mut args = parse().map_err(ViewerError::Usage)?;
+    args.scene.species = std::mem::replace(&mut args.species, SpeciesSource::Bundled).load()?;
     let start = Instant::now();
     let mut scene = Scene::build(args.scene)?;
     eprintln!(
@@ -323,16 +349,20 @@ fn median(values: &mut [f64]) -> Option<f64> {
 }
 
 /// Writes RGBA pixels as an 8-bit PNG.
-fn write_png(path: &str, size: (u32, u32), pixels: &[u8]) -> Result<(), String> {
-    let file = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
-    encoder.set_color(png::ColorType::Rgba);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().map_err(|e| format!("{path}: {e}"))?;
-    writer
-        .write_image_data(pixels)
-        .map_err(|e| format!("{path}: {e}"))?;
-    writer.finish().map_err(|e| format!("{path}: {e}"))
+fn write_png(path: &str, size: (u32, u32), pixels: &[u8]) -> Result<(), ViewerError> {
+    let encode = || -> Result<(), png::EncodingError> {
+        let file = std::fs::File::create(path)?;
+        let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(pixels)?;
+        writer.finish()
+    };
+    encode().map_err(|source| ViewerError::Image {
+        path: path.into(),
+        source,
+    })
 }
 
 /// `PATH` with the frame number before its extension: `tour.png` -> `tour_0007.png`.
@@ -361,7 +391,7 @@ impl Tour {
         camera: Camera,
         path: &str,
         mode: render::Mode,
-    ) -> Result<(), String> {
+    ) -> Result<(), ViewerError> {
         let start = sylva::terrain::glam::Vec2::new(camera.x, camera.z);
         let mut guide = guide::Guide::new(&scene.world, start, self.seed)?;
         let pitch = self.pitch;

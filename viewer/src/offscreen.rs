@@ -1,5 +1,6 @@
 //! Headless rendering: an offscreen target with its own device, frames read back as RGBA.
 
+use crate::error::ViewerError;
 use crate::gpu::{device, targets};
 use crate::render::{FrameStats, Mode, Renderer, View};
 use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
@@ -44,7 +45,11 @@ pub(crate) struct Offscreen {
 }
 
 impl Offscreen {
-    pub(crate) async fn new(scene: &Scene, width: u32, height: u32) -> Result<Offscreen, String> {
+    pub(crate) async fn new(
+        scene: &Scene,
+        width: u32,
+        height: u32,
+    ) -> Result<Offscreen, ViewerError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let (adapter, device, queue) = {
@@ -88,7 +93,7 @@ impl Offscreen {
         scene: &mut Scene,
         camera: &Camera,
         mode: Mode,
-    ) -> Result<(Vec<u8>, FrameStats), String> {
+    ) -> Result<(Vec<u8>, FrameStats), ViewerError> {
         let (width, height) = self.size;
         let (view_proj, eye) = camera.view_proj(scene, width as f32 / height as f32);
         let streamed = scene.stream(eye, mode == Mode::Ids, true)?;
@@ -138,16 +143,14 @@ impl Offscreen {
         });
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| format!("device poll: {e}"))?;
-        rx.recv()
-            .map_err(|e| e.to_string())?
-            .map_err(|e| format!("reading the frame back: {e}"))?;
+            .map_err(ViewerError::Poll)?;
+        // The callback always runs once the device has been polled to completion.
+        let mapped = rx.recv().unwrap_or(Err(wgpu::BufferAsyncError));
+        mapped.map_err(ViewerError::Readback)?;
         let row = (width * 4) as usize;
         let mut pixels = Vec::with_capacity(row * height as usize);
         {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| format!("reading the frame back: {e}"))?;
+            let data = slice.get_mapped_range().map_err(ViewerError::MappedRange)?;
             for r in 0..height as usize {
                 let start = r * self.padded_row as usize;
                 pixels.extend_from_slice(&data[start..start + row]);

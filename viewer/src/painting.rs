@@ -10,6 +10,7 @@ use sylva::terrain::HeightField;
 use sylva::terrain::glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::cells::VIEW_DISTANCE;
+use crate::error::ViewerError;
 #[cfg(test)]
 use crate::scene::Camera;
 use crate::scene::Scene;
@@ -58,7 +59,7 @@ impl Painting {
     /// The tool over `scene`'s world: starting from the layer it was painted with, or from a
     /// layer that grows the generated forest everywhere (handed to the world at once, so
     /// every cell comes from the layer the strokes edit). Masks save to `save_to`.
-    pub(crate) fn new(scene: &mut Scene, save_to: PathBuf) -> Result<Painting, String> {
+    pub(crate) fn new(scene: &mut Scene, save_to: PathBuf) -> Result<Painting, ViewerError> {
         let (forest, _) = scene.world.forest();
         let (lo, hi) = scene.world.heightmap.bounds();
         let bounds = Rect::new(lo, hi);
@@ -68,10 +69,10 @@ impl Painting {
             None => {
                 let cell = ((hi.x - lo.x).max(hi.y - lo.y) / MAX_LAYER_CELLS).max(1.0);
                 let weights: Vec<f32> = forest.config().species.iter().map(|s| s.weight).collect();
-                PaintLayer::filled(bounds, cell, &weights).map_err(|e| e.to_string())?
+                PaintLayer::filled(bounds, cell, &weights)?
             }
         };
-        let canvas = PaintCanvas::for_forest(&forest, layer).map_err(|e| e.to_string())?;
+        let canvas = PaintCanvas::for_forest(&forest, layer)?;
         if painted.is_none() {
             let version = scene.world.repaint(canvas.shared_layer())?;
             scene.cells.repaint(&scene.world, bounds, version)?;
@@ -215,7 +216,7 @@ impl Painting {
             .repaint(self.canvas.shared_layer())
             .and_then(|version| scene.cells.repaint(&scene.world, region, version));
         if let Err(e) = shown {
-            self.message = e;
+            self.message = e.to_string();
         }
         self.changed = true;
         self.last_ms = start.elapsed().as_secs_f64() * 1e3;

@@ -10,6 +10,7 @@ use sylva::turtle::Vertex;
 
 use crate::cells::{LOD_DISTANCE, Streamed, VIEW_DISTANCE};
 use crate::cull::{Volume, visible_instances};
+use crate::error::ViewerError;
 use crate::gpu::{DEPTH, buffer, index_buffer, scene_pipeline};
 use crate::materials::Materials;
 use crate::scene::Scene;
@@ -123,7 +124,7 @@ impl Renderer {
         queue: &wgpu::Queue,
         format: wgpu::TextureFormat,
         scene: &Scene,
-    ) -> Result<Renderer, String> {
+    ) -> Result<Renderer, ViewerError> {
         let world = &scene.world;
         let (texture_layout, texture_group) = textures(device, queue);
         let uniform_layout = |size: u64| {
@@ -145,11 +146,11 @@ impl Renderer {
         let materials = Materials::of(world);
         let most = device.limits().max_uniform_buffer_binding_size;
         if materials.bytes.len() as u64 > most {
-            return Err(format!(
-                "{} materials need {} bytes of uniforms; this adapter binds at most {most}",
-                materials.count(),
-                materials.bytes.len()
-            ));
+            return Err(ViewerError::TooManyMaterials {
+                materials: materials.count(),
+                bytes: materials.bytes.len() as u64,
+                most,
+            });
         }
         let material_layout = uniform_layout(materials.bytes.len() as u64);
         // The material array is sized to the world's materials.

@@ -6,7 +6,10 @@ use std::sync::Arc;
 use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::terrain::{HeightField, TerrainVertex};
 
+use sylva::forest::ForestError;
+
 use crate::cells::{Cells, Streamed, VIEW_DISTANCE};
+use crate::error::ViewerError;
 use crate::world::{SceneOptions, World};
 
 /// The world and the cells of it streamed in around the camera.
@@ -19,9 +22,9 @@ pub(crate) struct Scene {
 
 impl Scene {
     /// The world with no cells streamed in yet.
-    pub(crate) fn build(options: SceneOptions) -> Result<Scene, String> {
+    pub(crate) fn build(options: SceneOptions) -> Result<Scene, ViewerError> {
         let world = World::build(options)?;
-        let terrain = world.heightmap.mesh(1).map_err(|e| e.to_string())?;
+        let terrain = world.heightmap.mesh(1)?;
         Ok(Scene {
             world: Arc::new(world),
             terrain_vertices: terrain.vertices,
@@ -41,7 +44,7 @@ impl Scene {
         eye: Vec3,
         fine_everywhere: bool,
         wait: bool,
-    ) -> Result<Streamed, String> {
+    ) -> Result<Streamed, ForestError> {
         self.cells.update(&self.world, eye, fine_everywhere, wait)
     }
 

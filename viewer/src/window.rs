@@ -11,6 +11,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
+use crate::error::ViewerError;
 use crate::gpu::targets;
 use crate::guide::Guide;
 use crate::painting::{Painting, pick};
@@ -40,7 +41,7 @@ struct App {
     /// When the window opened: the wind's clock.
     started: Instant,
     frame_ms: f64,
-    error: Option<String>,
+    error: Option<ViewerError>,
     lost: Arc<AtomicBool>,
     /// Close after this many frames (0: run until closed), printing frame times.
     max_frames: u32,
@@ -72,10 +73,8 @@ pub(crate) fn run(
     camera: Option<Camera>,
     max_frames: u32,
     save_to: std::path::PathBuf,
-) -> Result<(), String> {
-    let event_loop = EventLoop::new().map_err(|e| {
-        format!("cannot open a window ({e}); on a machine without a display, render headless with --screenshot PATH")
-    })?;
+) -> Result<(), ViewerError> {
+    let event_loop = EventLoop::new().map_err(ViewerError::NoDisplay)?;
     let camera = camera.unwrap_or_else(|| Camera::overview(scene.side(), 1.7));
     let mut app = App {
         scene,
@@ -102,21 +101,21 @@ pub(crate) fn run(
     };
     event_loop
         .run_app(&mut app)
-        .map_err(|e| format!("event loop: {e}"))?;
+        .map_err(ViewerError::EventLoop)?;
     app.error.map_or(Ok(()), Err)
 }
 
 impl App {
-    fn fail(&mut self, event_loop: &ActiveEventLoop, message: String) {
-        self.error = Some(message);
+    fn fail(&mut self, event_loop: &ActiveEventLoop, error: impl Into<ViewerError>) {
+        self.error = Some(error.into());
         event_loop.exit();
     }
 
-    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<Gpu, String> {
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<Gpu, ViewerError> {
         let window = Arc::new(
             event_loop
                 .create_window(Window::default_attributes().with_title("sylva"))
-                .map_err(|e| format!("cannot create a window: {e}"))?,
+                .map_err(ViewerError::Window)?,
         );
         // The display handle lets the GL backend (WGPU_BACKEND=gl) present to the window too.
         let instance =
@@ -125,7 +124,7 @@ impl App {
             ));
         let surface = instance
             .create_surface(window.clone())
-            .map_err(|e| format!("cannot draw into the window: {e}"))?;
+            .map_err(ViewerError::Surface)?;
         let (adapter, device, queue) =
             pollster::block_on(crate::gpu::device(&instance, Some(&surface)))?;
         let lost = self.lost.clone();
@@ -133,7 +132,7 @@ impl App {
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&adapter, size.width.max(1), size.height.max(1))
-            .ok_or("the adapter cannot present to this window")?;
+            .ok_or(ViewerError::CannotPresent)?;
         let caps = surface.get_capabilities(&adapter);
         if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
             config.format = *srgb;
@@ -184,7 +183,7 @@ impl App {
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         if self.lost.load(Ordering::SeqCst) {
-            return self.fail(event_loop, "the graphics device was lost".into());
+            return self.fail(event_loop, ViewerError::DeviceLost);
         }
         let now = Instant::now();
         let elapsed = (now - self.last).as_secs_f64();
@@ -214,7 +213,7 @@ impl App {
                 return;
             }
             wgpu::CurrentSurfaceTexture::Validation => {
-                return self.fail(event_loop, "the window surface failed validation".into());
+                return self.fail(event_loop, ViewerError::SurfaceInvalid);
             }
         };
         let view = frame.texture.create_view(&Default::default());

@@ -5,13 +5,16 @@ use bytemuck::{Pod, Zeroable};
 use std::sync::{Arc, PoisonError, RwLock};
 
 use sylva::forest::{
-    BarkPattern, Composition, Extent, ForestBuilder, ForestConfig, LeafShape, Species, tree_proxy,
+    BarkPattern, Composition, Extent, ForestBuilder, ForestConfig, ForestError, LeafShape, Species,
+    tree_proxy,
 };
 use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
 use sylva::terrain::Heightmap;
 use sylva::terrain::glam::{Quat, Vec3};
 use sylva::turtle::Vertex;
+
+use crate::error::ViewerError;
 
 /// One placement as the vertex shader reads it: rotation, then translation and scale.
 #[repr(C)]
@@ -116,38 +119,31 @@ impl SceneOptions {
 }
 
 /// The bundled species ([`sylva::presets::species`]).
-pub(crate) fn default_species() -> Result<Vec<Species>, String> {
-    sylva::presets::species().map_err(|e| e.to_string())
+pub(crate) fn default_species() -> Result<Vec<Species>, ForestError> {
+    sylva::presets::species()
 }
 
 impl World {
     /// The forest's caches and the terrain ([`sylva::presets::terrain`], as the forest
     /// example's); no trees are placed until cells are streamed.
-    pub(crate) fn build(options: SceneOptions) -> Result<World, String> {
+    pub(crate) fn build(options: SceneOptions) -> Result<World, ViewerError> {
         let mut config = ForestConfig::new(options.species);
         config.seed = options.seed;
         config.budget = options.budget;
-        let mut builder = ForestBuilder::new(config).map_err(|e| e.to_string())?;
+        let mut builder = ForestBuilder::new(config)?;
         let side = match options.trees {
             Some(n) => (n as f32).sqrt() * builder.density().patch,
             None => options.side,
         };
         if !(side > 10.0 && side <= 20_000.0) {
-            return Err(format!(
-                "a world of {side} m: expected 10 to 20000 metres a side"
-            ));
+            return Err(ViewerError::WorldSize { side });
         }
-        let heightmap = sylva::presets::terrain(options.seed, side).map_err(|e| e.to_string())?;
+        let heightmap = sylva::presets::terrain(options.seed, side)?;
         let mut layer = None;
         if let Some(dir) = &options.paint {
-            let loaded = Arc::new(
-                sylva::paint::load_masks_for(&builder, dir, &heightmap)
-                    .map_err(|e| e.to_string())?,
-            );
+            let loaded = Arc::new(sylva::paint::load_masks_for(&builder, dir, &heightmap)?);
             let composition: Arc<dyn Composition> = loaded.clone();
-            builder = builder
-                .with_composition(Some(composition))
-                .map_err(|e| e.to_string())?;
+            builder = builder.with_composition(Some(composition))?;
             layer = Some(loaded);
         }
         let species = &builder.config().species;
@@ -240,12 +236,10 @@ impl World {
     }
 
     /// Paints the forest with `layer` from now on; returns the new version.
-    pub(crate) fn repaint(&self, layer: Arc<PaintLayer>) -> Result<u64, String> {
+    pub(crate) fn repaint(&self, layer: Arc<PaintLayer>) -> Result<u64, ForestError> {
         let (builder, _) = self.forest();
         let composition: Arc<dyn Composition> = layer.clone();
-        let painted = builder
-            .with_composition(Some(composition))
-            .map_err(|e| e.to_string())?;
+        let painted = builder.with_composition(Some(composition))?;
         let mut recipe = self.forest.write().unwrap_or_else(PoisonError::into_inner);
         recipe.version += 1;
         recipe.builder = Arc::new(painted);
