@@ -79,6 +79,44 @@ pub struct ForestConfig {
 }
 
 impl ForestConfig {
+    /// Sets [`ForestConfig::constraints`].
+    pub fn with_constraints(mut self, constraints: Constraints) -> Self {
+        self.constraints = constraints;
+        self
+    }
+
+    /// Sets [`ForestConfig::seed`].
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Sets [`ForestConfig::budget`].
+    pub fn with_budget(mut self, budget: usize) -> Self {
+        self.budget = budget;
+        self
+    }
+
+    /// Sets [`ForestConfig::scale_variation`].
+    pub fn with_scale_variation(mut self, scale_variation: f32) -> Self {
+        self.scale_variation = scale_variation;
+        self
+    }
+
+    /// Sets [`ForestConfig::spacing_factor`].
+    pub fn with_spacing_factor(mut self, spacing_factor: f32) -> Self {
+        self.spacing_factor = spacing_factor;
+        self
+    }
+
+    /// Sets [`ForestConfig::seedlings_per_patch`].
+    pub fn with_seedlings_per_patch(mut self, seedlings_per_patch: u32) -> Self {
+        self.seedlings_per_patch = seedlings_per_patch;
+        self
+    }
+}
+
+impl ForestConfig {
     /// A configuration with defaults: 64 MB of cache, seed 1, 10% scale variation.
     pub fn new(species: Vec<Species>) -> Self {
         ForestConfig {

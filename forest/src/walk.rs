@@ -54,6 +54,62 @@ impl Default for WalkOptions {
     }
 }
 
+impl WalkOptions {
+    /// Sets [`WalkOptions::step`].
+    pub fn with_step(mut self, step: f32) -> Self {
+        self.step = step;
+        self
+    }
+
+    /// Sets [`WalkOptions::influence`].
+    pub fn with_influence(mut self, influence: f32) -> Self {
+        self.influence = influence;
+        self
+    }
+
+    /// Sets [`WalkOptions::repulsion`].
+    pub fn with_repulsion(mut self, repulsion: f32) -> Self {
+        self.repulsion = repulsion;
+        self
+    }
+
+    /// Sets [`WalkOptions::body`].
+    pub fn with_body(mut self, body: f32) -> Self {
+        self.body = body;
+        self
+    }
+
+    /// Sets [`WalkOptions::arrival`].
+    pub fn with_arrival(mut self, arrival: f32) -> Self {
+        self.arrival = arrival;
+        self
+    }
+
+    /// Sets [`WalkOptions::margin`].
+    pub fn with_margin(mut self, margin: f32) -> Self {
+        self.margin = margin;
+        self
+    }
+
+    /// Sets [`WalkOptions::turn`].
+    pub fn with_turn(mut self, turn: f32) -> Self {
+        self.turn = turn;
+        self
+    }
+
+    /// Sets [`WalkOptions::deviation`].
+    pub fn with_deviation(mut self, deviation: f32) -> Self {
+        self.deviation = deviation;
+        self
+    }
+
+    /// Sets [`WalkOptions::patience`].
+    pub fn with_patience(mut self, patience: u32) -> Self {
+        self.patience = patience;
+        self
+    }
+}
+
 /// Where trunks stand: anything that can list the trunks near a point.
 pub trait Trunks {
     /// Appends the trunks (centre, radius) within `reach` of `p`; more may be given.

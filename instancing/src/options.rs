@@ -82,6 +82,26 @@ impl Default for HeroOptions {
 }
 
 impl HeroOptions {
+    /// Sets [`HeroOptions::max_rejections`].
+    pub fn with_max_rejections(mut self, max_rejections: u32) -> Self {
+        self.max_rejections = max_rejections;
+        self
+    }
+
+    /// Sets [`HeroOptions::markers`].
+    pub fn with_markers(mut self, markers: Markers) -> Self {
+        self.markers = markers;
+        self
+    }
+
+    /// Sets [`HeroOptions::limits`].
+    pub fn with_limits(mut self, limits: Limits) -> Self {
+        self.limits = limits;
+        self
+    }
+}
+
+impl HeroOptions {
     /// Sets [`HeroOptions::budget`] in bytes.
     pub fn with_budget(mut self, bytes: usize) -> Self {
         self.budget = bytes;

@@ -32,6 +32,26 @@ impl Default for ThermalErosion {
 }
 
 impl ThermalErosion {
+    /// Sets [`ThermalErosion::talus`].
+    pub fn with_talus(mut self, talus: f32) -> Self {
+        self.talus = talus;
+        self
+    }
+
+    /// Sets [`ThermalErosion::rate`].
+    pub fn with_rate(mut self, rate: f32) -> Self {
+        self.rate = rate;
+        self
+    }
+
+    /// Sets [`ThermalErosion::iterations`].
+    pub fn with_iterations(mut self, iterations: u32) -> Self {
+        self.iterations = iterations;
+        self
+    }
+}
+
+impl ThermalErosion {
     /// Thermal erosion with the given talus slope, rate and iteration count.
     pub fn new(talus: f32, rate: f32, iterations: u32) -> Self {
         ThermalErosion {
@@ -146,6 +166,68 @@ impl Default for HydraulicErosion {
             gravity: 4.0,
             lifetime: 30,
         }
+    }
+}
+
+impl HydraulicErosion {
+    /// Sets [`HydraulicErosion::droplets`].
+    pub fn with_droplets(mut self, droplets: u32) -> Self {
+        self.droplets = droplets;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::seed`].
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::inertia`].
+    pub fn with_inertia(mut self, inertia: f32) -> Self {
+        self.inertia = inertia;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::capacity`].
+    pub fn with_capacity(mut self, capacity: f32) -> Self {
+        self.capacity = capacity;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::min_slope`].
+    pub fn with_min_slope(mut self, min_slope: f32) -> Self {
+        self.min_slope = min_slope;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::erosion`].
+    pub fn with_erosion(mut self, erosion: f32) -> Self {
+        self.erosion = erosion;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::deposition`].
+    pub fn with_deposition(mut self, deposition: f32) -> Self {
+        self.deposition = deposition;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::evaporation`].
+    pub fn with_evaporation(mut self, evaporation: f32) -> Self {
+        self.evaporation = evaporation;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::gravity`].
+    pub fn with_gravity(mut self, gravity: f32) -> Self {
+        self.gravity = gravity;
+        self
+    }
+
+    /// Sets [`HydraulicErosion::lifetime`].
+    pub fn with_lifetime(mut self, lifetime: u32) -> Self {
+        self.lifetime = lifetime;
+        self
     }
 }
 

@@ -95,6 +95,44 @@ impl Default for TurtleOptions {
 }
 
 impl TurtleOptions {
+    /// Sets [`TurtleOptions::width_factor`].
+    pub fn with_width_factor(mut self, width_factor: f32) -> Self {
+        self.width_factor = width_factor;
+        self
+    }
+
+    /// Sets [`TurtleOptions::length_factor`].
+    pub fn with_length_factor(mut self, length_factor: f32) -> Self {
+        self.length_factor = length_factor;
+        self
+    }
+
+    /// Sets [`TurtleOptions::angle_factor`].
+    pub fn with_angle_factor(mut self, angle_factor: f32) -> Self {
+        self.angle_factor = angle_factor;
+        self
+    }
+
+    /// Sets [`TurtleOptions::leaf_size`].
+    pub fn with_leaf_size(mut self, leaf_size: [f32; 2]) -> Self {
+        self.leaf_size = leaf_size;
+        self
+    }
+
+    /// Sets [`TurtleOptions::leaf_facing`].
+    pub fn with_leaf_facing(mut self, leaf_facing: f32) -> Self {
+        self.leaf_facing = leaf_facing;
+        self
+    }
+
+    /// Sets [`TurtleOptions::max_depth`].
+    pub fn with_max_depth(mut self, max_depth: usize) -> Self {
+        self.max_depth = max_depth;
+        self
+    }
+}
+
+impl TurtleOptions {
     /// Sets [`TurtleOptions::angle`] (degrees).
     pub fn with_angle(mut self, degrees: f32) -> Self {
         self.angle = degrees;

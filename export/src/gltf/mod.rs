@@ -35,7 +35,15 @@ use crate::error::{ExportError, Invalid};
 use document::Document;
 use file::{write_file, write_geometry, write_placements};
 
-/// Export settings.
+/// Export settings. Like every options struct of sylva: public fields, [`Default`], and a
+/// `with_*` method per field for chaining.
+///
+/// ```
+/// use sylva_export::GltfOptions;
+/// let options = GltfOptions::default().with_roughness(0.8).with_one_node_per_placement(true);
+/// assert_eq!((options.roughness, options.one_node_per_placement), (0.8, true));
+/// assert_eq!(options.chunk_bytes, GltfOptions::default().chunk_bytes);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct GltfOptions {
@@ -72,6 +80,38 @@ impl Default for GltfOptions {
             shared_geometry: None,
             one_node_per_placement: false,
         }
+    }
+}
+
+impl GltfOptions {
+    /// Sets [`GltfOptions::terrain_colour`].
+    pub fn with_terrain_colour(mut self, terrain_colour: [f32; 3]) -> Self {
+        self.terrain_colour = terrain_colour;
+        self
+    }
+
+    /// Sets [`GltfOptions::roughness`].
+    pub fn with_roughness(mut self, roughness: f32) -> Self {
+        self.roughness = roughness;
+        self
+    }
+
+    /// Sets [`GltfOptions::chunk_bytes`].
+    pub fn with_chunk_bytes(mut self, chunk_bytes: usize) -> Self {
+        self.chunk_bytes = chunk_bytes;
+        self
+    }
+
+    /// Sets [`GltfOptions::shared_geometry`].
+    pub fn with_shared_geometry(mut self, shared_geometry: Option<String>) -> Self {
+        self.shared_geometry = shared_geometry;
+        self
+    }
+
+    /// Sets [`GltfOptions::one_node_per_placement`].
+    pub fn with_one_node_per_placement(mut self, one_node_per_placement: bool) -> Self {
+        self.one_node_per_placement = one_node_per_placement;
+        self
     }
 }
 

@@ -312,6 +312,14 @@ impl Default for TilesetOptions {
     }
 }
 
+impl TilesetOptions {
+    /// Sets [`TilesetOptions::origin`].
+    pub fn with_origin(mut self, origin: (f64, f64)) -> Self {
+        self.origin = origin;
+        self
+    }
+}
+
 /// The last step: writes `dir/shared.bin` (the geometry every fine tile references) and
 /// `dir/tileset.json` (3D Tiles 1.1) for the scheme's tiles, which may be written before or
 /// after, by any process. Geometric errors: a coarse tile's is the widest crown diameter (the
