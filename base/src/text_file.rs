@@ -1,21 +1,18 @@
 //! Reading a text file with a size limit checked before and while reading, so that a path
 //! such as `/dev/zero` or a huge file ends in an error instead of exhausting memory.
 
-use std::io::Read;
+use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
+use crate::file::FileError;
+
 /// Why a text file could not be read.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum TextFileError {
-    /// The file could not be opened or read; the message is the system's.
-    #[error("{}: {message}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The system's message.
-        message: String,
-    },
+    /// The file could not be opened or read: its path and the system's error.
+    #[error(transparent)]
+    Io(#[from] FileError),
     /// The file holds more than the limit. Split it or check that the path is right.
     #[error("{}: larger than the limit of {limit} bytes", path.display())]
     TooLarge {
@@ -43,10 +40,7 @@ pub enum TextFileError {
 /// # std::fs::remove_file(&dir).ok();
 /// ```
 pub fn read(path: &Path, limit: u64) -> Result<String, TextFileError> {
-    let io = |e: std::io::Error| TextFileError::Io {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
+    let io = |e: io::Error| TextFileError::Io(FileError::new(path, e));
     let too_large = || TextFileError::TooLarge {
         path: path.to_path_buf(),
         limit,
@@ -54,10 +48,10 @@ pub fn read(path: &Path, limit: u64) -> Result<String, TextFileError> {
     let file = std::fs::File::open(path).map_err(io)?;
     let metadata = file.metadata().map_err(io)?;
     if metadata.is_dir() {
-        return Err(TextFileError::Io {
-            path: path.to_path_buf(),
-            message: "is a directory".into(),
-        });
+        return Err(io(io::Error::new(
+            io::ErrorKind::IsADirectory,
+            "a folder, not a file",
+        )));
     }
     if metadata.is_file() && metadata.len() > limit {
         return Err(too_large());
@@ -88,13 +82,16 @@ mod tests {
 
     #[test]
     fn missing_files_and_directories_are_io_errors() {
-        assert!(matches!(
-            read(Path::new("/no/such/file"), 10),
-            Err(TextFileError::Io { .. })
-        ));
-        assert!(matches!(
-            read(&std::env::temp_dir(), 10),
-            Err(TextFileError::Io { .. })
-        ));
+        let missing = read(Path::new("/no/such/file"), 10).unwrap_err();
+        assert!(matches!(&missing, TextFileError::Io(e) if e.kind() == io::ErrorKind::NotFound));
+        assert!(
+            missing.to_string().ends_with("; check the path"),
+            "{missing}"
+        );
+        let folder = read(&std::env::temp_dir(), 10).unwrap_err();
+        assert!(
+            matches!(&folder, TextFileError::Io(e) if e.kind() == io::ErrorKind::IsADirectory),
+            "{folder}"
+        );
     }
 }

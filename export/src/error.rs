@@ -102,8 +102,8 @@ pub enum Invalid {
     #[error("an instance spans past its cache's indices")]
     InstanceSpan,
     /// A placement is not a valid translation, rotation and scale.
-    #[error("placement {0} is not a valid TRS transform")]
-    Transform(String),
+    #[error("placement {0:?} is not a valid TRS transform")]
+    Transform(sylva_instancing::Similarity),
     /// A placement names an instance its variant does not have.
     #[error("a placement of an unknown instance")]
     UnknownInstance,

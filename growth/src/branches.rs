@@ -88,9 +88,9 @@ pub(crate) fn branches(
             Command::Leaf => Step::Leaf(arg(0).unwrap_or(1.0).abs()),
             Command::Push => {
                 if out.len() >= MAX_BRANCHES {
-                    return Err(GrowthError::BadParameter(format!(
-                        "the word has more than {MAX_BRANCHES} branches"
-                    )));
+                    return Err(GrowthError::TooManyBranches {
+                        limit: MAX_BRANCHES,
+                    });
                 }
                 let child = out.len();
                 out[current].steps.push(Step::Spawn(child as u32));

@@ -40,15 +40,14 @@ impl VoxelGrid {
     /// A grid of empty voxels of side `voxel` covering the box from `min` to `max` (rounded
     /// up to whole voxels). Refuses grids that are empty, not finite or over [`MAX_VOXELS`].
     pub fn new(min: Vec3, max: Vec3, voxel: f32) -> Result<VoxelGrid, GrowthError> {
-        if !(voxel.is_finite() && voxel > 0.0) {
-            return Err(GrowthError::Grid(format!(
-                "the voxel size must be positive, not {voxel}"
-            )));
-        }
+        sylva_base::range::check(
+            "voxel size",
+            f64::from(voxel),
+            voxel > 0.0,
+            "a positive length in metres",
+        )?;
         if !(min.is_finite() && max.is_finite()) || max.cmple(min).any() {
-            return Err(GrowthError::Grid(format!(
-                "the region {min} to {max} is empty or not finite"
-            )));
+            return Err(GrowthError::EmptyRegion { min, max });
         }
         let extent = ((max - min) / voxel).ceil();
         let voxels = f64::from(extent.x) * f64::from(extent.y) * f64::from(extent.z);
@@ -56,9 +55,11 @@ impl VoxelGrid {
             || voxels > MAX_VOXELS as f64
             || extent.max_element() > u32::MAX as f32 / 2.0
         {
-            return Err(GrowthError::Grid(format!(
-                "{voxels:.3e} voxels of {voxel} m over {min} to {max} is more than the limit of {MAX_VOXELS}; use larger voxels or a smaller region"
-            )));
+            return Err(GrowthError::TooManyVoxels {
+                voxels,
+                voxel,
+                limit: MAX_VOXELS,
+            });
         }
         let dims = extent.as_uvec3().max(UVec3::ONE);
         let brick_dims = (dims + UVec3::splat(BRICK - 1)) / BRICK;
@@ -180,7 +181,7 @@ impl VoxelGrid {
     /// Occupies every voxel occupied in `other`, a grid of the same shape.
     pub fn union_with(&mut self, other: &VoxelGrid) -> Result<(), GrowthError> {
         if other.dims != self.dims || other.origin != self.origin || other.voxel != self.voxel {
-            return Err(GrowthError::Grid("grids of different shapes".into()));
+            return Err(GrowthError::GridShapes);
         }
         let (nx, ny) = (self.dims.x as usize, self.dims.y as usize);
         for w in 0..self.bits.len() {

@@ -20,15 +20,13 @@ pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 /// ```
 pub fn read_obj(path: impl AsRef<Path>) -> Result<(Vec<Vec3>, Vec<u32>), GrowthError> {
     let path = path.as_ref();
-    let name = path.display().to_string();
-    let text = sylva_base::text_file::read(path, MAX_OBJ_BYTES)
-        .map_err(|e| GrowthError::Io(e.to_string()))?;
-    parse_obj(&text, &name)
+    let text = sylva_base::text_file::read(path, MAX_OBJ_BYTES)?;
+    parse_obj(&text, path)
 }
 
-pub(crate) fn parse_obj(text: &str, name: &str) -> Result<(Vec<Vec3>, Vec<u32>), GrowthError> {
+pub(crate) fn parse_obj(text: &str, name: &Path) -> Result<(Vec<Vec3>, Vec<u32>), GrowthError> {
     let err = |line: usize, message: String| GrowthError::MeshFile {
-        file: name.to_string(),
+        file: name.to_path_buf(),
         line,
         message,
     };
@@ -87,16 +85,16 @@ mod tests {
     fn quads_are_fanned_and_bad_faces_are_errors_at_their_line() {
         let (p, t) = parse_obj(
             "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1 2/2 3/3 -1\n",
-            "q.obj",
+            Path::new("q.obj"),
         )
         .unwrap();
         assert_eq!(p.len(), 4);
         assert_eq!(t, vec![0, 1, 2, 0, 2, 3]);
-        let e = parse_obj("v 0 0 0\nf 1 2 3\n", "bad.obj").unwrap_err();
+        let e = parse_obj("v 0 0 0\nf 1 2 3\n", Path::new("bad.obj")).unwrap_err();
         assert_eq!(
             e.to_string(),
             "bad.obj:2: vertex 2 does not exist (1 so far)"
         );
-        assert!(parse_obj("v 0 nan 0\n", "n.obj").is_err());
+        assert!(parse_obj("v 0 nan 0\n", Path::new("n.obj")).is_err());
     }
 }

@@ -183,10 +183,9 @@ impl Stand {
                 break;
             }
             if iteration >= self.options.max_iterations {
-                return Err(GrowthError::BadParameter(format!(
-                    "growth did not finish in {} iterations",
-                    self.options.max_iterations
-                )));
+                return Err(GrowthError::Unfinished {
+                    limit: self.options.max_iterations,
+                });
             }
             // Every active apex advances one segment, in an order drawn from the seed, so
             // that no branch has first claim on space and light.

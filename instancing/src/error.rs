@@ -28,17 +28,34 @@ pub enum InstancingError {
         /// Bytes the smallest hero needed.
         needed: usize,
     },
-    /// The explicit 2^B form was asked of a production with too many branches, or of a
-    /// predecessor whose deterministic and stochastic productions would mix.
-    #[error("explicit form not available: {0}")]
-    ExplicitForm(String),
+    /// The explicit 2^B form was asked of a production with more branches than it expands.
+    #[error(
+        "explicit form not available: production {production} has {branches} branches, more than {limit}"
+    )]
+    ExplicitTooManyBranches {
+        /// The production, counted from 0.
+        production: usize,
+        /// Its branches.
+        branches: usize,
+        /// The most the explicit form expands.
+        limit: usize,
+    },
+    /// The explicit form was asked of a deterministic production whose predecessor has other
+    /// productions: its variants would join their weighted draw.
+    #[error(
+        "explicit form not available: production {production} is deterministic and shares its predecessor"
+    )]
+    ExplicitSharedPredecessor {
+        /// The production, counted from 0.
+        production: usize,
+    },
     /// A tree referred to a species with no cache.
     #[error("no cache for species {0}")]
     UnknownSpecies(u16),
     /// Assembling a tree went deeper, or placed more instances, than the limits allow.
     #[error("tree assembly exceeded its limit of {0}")]
     AssemblyLimit(&'static str),
-    /// A parameter is out of range; the message names it.
-    #[error("{0}")]
-    BadParameter(String),
+    /// A setting is NaN, infinite or out of its range.
+    #[error(transparent)]
+    OutOfRange(#[from] sylva_base::range::OutOfRange),
 }

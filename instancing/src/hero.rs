@@ -4,6 +4,8 @@ use std::time::{Duration, Instant};
 
 use sylva_lsys::{LSystem, Word};
 
+use sylva_base::range::check;
+
 use crate::cache::InstanceCache;
 use crate::error::InstancingError;
 use crate::filling::{Filling, HeroGrammar, Schedule};
@@ -55,26 +57,7 @@ pub struct HeroCache {
 /// ```
 pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache, InstancingError> {
     let start = Instant::now();
-    if !(0.0..=1.0).contains(&options.p_min)
-        || !(0.0..=1.0).contains(&options.p_max)
-        || options.p_min > options.p_max
-    {
-        return Err(InstancingError::BadParameter(format!(
-            "probability schedule {}..{} must lie in [0, 1] and rise",
-            options.p_min, options.p_max
-        )));
-    }
-    if options.cap_per_key == 0 || options.generations > 64 {
-        return Err(InstancingError::BadParameter(
-            "cap_per_key must be at least 1 and generations at most 64".into(),
-        ));
-    }
-    if !(0.0..=1.0).contains(&options.complete_share) || options.max_tree_exits == 0 {
-        return Err(InstancingError::BadParameter(format!(
-            "complete_share {} must lie in [0, 1] and max_tree_exits {} be at least 1",
-            options.complete_share, options.max_tree_exits
-        )));
-    }
+    check_options(options)?;
     let mut grammar = HeroGrammar::new(grammar, options)?;
     let mut filling = Filling::new(options.budget, grammar.ids(), options.generations + 1);
     let mut schedule = Schedule::new(options);
@@ -121,4 +104,41 @@ pub fn build_cache(grammar: &LSystem, options: &HeroOptions) -> Result<HeroCache
         words,
         stats,
     })
+}
+
+/// Every setting of `options` in its range.
+fn check_options(options: &HeroOptions) -> Result<(), InstancingError> {
+    let unit = |p: f64| (0.0..=1.0).contains(&p);
+    check("p_min", options.p_min, unit(options.p_min), "in [0, 1]")?;
+    check(
+        "p_max",
+        options.p_max,
+        unit(options.p_max) && options.p_max >= options.p_min,
+        "in [0, 1] and at least p_min",
+    )?;
+    check(
+        "cap_per_key",
+        options.cap_per_key as f64,
+        options.cap_per_key > 0,
+        "at least 1",
+    )?;
+    check(
+        "generations",
+        f64::from(options.generations),
+        options.generations <= 64,
+        "at most 64",
+    )?;
+    check(
+        "complete_share",
+        options.complete_share,
+        unit(options.complete_share),
+        "in [0, 1]",
+    )?;
+    check(
+        "max_tree_exits",
+        f64::from(options.max_tree_exits),
+        options.max_tree_exits > 0,
+        "at least 1",
+    )?;
+    Ok(())
 }

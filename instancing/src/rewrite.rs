@@ -286,11 +286,12 @@ impl InstancingGrammar {
     /// predecessor has several productions and one of them is deterministic with branches (its
     /// variants would join the others' weighted draw).
     pub fn explicit(&self, p: f64) -> Result<LSystem, InstancingError> {
-        if !(0.0..=1.0).contains(&p) {
-            return Err(InstancingError::BadParameter(format!(
-                "instancing probability {p} outside [0, 1]"
-            )));
-        }
+        sylva_base::range::check(
+            "instancing probability",
+            p,
+            (0.0..=1.0).contains(&p),
+            "in [0, 1]",
+        )?;
         let prods = self.base.productions();
         let mut out = Vec::new();
         for (k, (prod, spans)) in prods.iter().zip(&self.spans).enumerate() {
@@ -300,18 +301,18 @@ impl InstancingGrammar {
                 continue;
             }
             if b > 12 {
-                return Err(InstancingError::ExplicitForm(format!(
-                    "production {k} has {b} branches"
-                )));
+                return Err(InstancingError::ExplicitTooManyBranches {
+                    production: k,
+                    branches: b,
+                    limit: 12,
+                });
             }
             let siblings = prods
                 .iter()
                 .filter(|q| q.predecessor.symbol == prod.predecessor.symbol)
                 .count();
             if prod.weight.is_none() && siblings > 1 {
-                return Err(InstancingError::ExplicitForm(format!(
-                    "production {k} is deterministic and shares its predecessor"
-                )));
+                return Err(InstancingError::ExplicitSharedPredecessor { production: k });
             }
             let w = prod.weight.unwrap_or(1.0);
             for mask in 0u32..(1 << b) {

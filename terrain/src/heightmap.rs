@@ -63,13 +63,13 @@ impl Heightmap {
             "a positive distance",
         )?;
         if heights.len() != size * size {
-            return Err(TerrainError::BadData(format!(
-                "{} heights for a {size} x {size} grid",
-                heights.len()
-            )));
+            return Err(TerrainError::HeightCount {
+                heights: heights.len(),
+                size,
+            });
         }
-        if let Some(bad) = heights.iter().find(|h| !h.is_finite()) {
-            return Err(TerrainError::BadData(format!("height {bad} is not finite")));
+        if let Some(index) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(TerrainError::NonFiniteHeight { index, size });
         }
         Ok(Heightmap {
             size,

@@ -43,10 +43,6 @@ impl HeightRange {
     }
 }
 
-fn io_err(e: impl std::fmt::Display) -> TerrainError {
-    TerrainError::Io(e.to_string())
-}
-
 impl Heightmap {
     /// The range the map's heights span (widened by 1 when flat, so it is never empty).
     pub fn height_range(&self) -> HeightRange {
@@ -110,16 +106,14 @@ impl Heightmap {
         let mut encoder = png::Encoder::new(out, side, side);
         encoder.set_color(png::ColorType::Grayscale);
         encoder.set_depth(png::BitDepth::Sixteen);
-        encoder
-            .add_text_chunk(
-                TEXT_KEY.to_string(),
-                format!("{} {} {}", range.min, range.max, self.spacing()),
-            )
-            .map_err(io_err)?;
-        let mut writer = encoder.write_header().map_err(io_err)?;
+        encoder.add_text_chunk(
+            TEXT_KEY.to_string(),
+            format!("{} {} {}", range.min, range.max, self.spacing()),
+        )?;
+        let mut writer = encoder.write_header()?;
         let data: Vec<u8> = self.quantized(&range).flat_map(u16::to_be_bytes).collect();
-        writer.write_image_data(&data).map_err(io_err)?;
-        writer.finish().map_err(io_err)?;
+        writer.write_image_data(&data)?;
+        writer.finish()?;
         Ok(range)
     }
 
@@ -130,20 +124,20 @@ impl Heightmap {
         fallback: Option<(HeightRange, f32)>,
     ) -> Result<Heightmap, TerrainError> {
         let decoder = png::Decoder::new(input);
-        let mut reader = decoder.read_info().map_err(io_err)?;
+        let mut reader = decoder.read_info()?;
         let info = reader.info();
         if info.color_type != png::ColorType::Grayscale || info.bit_depth != png::BitDepth::Sixteen
         {
-            return Err(TerrainError::BadData(format!(
-                "expected 16-bit grayscale, found {:?} {:?}",
-                info.color_type, info.bit_depth
-            )));
+            return Err(TerrainError::NotGrayscale16 {
+                channels: info.color_type.samples() as u8,
+                bits: info.bit_depth as u8,
+            });
         }
         if info.width != info.height {
-            return Err(TerrainError::BadData(format!(
-                "image is {} x {}, not square",
-                info.width, info.height
-            )));
+            return Err(TerrainError::NotSquare {
+                width: info.width,
+                height: info.height,
+            });
         }
         let size = info.width as usize;
         checked_len(size)?;
@@ -167,17 +161,15 @@ impl Heightmap {
                     )
                 })
             });
-        let (range, spacing) = stored.or(fallback).ok_or_else(|| {
-            TerrainError::BadData("no sylva:heights chunk and no range given".into())
-        })?;
+        let (range, spacing) = stored.or(fallback).ok_or(TerrainError::NoHeightRange)?;
         range.validate()?;
         let mut buf = vec![
             0u8;
             reader
                 .output_buffer_size()
-                .ok_or_else(|| TerrainError::BadData("image too large".into()))?
+                .ok_or(TerrainError::BadSize(size))?
         ];
-        reader.next_frame(&mut buf).map_err(io_err)?;
+        reader.next_frame(&mut buf)?;
         let heights = buf[..size * size * 2]
             .chunks_exact(2)
             .map(|b| range.dequantize(u16::from_be_bytes([b[0], b[1]])))
@@ -189,16 +181,15 @@ impl Heightmap {
 /// Side of a square map stored in `len` bytes at `bytes_per_sample`.
 fn square_side(len: usize, bytes_per_sample: usize) -> Result<usize, TerrainError> {
     if !len.is_multiple_of(bytes_per_sample) {
-        return Err(TerrainError::BadData(format!(
-            "{len} bytes is not a whole number of samples"
-        )));
+        return Err(TerrainError::PartialSample {
+            bytes: len,
+            sample_bytes: bytes_per_sample,
+        });
     }
     let samples = len / bytes_per_sample;
     let side = (samples as f64).sqrt().round() as usize;
     if side * side != samples {
-        return Err(TerrainError::BadData(format!(
-            "{samples} samples is not a square map"
-        )));
+        return Err(TerrainError::NotSquareSamples { samples });
     }
     levels_of(side)?;
     Ok(side)

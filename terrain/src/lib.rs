@@ -42,7 +42,7 @@ mod smooth;
 
 pub use diamond_square::DiamondSquare;
 pub use erosion::{HydraulicErosion, ThermalErosion};
-pub use error::TerrainError;
+pub use error::{OutOfRange, TerrainError};
 pub use field::{FlatPlane, HeightField};
 pub use glam;
 pub use heightmap::{HeightStats, Heightmap, MAX_LEVELS};

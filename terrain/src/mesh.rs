@@ -3,7 +3,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-use crate::error::TerrainError;
+use crate::error::{OutOfRange, TerrainError};
 use crate::heightmap::Heightmap;
 
 /// One terrain vertex: 32 bytes, `#[repr(C)]` and `Pod` for direct upload.
@@ -40,11 +40,12 @@ impl Heightmap {
     pub fn mesh(&self, stride: usize) -> Result<TerrainMesh, TerrainError> {
         let cells = self.size() - 1;
         if stride == 0 || !cells.is_multiple_of(stride) {
-            return Err(TerrainError::BadParameter {
+            return Err(OutOfRange {
                 name: "stride",
                 value: stride as f64,
                 expected: "a divisor of size - 1",
-            });
+            }
+            .into());
         }
         let m = cells / stride + 1;
         let mut vertices = Vec::with_capacity(m * m);

@@ -230,7 +230,7 @@ pub fn write_glb(
             for p in &block.placements {
                 let t = &p.transform;
                 if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
-                    return Err(Invalid::Transform(format!("{t:?}")).into());
+                    return Err(Invalid::Transform(*t).into());
                 }
                 let slot = counts
                     .get_mut(p.variant as usize)
