@@ -203,7 +203,9 @@ fn a_view_streamed_again_is_the_same_picture() {
         seed: 4,
         side: 2400.0,
         trees: None,
-        species: vec![species[1].clone(), species[2].clone()],
+        // Birch and oak: the spruce's needle sprays tripled the triangles this test draws on
+        // the software driver without testing anything more.
+        species: vec![species[1].clone(), species[0].clone()],
         budget: 12 << 20,
         paint: None,
     })
