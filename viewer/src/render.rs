@@ -411,25 +411,7 @@ impl Renderer {
         let shaded = view.mode == Mode::Shaded;
         let sun = SUN.normalize();
         let light_view_proj = light_view_proj(view.eye, view.forward, sun);
-        let wind = Vec3::new(0.8, 0.0, 0.6) * view.wind.max(0.0);
-        let rgb1 = |c: [f32; 3]| [c[0], c[1], c[2], 1.0];
-        let globals = Globals {
-            view_proj: view.view_proj.to_cols_array_2d(),
-            inverse_view_proj: view.view_proj.inverse().to_cols_array_2d(),
-            light_view_proj: light_view_proj.to_cols_array_2d(),
-            camera: [view.eye.x, view.eye.y, view.eye.z, 1.0],
-            light: [sun.x, sun.y, sun.z, if shaded { 1.0 } else { 0.0 }],
-            horizon: rgb1(HORIZON),
-            zenith: rgb1(ZENITH),
-            fog: [
-                if shaded { self.fog_density } else { 0.0 },
-                self.terrain_heights.0,
-                self.terrain_heights.1,
-                0.0,
-            ],
-            wind: [wind.x, 0.0, wind.z, view.time],
-        };
-        queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        self.write_globals(queue, &view, sun, light_view_proj);
         // The placements each pass can see, gathered into the instance buffer: the camera's
         // first, then the sun's.
         let mut visible = Vec::new();
@@ -456,22 +438,7 @@ impl Renderer {
         } else {
             Vec::new()
         };
-        let bytes = (visible.len() * size_of::<InstanceRaw>()) as u64;
-        if bytes > self.instances.as_ref().map_or(0, wgpu::Buffer::size) {
-            // Room for the most a frame has needed, rounded up, so walking does not
-            // reallocate it frame after frame.
-            self.instances = Some(device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("instances in view"),
-                size: bytes.next_power_of_two(),
-                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }));
-        }
-        if let Some(instances) = &self.instances
-            && bytes > 0
-        {
-            queue.write_buffer(instances, 0, bytemuck::cast_slice(&visible));
-        }
+        self.upload_instances(device, queue, &visible);
         if shaded {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -525,6 +492,56 @@ impl Renderer {
         }
         pass.set_pipeline(if shaded { &self.shaded } else { &self.ids });
         self.draw_scene(&mut pass, &in_view, true)
+    }
+
+    /// The frame's uniforms: the camera's and the sun's transforms, sky, fog and wind.
+    fn write_globals(&self, queue: &wgpu::Queue, view: &View, sun: Vec3, light_view_proj: Mat4) {
+        let shaded = view.mode == Mode::Shaded;
+        let wind = Vec3::new(0.8, 0.0, 0.6) * view.wind.max(0.0);
+        let rgb1 = |c: [f32; 3]| [c[0], c[1], c[2], 1.0];
+        let globals = Globals {
+            view_proj: view.view_proj.to_cols_array_2d(),
+            inverse_view_proj: view.view_proj.inverse().to_cols_array_2d(),
+            light_view_proj: light_view_proj.to_cols_array_2d(),
+            camera: [view.eye.x, view.eye.y, view.eye.z, 1.0],
+            light: [sun.x, sun.y, sun.z, if shaded { 1.0 } else { 0.0 }],
+            horizon: rgb1(HORIZON),
+            zenith: rgb1(ZENITH),
+            fog: [
+                if shaded { self.fog_density } else { 0.0 },
+                self.terrain_heights.0,
+                self.terrain_heights.1,
+                0.0,
+            ],
+            wind: [wind.x, 0.0, wind.z, view.time],
+        };
+        queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+    }
+
+    /// Puts the placements in view into the instance buffer, growing it when they need more
+    /// room than any frame before.
+    fn upload_instances(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        visible: &[InstanceRaw],
+    ) {
+        let bytes = size_of_val(visible) as u64;
+        if bytes > self.instances.as_ref().map_or(0, wgpu::Buffer::size) {
+            // Room for the most a frame has needed, rounded up, so walking does not
+            // reallocate it frame after frame.
+            self.instances = Some(device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("instances in view"),
+                size: bytes.next_power_of_two(),
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }));
+        }
+        if let Some(instances) = &self.instances
+            && bytes > 0
+        {
+            queue.write_buffer(instances, 0, bytemuck::cast_slice(visible));
+        }
     }
 
     /// Draws the terrain and every instance group's placements in `ranges` (first and count

@@ -188,6 +188,65 @@ fn instance_primitives(
     primitives
 }
 
+/// How an instance's placements are written: as instancing accessors into the placement
+/// sections (translation, rotation, scale, tint, wind), or as a node each.
+#[derive(Debug, Clone, Copy)]
+enum Placed<'a> {
+    Instanced([usize; 5]),
+    Nodes(&'a [Similarity]),
+}
+
+/// An instance's mesh (its bark and leaf primitives over its variant's views) and the node or
+/// nodes that place it.
+fn lay_out_node(
+    d: &mut DocumentBuilder,
+    builder: &ForestBuilder,
+    node: &Node,
+    layout: &VariantLayout,
+    placed: Placed,
+) {
+    let variant = &builder.variants()[node.variant];
+    let inst = &variant.cache.instances[node.instance];
+    let primitives = instance_primitives(d, inst, layout);
+    let name = &builder.config().species[variant.species].name;
+    let tag = if variant.seedling { "seedling" } else { "tree" };
+    match placed {
+        Placed::Nodes(transforms) => {
+            let name = format!("{name} {tag} branch {} age {}", inst.id, inst.age);
+            let mesh = d.mesh(name, primitives);
+            for x in transforms {
+                d.root.nodes.push(JsonNode {
+                    mesh: Some(mesh),
+                    translation: Some(x.translation.to_array()),
+                    rotation: Some(x.rotation.normalize().to_array()),
+                    scale: Some([x.scale; 3]),
+                    ..JsonNode::default()
+                });
+            }
+        }
+        Placed::Instanced(sections) => {
+            let mesh_name = format!(
+                "{name} {tag} branch {} age {} #{}",
+                inst.id, inst.age, node.instance
+            );
+            let mesh = d.mesh(mesh_name, primitives);
+            let widths = [
+                (12, "VEC3"),
+                (16, "VEC4"),
+                (12, "VEC3"),
+                (12, "VEC3"),
+                (16, "VEC4"),
+            ];
+            let [t, r, s, c, w] = [0, 1, 2, 3, 4].map(|k| {
+                let (width, kind) = widths[k];
+                d.accessor(sections[k], width * node.first, FLOAT, node.count, kind)
+            });
+            let name = format!("{name} {tag} instance {}", node.instance);
+            d.instanced_node(name, mesh, [t, r, s, c], Some(w));
+        }
+    }
+}
+
 impl Document {
     /// File offset of the BIN chunk's content: after the GLB header, the JSON chunk and the
     /// BIN chunk's own header.
@@ -272,50 +331,13 @@ impl Document {
         };
         let bin_len = d.bin_len;
         for (k, node) in nodes.iter().enumerate() {
-            let variant = &variants[node.variant];
-            let inst = &variant.cache.instances[node.instance];
-            let Some(layout) = &shared[node.variant] else {
-                continue;
-            };
-            let primitives = instance_primitives(&mut d, inst, layout);
-            let name = &species[variant.species].name;
-            let tag = if variant.seedling { "seedling" } else { "tree" };
-            if let Some(each) = one_node_each {
-                let mesh = d.mesh(
-                    format!("{name} {tag} branch {} age {}", inst.id, inst.age),
-                    primitives,
-                );
-                for x in each.get(k).into_iter().flatten() {
-                    d.root.nodes.push(JsonNode {
-                        mesh: Some(mesh),
-                        translation: Some(x.translation.to_array()),
-                        rotation: Some(x.rotation.normalize().to_array()),
-                        scale: Some([x.scale; 3]),
-                        ..JsonNode::default()
-                    });
-                }
-                continue;
+            if let Some(layout) = &shared[node.variant] {
+                let placed = match one_node_each {
+                    Some(each) => Placed::Nodes(each.get(k).map_or(&[], Vec::as_slice)),
+                    None => Placed::Instanced(sections),
+                };
+                lay_out_node(&mut d, builder, node, layout, placed);
             }
-            let mesh = d.mesh(
-                format!(
-                    "{name} {tag} branch {} age {} #{}",
-                    inst.id, inst.age, node.instance
-                ),
-                primitives,
-            );
-            let widths = [
-                (12, "VEC3"),
-                (16, "VEC4"),
-                (12, "VEC3"),
-                (12, "VEC3"),
-                (16, "VEC4"),
-            ];
-            let [t, r, s, c, w] = [0, 1, 2, 3, 4].map(|k| {
-                let (width, kind) = widths[k];
-                d.accessor(sections[k], width * node.first, FLOAT, node.count, kind)
-            });
-            let name = format!("{name} {tag} instance {}", node.instance);
-            d.instanced_node(name, mesh, [t, r, s, c], Some(w));
         }
         let first_bark = textures.shapes.len();
         d.images(

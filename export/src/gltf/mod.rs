@@ -29,7 +29,7 @@ use std::path::Path;
 use sylva_terrain::{HeightField, TerrainMesh};
 use sylva_turtle::Vertex;
 
-use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats};
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats, Variant};
 
 use crate::error::{ExportError, Invalid};
 use document::Document;
@@ -218,59 +218,15 @@ pub fn write_glb(
     }
 
     // Pass 1: count the placements of every instance, checking each transform.
-    let mut counts: Vec<Vec<u32>> = variants
-        .iter()
-        .map(|v| vec![0; v.cache.instances.len()])
-        .collect();
-    let counted = builder.stream_with::<ExportError>(
-        terrain,
-        region,
-        &|_| true,
-        &mut |block: &PlacementBlock| {
-            for p in &block.placements {
-                let t = &p.transform;
-                if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
-                    return Err(Invalid::Transform(*t).into());
-                }
-                let slot = counts
-                    .get_mut(p.variant as usize)
-                    .and_then(|c| c.get_mut(p.instance as usize))
-                    .ok_or(Invalid::UnknownInstance)?;
-                *slot = slot.saturating_add(1);
-            }
-            Ok(())
-        },
-    )?;
-
+    let (counts, counted) = count_placements(builder, terrain, region)?;
     // The layout: which instances become nodes, and where every byte goes.
-    let mut nodes = Vec::new();
-    let mut node_of: Vec<Vec<u32>> = Vec::with_capacity(variants.len());
-    let mut placements = 0usize;
-    let mut empty_placements = 0usize;
-    let mut triangles = 0u64;
-    for (v, variant) in variants.iter().enumerate() {
-        let mut map = vec![u32::MAX; variant.cache.instances.len()];
-        for (i, inst) in variant.cache.instances.iter().enumerate() {
-            let count = counts[v][i] as usize;
-            if count == 0 {
-                continue;
-            }
-            if inst.bark.is_empty() && inst.leaves.is_empty() {
-                empty_placements += count;
-                continue;
-            }
-            map[i] = nodes.len() as u32;
-            nodes.push(Node {
-                variant: v,
-                instance: i,
-                first: placements,
-                count,
-            });
-            placements += count;
-            triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);
-        }
-        node_of.push(map);
-    }
+    let Drawn {
+        nodes,
+        node_of,
+        placements,
+        empty_placements,
+        triangles,
+    } = drawn_instances(variants, &counts);
     drop(counts);
     // The fallback: every placement's transform, gathered per node for the JSON.
     let each = if options.one_node_per_placement {
@@ -334,6 +290,87 @@ pub fn write_glb(
         passes: 1 + passes,
         triangles,
     })
+}
+
+/// Placements of every instance of every variant (by variant, then instance), each transform
+/// checked, and what streaming the forest found.
+fn count_placements(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+) -> Result<(Vec<Vec<u32>>, StreamStats), ExportError> {
+    let mut counts: Vec<Vec<u32>> = builder
+        .variants()
+        .iter()
+        .map(|v| vec![0; v.cache.instances.len()])
+        .collect();
+    let counted = builder.stream_with::<ExportError>(
+        terrain,
+        region,
+        &|_| true,
+        &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let t = &p.transform;
+                if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
+                    return Err(Invalid::Transform(*t).into());
+                }
+                let slot = counts
+                    .get_mut(p.variant as usize)
+                    .and_then(|c| c.get_mut(p.instance as usize))
+                    .ok_or(Invalid::UnknownInstance)?;
+                *slot = slot.saturating_add(1);
+            }
+            Ok(())
+        },
+    )?;
+    Ok((counts, counted))
+}
+
+/// The instances a forest draws, as nodes in order, and what they hold.
+struct Drawn {
+    nodes: Vec<Node>,
+    /// Per variant and instance, its node (`u32::MAX`: none).
+    node_of: Vec<Vec<u32>>,
+    placements: usize,
+    /// Placements of instances with no geometry, left out.
+    empty_placements: usize,
+    triangles: u64,
+}
+
+/// A node for every instance placed at least once that has geometry, its placements laid end
+/// to end after the previous node's.
+fn drawn_instances(variants: &[Variant], counts: &[Vec<u32>]) -> Drawn {
+    let mut drawn = Drawn {
+        nodes: Vec::new(),
+        node_of: Vec::with_capacity(variants.len()),
+        placements: 0,
+        empty_placements: 0,
+        triangles: 0,
+    };
+    for (v, variant) in variants.iter().enumerate() {
+        let mut map = vec![u32::MAX; variant.cache.instances.len()];
+        for (i, inst) in variant.cache.instances.iter().enumerate() {
+            let count = counts[v][i] as usize;
+            if count == 0 {
+                continue;
+            }
+            if inst.bark.is_empty() && inst.leaves.is_empty() {
+                drawn.empty_placements += count;
+                continue;
+            }
+            map[i] = drawn.nodes.len() as u32;
+            drawn.nodes.push(Node {
+                variant: v,
+                instance: i,
+                first: drawn.placements,
+                count,
+            });
+            drawn.placements += count;
+            drawn.triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);
+        }
+        drawn.node_of.push(map);
+    }
+    drawn
 }
 
 /// The lowest and highest corner of `positions` (glTF requires them on POSITION accessors)
