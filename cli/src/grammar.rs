@@ -20,7 +20,7 @@ pub(crate) struct GrammarArgs {
     preset: Option<String>,
     /// Generations to derive (default: the grammar's own, or 4).
     #[arg(long, value_name = "N")]
-    generations: Option<u32>,
+    pub(crate) generations: Option<u32>,
     /// Seed of stochastic productions.
     #[arg(long, default_value_t = 0)]
     pub(crate) seed: u64,

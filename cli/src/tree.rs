@@ -1,9 +1,11 @@
-//! `sylva tree`: derives a tree, meshes it with the turtle and writes a Wavefront OBJ file.
+//! `sylva tree`: derives a tree, meshes it with the turtle and writes a Wavefront OBJ file, or
+//! a species' tree with its textures as binary glTF.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
-use sylva::turtle::{BranchShape, MeshBuilder, interpret, write_obj};
+use sylva::forest::Species;
+use sylva::turtle::{BranchShape, Mesh, MeshBuilder, interpret, write_obj};
 
 use crate::Failure;
 use crate::grammar::{GrammarArgs, presets_help};
@@ -35,7 +37,11 @@ pub(crate) struct TreeArgs {
     /// Close branch ends with caps.
     #[arg(long)]
     caps: bool,
-    /// The OBJ file to write.
+    /// A species instead of a grammar: a species file, or a bundled species by name (oak,
+    /// birch, spruce, pine, hazel), drawn with its own turtle settings, colours and textures.
+    #[arg(long, value_name = "FILE|NAME", conflicts_with_all = ["file", "preset", "angle", "shape", "sides", "caps"])]
+    species: Option<String>,
+    /// The file to write: Wavefront OBJ, or binary glTF with textures when it ends in .glb.
     #[arg(long, value_name = "FILE", default_value = "tree.obj")]
     out: PathBuf,
     /// Print nothing but errors.
@@ -44,6 +50,9 @@ pub(crate) struct TreeArgs {
 }
 
 pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
+    if let Some(name) = &args.species {
+        return species_tree(&args, name);
+    }
     let grammar = args.grammar.load("abop-ternary")?;
     let mut options = grammar.turtle();
     if let Some(a) = args.angle {
@@ -64,7 +73,13 @@ pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
     let mut builder = MeshBuilder::new(&options);
     let stats = interpret(&word, &options, &mut builder)?;
     let mesh = builder.finish();
-    sylva::base::file::write(&args.out, |w| write_obj(&mesh, w))?;
+    if is_glb(&args.out) {
+        let mut species = Species::new("tree", lsystem.clone(), grammar.generations);
+        species.turtle = options;
+        sylva::export::write_tree_glb(&species, &mesh, &args.out)?;
+    } else {
+        sylva::base::file::write(&args.out, |w| write_obj(&mesh, w))?;
+    }
     if !args.quiet {
         println!(
             "wrote {}: {} vertices, {} triangles, {} segments, {} polygons, {} leaves ({} modules)",
@@ -75,6 +90,49 @@ pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
             stats.polygons,
             stats.leaves,
             word.len()
+        );
+    }
+    Ok(())
+}
+
+/// Whether `path` names a binary glTF file.
+fn is_glb(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"))
+}
+
+/// One tree of a species file or bundled species, at the species' generations (or
+/// `--generations`) from `--seed`.
+fn species_tree(args: &TreeArgs, name: &str) -> Result<(), Failure> {
+    let species = match sylva::presets::species()?
+        .into_iter()
+        .find(|s| s.name == name)
+    {
+        Some(bundled) => bundled,
+        None => Species::from_file(name)?,
+    };
+    let generations = args.grammar.generations.unwrap_or(species.generations);
+    let mesh: Mesh = species.mesh(generations, args.grammar.seed)?;
+    if is_glb(&args.out) {
+        sylva::export::write_tree_glb(&species, &mesh, &args.out)?;
+    } else {
+        sylva::base::file::write(&args.out, |w| write_obj(&mesh, w))?;
+    }
+    if !args.quiet {
+        println!(
+            "wrote {}: {} {} of {generations} generations (seed {}), {} vertices, {} triangles ({} of bark, {} of leaves)",
+            args.out.display(),
+            species.name,
+            if generations < species.generations {
+                "sapling"
+            } else {
+                "tree"
+            },
+            args.grammar.seed,
+            mesh.vertices.len(),
+            mesh.triangle_count(),
+            mesh.bark.len() / 3,
+            mesh.leaves.len() / 3,
         );
     }
     Ok(())

@@ -38,7 +38,9 @@ mod texture;
 mod tiles;
 
 pub use error::{ExportError, Invalid};
-pub use gltf::{GlbStats, GltfOptions, write_glb, write_shared_geometry, write_stand_glb};
+pub use gltf::{
+    GlbStats, GltfOptions, write_glb, write_shared_geometry, write_stand_glb, write_tree_glb,
+};
 pub use texture::Texture;
 pub use tiles::{
     Level, TileId, TileScheme, TileStats, TilesetOptions, check_tileset_folder, tile_path,

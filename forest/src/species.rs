@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use sylva_lsys::{GrammarFileError, LSystem};
-use sylva_turtle::{Skeleton, Tropism, TurtleOptions, interpret};
+use sylva_turtle::{Mesh, MeshBuilder, Skeleton, Tropism, TurtleOptions, interpret};
 
 use crate::appearance::{BarkPattern, LeafShape};
 use crate::error::ForestError;
@@ -88,6 +88,33 @@ impl Species {
         s.turtle = s.turtle.with_angle(p.angle as f32);
         s.turtle.tropism = TurtleOptions::for_preset(p).tropism;
         Ok(s)
+    }
+
+    /// One tree of the species derived for `generations` from `seed` and meshed with its
+    /// turtle settings: bark and leaf cards, with wind data, as a forest's trees are drawn.
+    ///
+    /// ```
+    /// let oak = sylva_forest::Species::from_preset("sylva-oak", 4)?;
+    /// let mesh = oak.mesh(4, 1)?;
+    /// assert!(!mesh.bark.is_empty() && !mesh.leaves.is_empty());
+    /// assert_eq!(mesh.vertices, oak.mesh(4, 1)?.vertices);
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn mesh(&self, generations: u32, seed: u64) -> Result<Mesh, ForestError> {
+        let word = self
+            .grammar
+            .derive(generations, seed)
+            .and_then(|w| self.grammar.interpretation(&w, seed))
+            .map_err(|source| ForestError::Derive {
+                species: self.name.clone(),
+                source,
+            })?;
+        let mut builder = MeshBuilder::new(&self.turtle);
+        interpret(&word, &self.turtle, &mut builder).map_err(|source| ForestError::Turtle {
+            species: self.name.clone(),
+            source,
+        })?;
+        Ok(builder.finish())
     }
 
     /// Measures the canopy on the skeletons of three sample trees (seeds 0 to 2).

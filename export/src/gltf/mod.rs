@@ -22,7 +22,7 @@ mod tangent;
 
 pub(crate) use coarse::write_coarse_glb;
 pub use shared::write_shared_geometry;
-pub use stand::write_stand_glb;
+pub use stand::{write_stand_glb, write_tree_glb};
 
 use std::path::Path;
 

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use sylva_forest::{BarkPattern, GrownStand, LeafShape, Species};
 use sylva_terrain::TerrainMesh;
+use sylva_turtle::Mesh;
 
 use super::ARRAY_BUFFER;
 use super::in_memory::InMemory;
@@ -64,9 +65,42 @@ pub fn write_stand_glb(
                 .push(Node::of_mesh(format!("obstacle {k}"), mesh));
         }
     }
+    write_trees(glb, &stand.meshes(species), species, path)
+}
+
+/// Writes one tree of `species` (such as [`Species::mesh`] makes) as a binary glTF at `path`:
+/// its bark with colour and normal textures and its leaf cards alpha-masked and double-sided,
+/// with the `_WIND` vertex attribute of forests, the tree's base at the origin. Returns the
+/// file's size.
+///
+/// ```
+/// let oak = sylva_forest::Species::from_preset("sylva-oak", 4)?;
+/// let path = std::env::temp_dir().join("sylva-doctest-oak.glb");
+/// let bytes = sylva_export::write_tree_glb(&oak, &oak.mesh(4, 1)?, &path)?;
+/// assert_eq!(std::fs::metadata(&path).unwrap().len() as usize, bytes);
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_tree_glb(species: &Species, mesh: &Mesh, path: &Path) -> Result<usize, ExportError> {
+    write_trees(
+        InMemory::default(),
+        &[(0, mesh.clone())],
+        std::slice::from_ref(species),
+        path,
+    )
+}
+
+/// Adds `meshes` (each with the index of its species in `species`) to `glb`, one node each,
+/// with the materials and textures of the species they use, and writes the file.
+fn write_trees(
+    mut glb: InMemory,
+    meshes: &[(usize, Mesh)],
+    species: &[Species],
+    path: &Path,
+) -> Result<usize, ExportError> {
     // Textures: one per leaf shape and per bark pattern in use, with the barks' normal maps.
     let used: Vec<usize> = {
-        let mut u: Vec<usize> = stand.trees.iter().map(|t| t.0).collect();
+        let mut u: Vec<usize> = meshes.iter().map(|t| t.0).collect();
         u.sort_unstable();
         u.dedup();
         u
@@ -118,7 +152,7 @@ pub fn write_stand_glb(
         );
         species_materials[s] = (bark, leaves);
     }
-    for (k, (s, mesh)) in stand.meshes(species).iter().enumerate() {
+    for (k, (s, mesh)) in meshes.iter().enumerate() {
         let (bark, leaves) = species_materials[*s];
         let primitives = glb.tree(mesh, bark, leaves);
         if primitives.is_empty() {

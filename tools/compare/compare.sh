@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Renders each default species beside the nearest ez-tree preset in three.js (headless
+# Chromium) and measures both silhouettes; writes OUT_DIR/<species>.png (side by side, eye
+# level) and OUT_DIR/measures.json, and prints a table.
+# usage: tools/compare/compare.sh OUT_DIR [SYLVA_BINARY]
+# Needs Debian's chromium and node; installs npm's three and @dgreenheck/ez-tree beside this
+# script on first use.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+out="$(realpath -m "$1")"; sylva="$(realpath "${2:-target/release/sylva}")"
+mkdir -p "$out"
+if [ ! -d "$here/node_modules/@dgreenheck/ez-tree" ]; then
+  (cd "$here" && npm install --no-save --no-audit --no-fund --silent three@0.170.0 @dgreenheck/ez-tree@1.1.0)
+fi
+# sylva species and the ez-tree preset each stands beside.
+pairs=("oak:Oak Large" "birch:Aspen Large" "pine:Pine Large" "hazel:Bush 1" "spruce:Pine Medium")
+port=$((20000 + RANDOM % 10000))
+node "$here/../../.ci/serve.js" "$here" "$port" &
+server=$!
+trap 'kill $server 2>/dev/null; rm -f "$here"/tree_*.glb' EXIT
+sleep 1
+flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
+  --disable-quic --no-first-run --disable-background-networking --disable-component-update
+  --disable-sync --user-data-dir="$(mktemp -d)" --virtual-time-budget=120000)
+title() {  # the page's title for the query $1
+  chromium "${flags[@]}" --window-size=1280,720 --dump-dom "http://127.0.0.1:$port/compare.html?$1" 2>/dev/null \
+    | grep -o '<title>[^<]*</title>' | sed 's/<[^>]*>//g; s/^measured //'
+}
+echo "{" > "$out/measures.json"
+first=1
+for pair in "${pairs[@]}"; do
+  species="${pair%%:*}"; preset="${pair#*:}"; ez="${preset// /%20}"
+  "$sylva" tree --species "$species" --seed 1 --out "$here/tree_$species.glb" --quiet
+  query="sylva=tree_$species.glb&ez=$ez"
+  chromium "${flags[@]}" --window-size=1280,720 --screenshot="$out/$species.png" \
+    "http://127.0.0.1:$port/compare.html?$query&view=side" 2>/dev/null
+  ours=$(title "$query&view=silhouette-sylva")
+  theirs=$(title "$query&view=silhouette-ez")
+  case "$ours$theirs" in *error*|"") echo "three.js could not render $species or $preset: $ours $theirs" >&2; exit 1 ;; esac
+  [ $first = 1 ] || echo "," >> "$out/measures.json"
+  first=0
+  printf '  "%s": {"sylva": %s, "ez_tree": {"preset": "%s", "measures": %s}}' "$species" "$ours" "$preset" "$theirs" >> "$out/measures.json"
+  echo "$species: sylva $ours"
+  echo "$(printf '%*s' ${#species} '') $preset: $theirs"
+done
+echo "" >> "$out/measures.json"
+echo "}" >> "$out/measures.json"
