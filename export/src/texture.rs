@@ -40,8 +40,11 @@ impl Texture {
             for x in 0..n {
                 let (u, v) = ((x as f32 + 0.5) / n as f32, (y as f32 + 0.5) / n as f32);
                 let texel = match shape {
-                    LeafShape::Broadleaf => leaf_cluster(u, v, x, y),
+                    LeafShape::Broadleaf => leaf_cluster(u, v, x, y, Blade::Ovate),
+                    LeafShape::Lobed => leaf_cluster(u, v, x, y, Blade::Lobed),
+                    LeafShape::Serrated => leaf_cluster(u, v, x, y, Blade::Serrated),
                     LeafShape::Needles => needles(u, v, x, y),
+                    LeafShape::NeedleTuft => needle_tuft(u, v, x, y),
                 };
                 if let Some(shade) = texel {
                     let i = ((y * n + x) * 4) as usize;
@@ -82,7 +85,12 @@ impl Texture {
                     // Lenticels are dark; the rest pale with faint blotches.
                     0.35 + 0.62 * relief - 0.12 * blotch + 0.04 * grain(x, y)
                 }
-                _ => 0.6 + 0.35 * relief + 0.08 * grain(x, y),
+                BarkPattern::Scaly => {
+                    // Plates differ a little in tone; the cracks between them are dark.
+                    let tone = periodic_noise(x, y, n, (6, 10), 0x5ca1);
+                    0.45 + 0.45 * relief + 0.1 * tone + 0.06 * grain(x, y)
+                }
+                BarkPattern::Furrowed => 0.6 + 0.35 * relief + 0.08 * grain(x, y),
             };
             let s = (shade.clamp(0.0, 1.0) * 255.0).round() as u8;
             [s, s, s, 255]
@@ -108,7 +116,8 @@ impl Texture {
         // Relief depth in texels per unit of height: furrows are deep, lenticels shallow.
         let depth = match pattern {
             BarkPattern::Smooth => 1.5,
-            _ => 6.0,
+            BarkPattern::Scaly => 4.0,
+            BarkPattern::Furrowed => 6.0,
         };
         Texture::tile(|x, y, n| {
             let h = |dx: u32, dy: u32| bark_relief(pattern, (x + dx) % n, (y + dy) % n, n);
@@ -157,9 +166,43 @@ fn grain(x: u32, y: u32) -> f32 {
     unit_f32(hash_cell(0x1eaf, i64::from(x), i64::from(y), 0)) - 0.5
 }
 
+/// The outline of a leaf blade.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Blade {
+    /// Widest at 40 per cent, drawn to a point.
+    Ovate,
+    /// Obovate (widest at 65 per cent) with four or five rounded lobes a side and a short
+    /// stalk: an oak's.
+    Lobed,
+    /// Ovate with a toothed edge: a birch's or a hazel's.
+    Serrated,
+}
+
+impl Blade {
+    /// The blade's half width at `t` along the midrib (0 base, 1 tip), as a share of the
+    /// leaf's half width.
+    fn profile(self, t: f32) -> f32 {
+        match self {
+            Blade::Ovate => (t / 0.4).min(1.0).powf(0.6) * ((1.0 - t) / 0.6).min(1.0).powf(0.9),
+            Blade::Lobed => {
+                let outline = (t / 0.65).min(1.0).powf(0.8) * ((1.0 - t) / 0.35).min(1.0).powf(0.5);
+                // Rounded lobes between sinuses that cut in two fifths of the width.
+                let lobes = 0.6 + 0.4 * (t * std::f32::consts::PI * 4.5).sin().abs().powf(0.5);
+                if t < 0.06 { 0.12 } else { outline * lobes }
+            }
+            Blade::Serrated => {
+                let outline =
+                    (t / 0.35).min(1.0).powf(0.55) * ((1.0 - t) / 0.65).min(1.0).powf(1.1);
+                // Small teeth pointing towards the tip.
+                outline * (1.0 - 0.12 * (t * 18.0).fract())
+            }
+        }
+    }
+}
+
 /// A cluster of three leafy sprays fanning out from the base of the card, as a real-time leaf
 /// card shows a whole twig: each spray is [`spray`] shrunk to `SCALE` of the card.
-fn leaf_cluster(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+fn leaf_cluster(u: f32, v: f32, x: u32, y: u32, blade: Blade) -> Option<f32> {
     const SCALE: f32 = 0.82;
     // Middle first: where sprays overlap, the middle one is in front.
     for degrees in [0.0f32, -34.0, 34.0] {
@@ -168,7 +211,7 @@ fn leaf_cluster(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
         let (lu, lv) = ((dx * c - dy * s) / SCALE + 0.5, (dx * s + dy * c) / SCALE);
         if (0.0..=1.0).contains(&lu)
             && (0.0..=1.0).contains(&lv)
-            && let Some(shade) = spray(lu, lv, x, y)
+            && let Some(shade) = spray(lu, lv, x, y, blade)
         {
             return Some(shade);
         }
@@ -176,9 +219,9 @@ fn leaf_cluster(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
     None
 }
 
-/// A leafy spray: a twig up the card with eight ovate leaves in alternate pairs angled
+/// A leafy spray: a twig up the card with eight leaves of `blade` in alternate pairs angled
 /// towards its tip and a terminal leaf, each leaf a slightly different shade.
-fn spray(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+fn spray(u: f32, v: f32, x: u32, y: u32, blade: Blade) -> Option<f32> {
     // The twig: a thin stroke up the middle, to the terminal leaf.
     if (u - 0.5).abs() < 0.010 && v < 0.62 {
         return Some(0.5);
@@ -207,8 +250,7 @@ fn spray(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
         if !(0.0..=1.0).contains(&t) {
             continue;
         }
-        // An ovate outline, widest at 40 per cent, drawn to a point at the tip.
-        let profile = (t / 0.4).min(1.0).powf(0.6) * ((1.0 - t) / 0.6).min(1.0).powf(0.9);
+        let profile = blade.profile(t);
         if w.abs() > profile {
             continue;
         }
@@ -232,10 +274,41 @@ fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
     if reach > 0.42 * (1.0 - 0.6 * v) + 0.05 {
         return None;
     }
-    // Needles leave the twig every 0.045 of its length, slanting 35 degrees forward.
+    // Needles leave the twig every 0.045 of its length, slanting 35 degrees forward (dense:
+    // three.js's mipmapped alpha test thins sparser sprays to bare twigs at a distance).
     let along = v - reach * 0.7;
     let phase = (along / 0.045).fract();
     (phase < 0.62 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
+}
+
+/// A tuft of needles: 40 thin, slightly curved needles of different lengths fanning out
+/// from a shoot's tip at the bottom middle of the card, up to 75 degrees either side.
+fn needle_tuft(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    const COUNT: usize = 40;
+    const SPREAD: f32 = 75.0;
+    let (dx, dy) = (u - 0.5, v - 0.04);
+    let r = (dx * dx + dy * dy).sqrt();
+    if r < 0.02 {
+        return Some(0.45);
+    }
+    // Angle from the card's axis, bent a little so the needles curve outwards.
+    let angle = dx.atan2(dy).to_degrees() - 12.0 * r * dx.signum();
+    let step = 2.0 * SPREAD / (COUNT - 1) as f32;
+    let nearest = ((angle + SPREAD) / step).round();
+    for k in [nearest - 1.0, nearest, nearest + 1.0] {
+        if !(0.0..COUNT as f32).contains(&k) {
+            continue;
+        }
+        let h = hash_cell(0x7af7, k as i64, 0, 0);
+        let centre = -SPREAD + k * step + (unit_f32(h) - 0.5) * step * 0.8;
+        let length = 0.55 + 0.4 * unit_f32(mix(h));
+        // Needles taper: 2.5 texels wide at the base, a point at the tip.
+        let half = 0.006 * (1.0 - r / length).max(0.0) + 0.002;
+        if r <= length && (angle - centre).to_radians().abs() * r < half {
+            return Some(0.75 + 0.2 * unit_f32(mix(mix(h))) + 0.05 * grain(x, y));
+        }
+    }
+    None
 }
 
 /// Periodic value noise on a lattice of `cells` (across, along) over a tile of side `n`
@@ -266,7 +339,8 @@ fn periodic_noise(x: u32, y: u32, n: u32, cells: (u32, u32), salt: u64) -> f32 {
 fn bark_relief(pattern: BarkPattern, x: u32, y: u32, n: u32) -> f32 {
     match pattern {
         BarkPattern::Smooth => lenticels(x, y, n),
-        _ => ridges(x, y, n),
+        BarkPattern::Furrowed => ridges(x, y, n),
+        BarkPattern::Scaly => plates(x, y, n),
     }
 }
 
@@ -278,6 +352,38 @@ fn ridges(x: u32, y: u32, n: u32) -> f32 {
         + periodic_noise(x, y, n, (32, 32), 0xba4e) * 0.1;
     let furrow = (1.0 - (ridges - 0.5).abs() * 4.0).clamp(0.0, 1.0);
     1.0 - furrow
+}
+
+/// Scaly bark: irregular plates, longer along the branch than around it, parted by cracks
+/// (the distance to the nearest plate border, from a jittered lattice of plate centres that
+/// wraps, so the pattern tiles).
+fn plates(x: u32, y: u32, n: u32) -> f32 {
+    let (cols, rows) = (9i64, 5i64);
+    let (fx, fy) = (
+        x as f32 / n as f32 * cols as f32,
+        y as f32 / n as f32 * rows as f32,
+    );
+    let (cx, cy) = (fx.floor() as i64, fy.floor() as i64);
+    let (mut first, mut second) = (f32::INFINITY, f32::INFINITY);
+    for dy in -1..=1 {
+        for dx in -1..=1 {
+            let (i, j) = (cx + dx, cy + dy);
+            let h = hash_cell(0x5ca1e, i.rem_euclid(cols), j.rem_euclid(rows), 0);
+            let (px, py) = (
+                i as f32 + 0.15 + 0.7 * unit_f32(h),
+                j as f32 + 0.15 + 0.7 * unit_f32(mix(h)),
+            );
+            // Plates are taller than wide: distances along the branch count for less.
+            let d = ((fx - px).powi(2) + (0.6 * (fy - py)).powi(2)).sqrt();
+            if d < first {
+                second = first;
+                first = d;
+            } else if d < second {
+                second = d;
+            }
+        }
+    }
+    ((second - first) * 2.5).clamp(0.0, 1.0).powf(0.7)
 }
 
 /// Smooth bark with lenticels: short horizontal dashes, slightly sunk, scattered on a level

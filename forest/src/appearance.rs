@@ -10,6 +10,12 @@ pub enum LeafShape {
     Broadleaf,
     /// A spray of needles along a twig, for conifers.
     Needles,
+    /// A cluster of oak leaves: obovate blades with four or five rounded lobes a side.
+    Lobed,
+    /// A cluster of toothed leaves: ovate blades with serrated edges, as on birch and hazel.
+    Serrated,
+    /// A tuft of long needles fanning out from a shoot's tip, as on pines.
+    NeedleTuft,
 }
 
 impl LeafShape {
@@ -18,14 +24,24 @@ impl LeafShape {
         match self {
             LeafShape::Broadleaf => "broadleaf",
             LeafShape::Needles => "needles",
+            LeafShape::Lobed => "lobed",
+            LeafShape::Serrated => "serrated",
+            LeafShape::NeedleTuft => "needle-tuft",
         }
     }
 
+    /// Every shape, in the order renderers lay out their textures.
+    pub const ALL: [LeafShape; 5] = [
+        LeafShape::Broadleaf,
+        LeafShape::Needles,
+        LeafShape::Lobed,
+        LeafShape::Serrated,
+        LeafShape::NeedleTuft,
+    ];
+
     /// The shape called `name` in species files.
     pub fn from_name(name: &str) -> Option<LeafShape> {
-        [LeafShape::Broadleaf, LeafShape::Needles]
-            .into_iter()
-            .find(|s| s.name() == name)
+        LeafShape::ALL.into_iter().find(|s| s.name() == name)
     }
 }
 
@@ -33,11 +49,13 @@ impl LeafShape {
 // Exhaustive for the same reason as `LeafShape`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum BarkPattern {
-    /// Long ridges and furrows, as on oaks, pines and spruces.
+    /// Long ridges and furrows, as on oaks.
     #[default]
     Furrowed,
     /// Smooth, with dark horizontal lenticels, as on birches.
     Smooth,
+    /// Plates parted by cracks, as on pines and spruces.
+    Scaly,
 }
 
 impl BarkPattern {
@@ -46,13 +64,19 @@ impl BarkPattern {
         match self {
             BarkPattern::Furrowed => "furrowed",
             BarkPattern::Smooth => "smooth",
+            BarkPattern::Scaly => "scaly",
         }
     }
 
+    /// Every pattern, in the order renderers lay out their textures.
+    pub const ALL: [BarkPattern; 3] = [
+        BarkPattern::Furrowed,
+        BarkPattern::Smooth,
+        BarkPattern::Scaly,
+    ];
+
     /// The pattern called `name` in species files.
     pub fn from_name(name: &str) -> Option<BarkPattern> {
-        [BarkPattern::Furrowed, BarkPattern::Smooth]
-            .into_iter()
-            .find(|p| p.name() == name)
+        BarkPattern::ALL.into_iter().find(|p| p.name() == name)
     }
 }

@@ -176,8 +176,8 @@ impl Species {
     /// `bark` and `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle
     /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
     /// (length and width), `leaf_facing` (0 to 1: how far cards turn to face the sky, see
-    /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf` or `needles`: the card's texture),
-    /// `bark_texture` (`furrowed` or `smooth`) and `tropism` (direction x y z and
+    /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf`, `lobed`, `serrated`, `needles` or `needle-tuft`: the card's texture),
+    /// `bark_texture` (`furrowed`, `smooth` or `scaly`) and `tropism` (direction x y z and
     /// susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///

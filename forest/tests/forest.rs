@@ -371,7 +371,7 @@ fn hostile_species_files() {
         ("grammar: kenwood-leafy\ngenerations: 99999999999\n", 2),
         ("grammar: kenwood-leafy\nleaf_size: -1 -1\n", 2),
         ("grammar: kenwood-leafy\nleaf_shape: maple\n", 2),
-        ("grammar: kenwood-leafy\nbark_texture: scaly\n", 2),
+        ("grammar: kenwood-leafy\nbark_texture: mossy\n", 2),
         ("grammar: \u{0}\n", 1),
         ("\u{feff}grammar: kenwood-leafy\nnonsense\n", 2),
         ("\u{feff}\u{feff}grammar: kenwood-leafy\n", 1),

@@ -10,15 +10,19 @@ use sylva_growth::{
 };
 use sylva_turtle::{Command, MeshBuilder, TurtleOptions};
 
-/// The bundled broadleaf (`sylva-oak`) at `generations`, leaves on `L`.
+/// A broadleaf of spreading sympodial limbs (`fixtures/broadleaf.lsys`, the bundled oak of
+/// before issue 31: these tests measure growth's response, so their tree stays fixed) at
+/// `generations`, leaves on `L`.
 fn oak(base: Vec3, generations: u32, seed: u64, response: Response) -> TreeSpec {
-    let p = sylva_lsys::preset("sylva-oak").unwrap();
-    let mut turtle = TurtleOptions::for_preset(p);
+    let mut turtle = TurtleOptions::default()
+        .with_angle(30.0)
+        .with_tropism(Vec3::NEG_Y, 0.05);
     turtle.symbols.set('L', Command::Leaf);
     turtle.leaf_size = [0.6, 0.5];
+    let grammar = sylva_lsys::LSystem::parse(include_str!("fixtures/broadleaf.lsys")).unwrap();
     TreeSpec {
         base,
-        grammar: Arc::new(p.lsystem().unwrap()),
+        grammar: Arc::new(grammar),
         generations,
         seed,
         start: 0,

@@ -154,8 +154,10 @@ impl Renderer {
         }
         let material_layout = uniform_layout(materials.bytes.len() as u64);
         // The material array is sized to the world's materials.
-        let source =
-            include_str!("shader.wgsl").replace("MATERIAL_COUNT", &materials.count().to_string());
+        let source = include_str!("shader.wgsl")
+            .replace("MATERIAL_COUNT", &materials.count().to_string())
+            .replace("FIRST_BARK", &crate::textures::FIRST_BARK.to_string())
+            .replace("BARK_COUNT", &crate::textures::BARK_COUNT.to_string());
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shader.wgsl"),
             source: wgpu::ShaderSource::Wgsl(source.into()),

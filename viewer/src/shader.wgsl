@@ -28,9 +28,10 @@ struct Material {
 // Every material (the terrain's first); each vertex names its own. MATERIAL_COUNT is replaced
 // by the world's number of materials when the shader is built.
 @group(1) @binding(0) var<uniform> materials: array<Material, MATERIAL_COUNT>;
-// The procedural textures, one layer each: broadleaf, needles, furrowed and smooth bark, then
-// the two barks' normal maps; a material's colour.w is the colour layer plus one (0 for
-// untextured materials, -1 for the terrain). Bark (layers 2 and 3) tiles; leaf cards do not.
+// The procedural textures, one layer each: every leaf shape, then every bark pattern, then
+// the barks' normal maps in the same order; a material's colour.w is the colour layer plus
+// one (0 for untextured materials, -1 for the terrain). Bark (from layer FIRST_BARK) tiles;
+// leaf cards do not. FIRST_BARK and BARK_COUNT are replaced when the shader is built.
 @group(2) @binding(0) var textures: texture_2d_array<f32>;
 @group(2) @binding(1) var texture_sampler: sampler;
 @group(3) @binding(0) var shadow_map: texture_depth_2d;
@@ -123,10 +124,10 @@ struct Texel {
 // untextured materials. Sampled in uniform control flow; callers discard clear texels.
 fn texel(uv: vec2<f32>, material: Material) -> Texel {
     let layer = i32(material.colour.w + 0.5) - 1;
-    let bark = layer >= 2;
+    let bark = layer >= FIRST_BARK;
     let tiled = select(uv, fract(uv), bark);
     let sampled = textureSample(textures, texture_sampler, tiled, max(layer, 0));
-    let normal = textureSample(textures, texture_sampler, tiled, select(0, layer + 2, bark));
+    let normal = textureSample(textures, texture_sampler, tiled, select(0, layer + BARK_COUNT, bark));
     var out: Texel;
     out.colour = select(vec3<f32>(1.0), sampled.rgb, layer >= 0);
     out.alpha = select(1.0, sampled.a, layer >= 0);

@@ -5,21 +5,24 @@ use sylva::export::Texture;
 use sylva::forest::{BarkPattern, LeafShape};
 use wgpu::util::DeviceExt;
 
+/// The first bark layer of the viewer's texture array: leaf shapes come first.
+pub(crate) const FIRST_BARK: usize = LeafShape::ALL.len();
+/// Bark patterns, each with a colour layer and, this many layers on, its normal map.
+pub(crate) const BARK_COUNT: usize = BarkPattern::ALL.len();
+
 /// The layer of a bark pattern's texture in the viewer's texture array, after the leaf
-/// shapes; the shader tiles layers from 2 on.
+/// shapes; the shader tiles layers from [`FIRST_BARK`] on.
 pub(crate) fn bark_layer(pattern: BarkPattern) -> u32 {
-    match pattern {
-        BarkPattern::Smooth => 3,
-        _ => 2,
-    }
+    let k = BarkPattern::ALL
+        .iter()
+        .position(|&p| p == pattern)
+        .unwrap_or(0);
+    (FIRST_BARK + k) as u32
 }
 
 /// The layer of a leaf shape's texture in the viewer's texture array.
 pub(crate) fn leaf_layer(shape: LeafShape) -> u32 {
-    match shape {
-        LeafShape::Needles => 1,
-        _ => 0,
-    }
+    LeafShape::ALL.iter().position(|&s| s == shape).unwrap_or(0) as u32
 }
 
 /// A texture of plain values (a normal map) re-encoded so that the sRGB array, which decodes
@@ -42,21 +45,23 @@ fn srgb_encoded(mut texture: Texture) -> Texture {
     texture
 }
 
-/// The procedural textures as one texture array (broadleaf, needles, furrowed and smooth
-/// bark, then the two barks' normal maps, each two layers after its colour) with a linear
+/// The procedural textures as one texture array (every leaf shape, every bark pattern, then
+/// the barks' normal maps, each [`BARK_COUNT`] layers after its colour) with a linear
 /// sampler, and the bind group layout the shader reads them through.
 pub(crate) fn textures(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
 ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let images = [
-        Texture::leaf(LeafShape::Broadleaf),
-        Texture::leaf(LeafShape::Needles),
-        Texture::bark(BarkPattern::Furrowed),
-        Texture::bark(BarkPattern::Smooth),
-        srgb_encoded(Texture::bark_normal(BarkPattern::Furrowed)),
-        srgb_encoded(Texture::bark_normal(BarkPattern::Smooth)),
-    ];
+    let images: Vec<Texture> = LeafShape::ALL
+        .into_iter()
+        .map(Texture::leaf)
+        .chain(BarkPattern::ALL.into_iter().map(Texture::bark))
+        .chain(
+            BarkPattern::ALL
+                .into_iter()
+                .map(|p| srgb_encoded(Texture::bark_normal(p))),
+        )
+        .collect();
     let mut data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
     let mut layers = images.len() as u32;
     // wgpu's GL backend takes a square texture of a multiple of six layers for a cube map
