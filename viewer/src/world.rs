@@ -105,14 +105,14 @@ pub(crate) struct SceneOptions {
 #[cfg(test)]
 impl SceneOptions {
     /// A small world for tests: the first two bundled species (oak and birch) on `side`
-    /// metres, with a 4 MB instance cache.
+    /// metres, with an 8 MB instance cache.
     pub(crate) fn small(seed: u64, side: f32) -> SceneOptions {
         SceneOptions {
             seed,
             side,
             trees: None,
             species: default_species().expect("bundled species")[..2].to_vec(),
-            budget: 4 << 20,
+            budget: 8 << 20,
             paint: None,
         }
     }
