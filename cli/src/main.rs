@@ -55,7 +55,8 @@ enum Command {
     Paint(paint::PaintArgs),
     /// Derives an L-system and prints the word.
     Derive(derive::DeriveArgs),
-    /// Derives a tree, meshes it with the turtle and writes a Wavefront OBJ.
+    /// Derives a tree (a grammar, or a species with --species), meshes it with the turtle and
+    /// writes a Wavefront OBJ, or binary glTF with its textures.
     Tree(tree::TreeArgs),
     /// Generates a diamond-square heightmap and writes it as a 16-bit PNG.
     Terrain(terrain::TerrainArgs),

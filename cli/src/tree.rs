@@ -73,13 +73,9 @@ pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
     let mut builder = MeshBuilder::new(&options);
     let stats = interpret(&word, &options, &mut builder)?;
     let mesh = builder.finish();
-    if is_glb(&args.out) {
-        let mut species = Species::new("tree", lsystem.clone(), grammar.generations);
-        species.turtle = options;
-        sylva::export::write_tree_glb(&species, &mesh, &args.out)?;
-    } else {
-        sylva::base::file::write(&args.out, |w| write_obj(&mesh, w))?;
-    }
+    let mut species = Species::new("tree", lsystem.clone(), grammar.generations);
+    species.turtle = options;
+    write_tree(&args.out, &species, &mesh)?;
     if !args.quiet {
         println!(
             "wrote {}: {} vertices, {} triangles, {} segments, {} polygons, {} leaves ({} modules)",
@@ -95,10 +91,18 @@ pub(crate) fn run(args: TreeArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Whether `path` names a binary glTF file.
-fn is_glb(path: &Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("glb"))
+/// Writes `mesh` at `out`: binary glTF with `species`' materials and textures when the name
+/// ends in .glb, else a Wavefront OBJ.
+fn write_tree(out: &Path, species: &Species, mesh: &Mesh) -> Result<(), Failure> {
+    let glb = out
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    if glb {
+        sylva::export::write_tree_glb(species, mesh, out)?;
+    } else {
+        sylva::base::file::write(out, |w| write_obj(mesh, w))?;
+    }
+    Ok(())
 }
 
 /// One tree of a species file or bundled species, at the species' generations (or
@@ -112,12 +116,8 @@ fn species_tree(args: &TreeArgs, name: &str) -> Result<(), Failure> {
         None => Species::from_file(name)?,
     };
     let generations = args.grammar.generations.unwrap_or(species.generations);
-    let mesh: Mesh = species.mesh(generations, args.grammar.seed)?;
-    if is_glb(&args.out) {
-        sylva::export::write_tree_glb(&species, &mesh, &args.out)?;
-    } else {
-        sylva::base::file::write(&args.out, |w| write_obj(&mesh, w))?;
-    }
+    let mesh = species.mesh(generations, args.grammar.seed)?;
+    write_tree(&args.out, &species, &mesh)?;
     if !args.quiet {
         println!(
             "wrote {}: {} {} of {generations} generations (seed {}), {} vertices, {} triangles ({} of bark, {} of leaves)",

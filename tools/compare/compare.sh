@@ -22,9 +22,15 @@ sleep 1
 flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
   --disable-quic --no-first-run --disable-background-networking --disable-component-update
   --disable-sync --user-data-dir="$(mktemp -d)" --virtual-time-budget=120000)
-title() {  # the page's title for the query $1
-  chromium "${flags[@]}" --window-size=1280,720 --dump-dom "http://127.0.0.1:$port/compare.html?$1" 2>/dev/null \
-    | grep -o '<title>[^<]*</title>' | sed 's/<[^>]*>//g; s/^measured //'
+title() {  # the page's title for the query $1, trying twice (headless Chromium now and then
+           # quits before the page has rendered)
+  local t=""
+  for _ in 1 2; do
+    t=$(chromium "${flags[@]}" --window-size=1280,720 --dump-dom "http://127.0.0.1:$port/compare.html?$1" 2>/dev/null \
+      | grep -o '<title>measured [^<]*</title>' | sed 's/<[^>]*>//g; s/^measured //' || true)
+    [ -n "$t" ] && break
+  done
+  echo "$t"
 }
 echo "{" > "$out/measures.json"
 first=1
@@ -36,7 +42,10 @@ for pair in "${pairs[@]}"; do
     "http://127.0.0.1:$port/compare.html?$query&view=side" 2>/dev/null
   ours=$(title "$query&view=silhouette-sylva")
   theirs=$(title "$query&view=silhouette-ez")
-  case "$ours$theirs" in *error*|"") echo "three.js could not render $species or $preset: $ours $theirs" >&2; exit 1 ;; esac
+  if [ -z "$ours" ] || [ -z "$theirs" ]; then
+    echo "three.js did not render $species beside $preset (sylva: '$ours', ez-tree: '$theirs')" >&2
+    exit 1
+  fi
   [ $first = 1 ] || echo "," >> "$out/measures.json"
   first=0
   printf '  "%s": {"sylva": %s, "ez_tree": {"preset": "%s", "measures": %s}}' "$species" "$ours" "$preset" "$theirs" >> "$out/measures.json"
