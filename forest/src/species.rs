@@ -177,7 +177,8 @@ impl Species {
     /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
     /// (length and width), `leaf_facing` (0 to 1: how far cards turn to face the sky, see
     /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf`, `lobed`, `serrated`, `needles` or `needle-tuft`: the card's texture),
-    /// `bark_texture` (`furrowed`, `smooth` or `scaly`) and `tropism` (direction x y z and
+    /// `bark_texture` (`furrowed`, `smooth` or `scaly`), `root_flare` (0 to 3: how much wider
+    /// than the trunk its base flares, see [`TurtleOptions::root_flare`]) and `tropism` (direction x y z and
     /// susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
@@ -345,12 +346,15 @@ impl Species {
             }
         }
         s.turtle.leaf_facing = number("leaf_facing", s.turtle.leaf_facing, 0.0, 1.0)?;
+        s.turtle.root_flare = number("root_flare", s.turtle.root_flare, 0.0, 3.0)?;
         if let Some((l, c, _, v)) = find("leaf_shape") {
             s.leaf_shape = LeafShape::from_name(v).ok_or_else(|| {
                 err(
                     *l,
                     *c,
-                    format!("leaf_shape must be 'broadleaf' or 'needles', not '{v}'"),
+                    format!(
+                    "leaf_shape must be 'broadleaf', 'lobed', 'serrated', 'needles' or 'needle-tuft', not '{v}'"
+                ),
                 )
             })?;
         }
@@ -359,7 +363,7 @@ impl Species {
                 err(
                     *l,
                     *c,
-                    format!("bark_texture must be 'furrowed' or 'smooth', not '{v}'"),
+                    format!("bark_texture must be 'furrowed', 'smooth' or 'scaly', not '{v}'"),
                 )
             })?;
         }
@@ -381,6 +385,7 @@ impl Species {
                 "leaves",
                 "leaf_size",
                 "leaf_facing",
+                "root_flare",
                 "tropism",
                 "leaf_shape",
                 "bark_texture",

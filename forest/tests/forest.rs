@@ -250,7 +250,8 @@ fn species_files_report_file_line_and_column() {
         (
             2,
             13,
-            "leaf_shape must be 'broadleaf' or 'needles', not 'fern'".into()
+            "leaf_shape must be 'broadleaf', 'lobed', 'serrated', 'needles' or 'needle-tuft', not 'fern'"
+                .into()
         )
     );
     assert_eq!(err("grammar: kenwood-leafy\nbark_texture: velvet").0, 2);
@@ -264,6 +265,9 @@ fn species_files_report_file_line_and_column() {
     );
     let facing = Species::parse_file("grammar: kenwood-leafy\nleaf_facing: 0.25", file).unwrap();
     assert_eq!(facing.turtle.leaf_facing, 0.25);
+    let flared = Species::parse_file("grammar: kenwood-leafy\nroot_flare: 0.6", file).unwrap();
+    assert_eq!(flared.turtle.root_flare, 0.6);
+    assert_eq!(err("grammar: kenwood-leafy\nroot_flare: 9").0, 2);
     // A grammar file with an error is reported in that file's terms.
     let dir = std::env::temp_dir().join(format!("sylva-species-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

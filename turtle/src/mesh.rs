@@ -185,6 +185,13 @@ impl RingFrame {
     }
 }
 
+/// Rings drawn up a flared trunk base.
+const FLARE_RINGS: usize = 4;
+/// How far up the trunk the flare's rings reach, in base radii.
+const FLARE_REACH: f32 = 3.0;
+/// The widest flare accepted (a base four times the trunk's radius).
+const FLARE_MAX: f32 = 3.0;
+
 /// A [`GeometrySink`] that builds a [`Mesh`]: tubes for segments, triangulated polygons, leaf
 /// quads.
 #[derive(Debug, Clone)]
@@ -193,6 +200,8 @@ pub struct MeshBuilder {
     pub mesh: Mesh,
     shape: BranchShape,
     caps: bool,
+    /// [`TurtleOptions::root_flare`], finite and not negative.
+    root_flare: f32,
     circle: Vec<(f32, f32)>,
     ends: Vec<RingEnd>,
     /// Bracket depth of the last segment drawn: leaves and polygons sit one deeper.
@@ -216,6 +225,11 @@ impl MeshBuilder {
             mesh: Mesh::default(),
             shape: options.shape,
             caps: options.caps,
+            root_flare: if options.root_flare.is_finite() {
+                options.root_flare.clamp(0.0, FLARE_MAX)
+            } else {
+                0.0
+            },
             circle,
             ends: Vec::new(),
             depth: 0,
@@ -264,6 +278,47 @@ impl MeshBuilder {
             });
         }
         first
+    }
+
+    /// Rings up the flared base of segment `s`, from the first ring `a` at texture height
+    /// `v0`: the frustum's radius times `1 + flare * e^(-h / (1.2 r))` at height `h` over
+    /// [`FLARE_RINGS`] rings within the segment's first [`FLARE_REACH`] base radii (and its
+    /// first 60%). The base ring itself is widened in place. Returns the last ring and its `v`.
+    fn flare(
+        &mut self,
+        s: &Segment,
+        ring: &RingFrame,
+        (a, v0): (u32, f32),
+        wind: [f32; 4],
+    ) -> (u32, f32) {
+        if self.root_flare <= 0.0 || s.length <= 0.0 || s.start_radius <= 0.0 {
+            return (a, v0);
+        }
+        let (r0, flare) = (s.start_radius, self.root_flare);
+        let reach = (FLARE_REACH * r0).min(0.6 * s.length);
+        let radius_at = |h: f32| {
+            let t = h / s.length;
+            let frustum = s.start_radius + (s.end_radius - s.start_radius) * t;
+            frustum * (1.0 + flare * (-h / (1.2 * r0)).exp())
+        };
+        // Widen the base ring where it stands.
+        let start = s.start();
+        let base = radius_at(0.0);
+        for (k, &(c, sn)) in self.circle.iter().enumerate() {
+            let d = ring.left * c + ring.up * sn;
+            self.mesh.vertices[a as usize + k].position = (start + d * base).to_array();
+        }
+        let heading = s.frame.heading();
+        let (mut last, mut v, mut below) = (a, v0, (0.0f32, base));
+        for k in 1..=FLARE_RINGS {
+            let h = reach * k as f32 / FLARE_RINGS as f32;
+            let r = radius_at(h);
+            v += (h - below.0) / (std::f32::consts::PI * (r + below.1)).max(1e-4);
+            let next = self.ring(start + heading * h, ring, r, v, wind);
+            self.join(last, next);
+            (last, below) = (next, (h, r));
+        }
+        (last, v)
     }
 
     fn join(&mut self, a: u32, b: u32) {
@@ -370,6 +425,13 @@ impl GeometrySink for MeshBuilder {
             }
         };
         self.depth = s.depth;
+        // The root flare: the first segment of the first axis widens towards the ground,
+        // drawn as a few rings whose radius fades back to the frustum's.
+        let (a, v0) = if shared.is_none() && s.parent.is_none() && s.depth == 0 && s.id == 0 {
+            self.flare(s, &ring, (a, v0), wind)
+        } else {
+            (a, v0)
+        };
         // v advances by the length in circumferences at the segment's mean radius.
         let circumference = std::f32::consts::PI * (s.start_radius + s.end_radius);
         let v1 = v0 + s.length / circumference.max(1e-4);
@@ -455,5 +517,60 @@ impl GeometrySink for MeshBuilder {
         let wind = Wind::branch(p, self.depth + 1, first).packed();
         // Counter-clockwise seen from the up vector, which is the leaf's normal.
         self.quad([p + l, p - l, p - l + h, p + l + h], frame.up(), wind);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interpret;
+
+    /// The radius of every ring of `mesh` (each `sides + 1` vertices round an axis up y),
+    /// from the bottom up.
+    fn ring_radii(mesh: &Mesh, sides: usize) -> Vec<(f32, f32)> {
+        mesh.vertices
+            .chunks_exact(sides + 1)
+            .map(|ring| {
+                let [x, y, z] = ring[0].position;
+                (y, (x * x + z * z).sqrt())
+            })
+            .collect()
+    }
+
+    fn trunk(flare: f32) -> Mesh {
+        let word: sylva_lsys::Word = "!(0.4)F(4)".parse().unwrap();
+        let options = TurtleOptions::default()
+            .with_radial_segments(6)
+            .with_root_flare(flare);
+        let mut builder = MeshBuilder::new(&options);
+        interpret(&word, &options, &mut builder).unwrap();
+        builder.finish()
+    }
+
+    /// A flared base is (1 + flare) times the trunk's radius at the ground and narrows
+    /// steadily to the trunk's radius within a few radii; no flare draws the plain frustum.
+    #[test]
+    fn the_root_flare_widens_the_base_and_fades_up_the_trunk() {
+        let plain = ring_radii(&trunk(0.0), 6);
+        assert_eq!(plain.len(), 2);
+        let flared = ring_radii(&trunk(0.6), 6);
+        assert_eq!(flared.len(), 2 + FLARE_RINGS);
+        let (r, base) = (0.2, flared[0]);
+        assert!(
+            (base.0).abs() < 1e-6 && (base.1 - 1.6 * r).abs() < 1e-4,
+            "{base:?}"
+        );
+        assert!(
+            flared
+                .windows(2)
+                .all(|w| w[1].0 > w[0].0 && w[1].1 < w[0].1),
+            "{flared:?}"
+        );
+        let top_of_flare = flared[FLARE_RINGS];
+        assert!((top_of_flare.0 - FLARE_REACH * r).abs() < 1e-4);
+        assert!(top_of_flare.1 < 1.1 * r, "{top_of_flare:?}");
+        assert_eq!(flared.last(), plain.last());
+        // Bad settings draw no flare rather than a broken one.
+        assert_eq!(ring_radii(&trunk(f32::NAN), 6), plain);
     }
 }

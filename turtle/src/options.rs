@@ -66,6 +66,10 @@ pub struct TurtleOptions {
     pub caps: bool,
     /// Radii below this are raised to it, so thin twigs stay visible.
     pub min_radius: f32,
+    /// How much wider than the trunk its base flares where roots buttress it: 0 none, 0.6
+    /// a base 1.6 times the trunk's radius. The flare fades over about three base radii up
+    /// the first segment of the tree's first axis ([`MeshBuilder`](crate::MeshBuilder)).
+    pub root_flare: f32,
     /// Deepest `[` / `{` nesting accepted.
     pub max_depth: usize,
 }
@@ -89,12 +93,19 @@ impl Default for TurtleOptions {
             radial_segments: 8,
             caps: false,
             min_radius: 0.0,
+            root_flare: 0.0,
             max_depth: 1 << 20,
         }
     }
 }
 
 impl TurtleOptions {
+    /// Sets [`TurtleOptions::root_flare`].
+    pub fn with_root_flare(mut self, root_flare: f32) -> Self {
+        self.root_flare = root_flare;
+        self
+    }
+
     /// Sets [`TurtleOptions::width_factor`].
     pub fn with_width_factor(mut self, width_factor: f32) -> Self {
         self.width_factor = width_factor;
