@@ -427,7 +427,8 @@ impl GeometrySink for MeshBuilder {
         self.depth = s.depth;
         // The root flare: the first segment of the first axis widens towards the ground,
         // drawn as a few rings whose radius fades back to the frustum's.
-        let (a, v0) = if shared.is_none() && s.parent.is_none() && s.depth == 0 && s.id == 0 {
+        // The first segment drawn (id 0) has no parent; at depth 0 it is the tree's own base.
+        let (a, v0) = if s.id == 0 && s.depth == 0 {
             self.flare(s, &ring, (a, v0), wind)
         } else {
             (a, v0)

@@ -10,6 +10,7 @@ use super::schema::{
 };
 use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, position_bounds};
 use crate::error::{ExportError, Invalid};
+use sylva_forest::Species;
 
 /// Zero bytes that bring `len` to a whole number of 4-byte words.
 pub(super) fn padding(len: usize) -> usize {
@@ -195,6 +196,22 @@ impl DocumentBuilder {
             double_sided: leaf_card,
         });
         self.root.materials.len() - 1
+    }
+
+    /// A species' bark material, over its colour and normal textures when given, and its
+    /// leaf-card material, over its leaf texture when given: `(bark, leaves)`.
+    pub(super) fn species_materials(
+        &mut self,
+        species: &Species,
+        roughness: f32,
+        (leaf, bark, normal): (Option<usize>, Option<usize>, Option<usize>),
+    ) -> (usize, usize) {
+        let bark_name = format!("{} bark", species.name);
+        let leaf_name = format!("{} leaves", species.name);
+        (
+            self.material(bark_name, species.bark, roughness, (bark, normal), false),
+            self.material(leaf_name, species.leaf, roughness, (leaf, None), true),
+        )
     }
 
     /// A mesh; returns its index.

@@ -1,14 +1,16 @@
 //! The streamed GLB's layout, decided before any byte is written: the JSON chunk and the
 //! offset of every section of the BIN chunk.
 
-use sylva_forest::{BarkPattern, ForestBuilder, LeafShape, Species, Variant};
+use std::sync::Arc;
+
+use sylva_forest::{ForestBuilder, Species, Variant};
 use sylva_instancing::{Instance, Similarity};
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use super::builder::{DocumentBuilder, TreeViews};
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
-use super::shared::{self, SharedLayout};
+use super::shared::{SharedLayout, TextureSet};
 use super::{ARRAY_BUFFER, FLOAT, GltfOptions, Node};
 use crate::error::ExportError;
 
@@ -19,7 +21,7 @@ pub(super) struct Document {
     /// Variants whose buffers this file embeds, in order (none when they are shared).
     pub(super) used_variants: Vec<usize>,
     /// The leaf textures as PNG, in layout order after the cache buffers.
-    pub(super) images: Vec<Vec<u8>>,
+    pub(super) images: Arc<Vec<Vec<u8>>>,
     /// The terrain's ground colours, after its indices.
     pub(super) terrain_colours: Vec<[f32; 3]>,
     /// Offset in the BIN chunk where the placement sections start.
@@ -35,50 +37,6 @@ struct VariantLayout {
     views: TreeViews,
     bark_material: usize,
     leaf_material: usize,
-}
-
-/// Which texture is which: one per leaf shape, then bark colour and normal map per pattern;
-/// images in that order.
-#[derive(Debug)]
-struct TextureSet {
-    shapes: Vec<LeafShape>,
-    patterns: Vec<BarkPattern>,
-}
-
-impl TextureSet {
-    /// The shapes and patterns of the species of `used` variants, in order of first use.
-    fn of(builder: &ForestBuilder, used: &[usize]) -> TextureSet {
-        let (variants, species) = (builder.variants(), &builder.config().species);
-        let mut set = TextureSet {
-            shapes: Vec::new(),
-            patterns: Vec::new(),
-        };
-        for &v in used {
-            let s = &species[variants[v].species];
-            if !set.shapes.contains(&s.leaf_shape) {
-                set.shapes.push(s.leaf_shape);
-            }
-            if !set.patterns.contains(&s.bark_pattern) {
-                set.patterns.push(s.bark_pattern);
-            }
-        }
-        set
-    }
-
-    /// The leaf texture of `species` and its bark's colour and normal textures.
-    fn of_species(&self, species: &Species) -> (Option<usize>, Option<usize>, Option<usize>) {
-        let first_bark = self.shapes.len();
-        let leaf = self.shapes.iter().position(|&s| s == species.leaf_shape);
-        let pattern = self
-            .patterns
-            .iter()
-            .position(|&p| p == species.bark_pattern);
-        (
-            leaf,
-            pattern.map(|k| first_bark + k),
-            pattern.map(|k| first_bark + self.patterns.len() + k),
-        )
-    }
 }
 
 /// The terrain's sections (vertices, indices, ground colours), material, mesh and node; returns
@@ -131,21 +89,8 @@ fn lay_out_variant(
         leaves: d.index_view(buffer, at[3], lbytes),
     };
     let attributes = d.tree_attributes(views, variant.cache.vertices.iter().map(|v| v.position));
-    let (leaf, bark, normal) = textures.of_species(species);
-    let bark_material = d.material(
-        format!("{} bark", species.name),
-        species.bark,
-        options.roughness,
-        (bark, normal),
-        false,
-    );
-    let leaf_material = d.material(
-        format!("{} leaves", species.name),
-        species.leaf,
-        options.roughness,
-        (leaf, None),
-        true,
-    );
+    let (bark_material, leaf_material) =
+        d.species_materials(species, options.roughness, textures.of_species(species));
     VariantLayout {
         attributes,
         views,
@@ -281,15 +226,13 @@ impl Document {
             .as_ref()
             .map(|uri| (uri, SharedLayout::of(builder)));
         let textures = match &shared_layout {
-            Some((_, layout)) => TextureSet {
-                shapes: layout.shapes.clone(),
-                patterns: layout.patterns.clone(),
-            },
-            None => TextureSet::of(builder, &used_variants),
+            Some((_, layout)) => layout.textures.clone(),
+            None => TextureSet::of(used_variants.iter().map(|&v| &species[variants[v].species])),
         };
-        let images: Vec<Vec<u8>> = match &shared_layout {
-            Some(_) => Vec::new(),
-            None => shared::images(&textures.shapes, &textures.patterns).to_vec(),
+        // Images are embedded only when nothing is shared (the shared file holds them).
+        let images = match &shared_layout {
+            Some(_) => Arc::default(),
+            None => textures.images(),
         };
         let mut shared = vec![None; variants.len()];
         for &v in &used_variants {
@@ -339,7 +282,7 @@ impl Document {
                 lay_out_node(&mut d, builder, node, layout, placed);
             }
         }
-        let first_bark = textures.shapes.len();
+        let first_bark = textures.first_bark();
         d.images(
             image_views
                 .iter()

@@ -70,7 +70,7 @@ pub(super) fn write_geometry(
         put(w, bytemuck::cast_slice(&cache.leaves))?;
     }
     // Every buffer above is a whole number of 4-byte words; images are padded to one.
-    for image in &document.images {
+    for image in document.images.iter() {
         put(w, image)?;
         put(w, &[0; 3][..padding(image.len())])?;
     }

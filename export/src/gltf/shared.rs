@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use sylva_base::file::{AtomicFile, FileError};
-use sylva_forest::{BarkPattern, ForestBuilder, LeafShape};
+use sylva_forest::{BarkPattern, ForestBuilder, LeafShape, Species};
 
 use super::builder::padding;
 use super::tangent::tangents;
@@ -27,9 +27,8 @@ pub(super) struct VariantSpans {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(super) struct SharedLayout {
     pub(super) variants: Vec<VariantSpans>,
-    /// Leaf shapes and bark patterns of all species, in order of first use.
-    pub(super) shapes: Vec<LeafShape>,
-    pub(super) patterns: Vec<BarkPattern>,
+    /// The textures of all species.
+    pub(super) textures: TextureSet,
     /// Images (leaf shapes, then bark colours, then bark normal maps): offset and length.
     pub(super) images: Vec<(usize, usize)>,
     pub(super) len: usize,
@@ -37,7 +36,7 @@ pub(super) struct SharedLayout {
 
 impl SharedLayout {
     pub(super) fn of(builder: &ForestBuilder) -> SharedLayout {
-        let (shapes, patterns) = looks(builder);
+        let textures = TextureSet::of(&builder.config().species);
         let mut at = 0usize;
         let mut take = |len: usize| {
             let start = at;
@@ -57,38 +56,79 @@ impl SharedLayout {
                 }
             })
             .collect();
-        let images = images(&shapes, &patterns)
+        let images = textures
+            .images()
             .iter()
             .map(|png| (take(png.len()), png.len()))
             .collect();
         SharedLayout {
             variants,
-            shapes,
-            patterns,
+            textures,
             images,
             len: at,
         }
     }
 }
 
-/// The leaf shapes and bark patterns of the builder's species, in order of first use.
-pub(super) fn looks(builder: &ForestBuilder) -> (Vec<LeafShape>, Vec<BarkPattern>) {
-    let (mut shapes, mut patterns) = (Vec::new(), Vec::new());
-    for s in &builder.config().species {
-        if !shapes.contains(&s.leaf_shape) {
-            shapes.push(s.leaf_shape);
+/// Which texture is which: one per leaf shape, then bark colour and normal map per pattern,
+/// each in order of first use; images in that order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct TextureSet {
+    pub(super) shapes: Vec<LeafShape>,
+    pub(super) patterns: Vec<BarkPattern>,
+}
+
+impl TextureSet {
+    /// The leaf shapes and bark patterns of `species`, in order of first use.
+    pub(super) fn of<'a>(species: impl IntoIterator<Item = &'a Species>) -> TextureSet {
+        let mut set = TextureSet {
+            shapes: Vec::new(),
+            patterns: Vec::new(),
+        };
+        for s in species {
+            if !set.shapes.contains(&s.leaf_shape) {
+                set.shapes.push(s.leaf_shape);
+            }
+            if !set.patterns.contains(&s.bark_pattern) {
+                set.patterns.push(s.bark_pattern);
+            }
         }
-        if !patterns.contains(&s.bark_pattern) {
-            patterns.push(s.bark_pattern);
-        }
+        set
     }
-    (shapes, patterns)
+
+    /// The first bark texture: those before it are leaf cards (edges clamped), those from it
+    /// on tile.
+    pub(super) fn first_bark(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// The leaf texture of `species` and its bark's colour and normal textures.
+    pub(super) fn of_species(
+        &self,
+        species: &Species,
+    ) -> (Option<usize>, Option<usize>, Option<usize>) {
+        let leaf = self.shapes.iter().position(|&s| s == species.leaf_shape);
+        let pattern = self
+            .patterns
+            .iter()
+            .position(|&p| p == species.bark_pattern);
+        (
+            leaf,
+            pattern.map(|k| self.first_bark() + k),
+            pattern.map(|k| self.first_bark() + self.patterns.len() + k),
+        )
+    }
+
+    /// The images, as PNG.
+    pub(super) fn images(&self) -> Arc<Vec<Vec<u8>>> {
+        images(&self.shapes, &self.patterns)
+    }
 }
 
 /// The PNG images of `shapes` and `patterns`: leaves, bark colours, bark normal maps.
 /// Encoded once per set and kept: every tile of a world lays out the same images, and
 /// encoding them again for each tile cost more than placing a small tile's trees.
-pub(super) fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Arc<Vec<Vec<u8>>> {
+fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Arc<Vec<Vec<u8>>> {
     type Key = (Vec<LeafShape>, Vec<BarkPattern>);
     type Encoded = Mutex<HashMap<Key, Arc<Vec<Vec<u8>>>>>;
     static ENCODED: OnceLock<Encoded> = OnceLock::new();
@@ -138,7 +178,7 @@ pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usi
         put(bytemuck::cast_slice(&c.bark))?;
         put(bytemuck::cast_slice(&c.leaves))?;
     }
-    for png in images(&layout.shapes, &layout.patterns).iter() {
+    for png in layout.textures.images().iter() {
         put(png)?;
     }
     w.commit()?;

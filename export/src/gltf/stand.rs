@@ -3,15 +3,15 @@
 
 use std::path::Path;
 
-use sylva_forest::{BarkPattern, GrownStand, LeafShape, Species};
+use sylva_forest::{GrownStand, Species};
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Mesh;
 
 use super::ARRAY_BUFFER;
 use super::in_memory::InMemory;
 use super::schema::{Attributes, Node, Primitive};
+use super::shared::TextureSet;
 use crate::error::ExportError;
-use crate::texture::Texture;
 
 /// Roughness of the stand's materials but the rock's.
 const ROUGHNESS: f32 = 0.9;
@@ -65,7 +65,9 @@ pub fn write_stand_glb(
                 .push(Node::of_mesh(format!("obstacle {k}"), mesh));
         }
     }
-    write_trees(glb, &stand.meshes(species), species, path)
+    let meshes = stand.meshes(species);
+    let meshes: Vec<(usize, &Mesh)> = meshes.iter().map(|(s, m)| (*s, m)).collect();
+    write_trees(glb, &meshes, species, path)
 }
 
 /// Writes one tree of `species` (such as [`Species::mesh`] makes) as a binary glTF at `path`:
@@ -84,7 +86,7 @@ pub fn write_stand_glb(
 pub fn write_tree_glb(species: &Species, mesh: &Mesh, path: &Path) -> Result<usize, ExportError> {
     write_trees(
         InMemory::default(),
-        &[(0, mesh.clone())],
+        &[(0, mesh)],
         std::slice::from_ref(species),
         path,
     )
@@ -94,7 +96,7 @@ pub fn write_tree_glb(species: &Species, mesh: &Mesh, path: &Path) -> Result<usi
 /// with the materials and textures of the species they use, and writes the file.
 fn write_trees(
     mut glb: InMemory,
-    meshes: &[(usize, Mesh)],
+    meshes: &[(usize, &Mesh)],
     species: &[Species],
     path: &Path,
 ) -> Result<usize, ExportError> {
@@ -105,66 +107,35 @@ fn write_trees(
         u.dedup();
         u
     };
-    // Images as PNG, each with whether it tiles; the k-th is texture k.
-    let mut images: Vec<(Vec<u8>, bool)> = Vec::new();
-    let mut texture_of = |image: Vec<u8>, tiled: bool| {
-        images.push((image, tiled));
-        images.len() - 1
-    };
-    let mut leaf_textures: Vec<(LeafShape, usize)> = Vec::new();
-    let mut bark_textures: Vec<(BarkPattern, usize, usize)> = Vec::new();
-    let mut species_materials = vec![(0usize, 0usize); species.len()];
+    let mut used_species = Vec::with_capacity(used.len());
     for &s in &used {
-        let sp = species.get(s).ok_or(ExportError::UnknownSpecies {
+        used_species.push(species.get(s).ok_or(ExportError::UnknownSpecies {
             species: s,
             count: species.len(),
-        })?;
-        let leaf = match leaf_textures.iter().find(|l| l.0 == sp.leaf_shape) {
-            Some(l) => l.1,
-            None => {
-                let t = texture_of(Texture::leaf(sp.leaf_shape).png(), false);
-                leaf_textures.push((sp.leaf_shape, t));
-                t
-            }
-        };
-        let (colour, normal) = match bark_textures.iter().find(|t| t.0 == sp.bark_pattern) {
-            Some(t) => (t.1, t.2),
-            None => {
-                let c = texture_of(Texture::bark(sp.bark_pattern).png(), true);
-                let n = texture_of(Texture::bark_normal(sp.bark_pattern).png(), true);
-                bark_textures.push((sp.bark_pattern, c, n));
-                (c, n)
-            }
-        };
-        let bark = glb.doc.material(
-            format!("{} bark", sp.name),
-            sp.bark,
-            ROUGHNESS,
-            (Some(colour), Some(normal)),
-            false,
-        );
-        let leaves = glb.doc.material(
-            format!("{} leaves", sp.name),
-            sp.leaf,
-            ROUGHNESS,
-            (Some(leaf), None),
-            true,
-        );
-        species_materials[s] = (bark, leaves);
+        })?);
     }
-    for (k, (s, mesh)) in meshes.iter().enumerate() {
-        let (bark, leaves) = species_materials[*s];
+    let textures = TextureSet::of(used_species.iter().copied());
+    let mut species_materials = vec![(0usize, 0usize); species.len()];
+    for (&s, sp) in used.iter().zip(&used_species) {
+        species_materials[s] = glb
+            .doc
+            .species_materials(sp, ROUGHNESS, textures.of_species(sp));
+    }
+    for (k, &(s, mesh)) in meshes.iter().enumerate() {
+        let (bark, leaves) = species_materials[s];
         let primitives = glb.tree(mesh, bark, leaves);
         if primitives.is_empty() {
             continue;
         }
-        let name = format!("{} {k}", species[*s].name);
+        let name = format!("{} {k}", species[s].name);
         let mesh = glb.doc.mesh(name.clone(), primitives);
         glb.doc.root.nodes.push(Node::of_mesh(name, mesh));
     }
-    let views: Vec<(usize, bool)> = images
+    let views: Vec<(usize, bool)> = textures
+        .images()
         .iter()
-        .map(|(png, tiled)| (glb.view(png, None, None), *tiled))
+        .enumerate()
+        .map(|(k, png)| (glb.view(png, None, None), k >= textures.first_bark()))
         .collect();
     glb.doc.images(views);
     glb.write(path)
