@@ -62,7 +62,7 @@ pub use proxy::{Extent, tree_proxy};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
 pub use stream::{Placement, PlacementBlock, PlacementSink, StreamStats};
-pub use variety::{tree_tint, tree_wind};
+pub use variety::{CLUSTER_SHADE_MEAN, cluster_shade, tree_tint, tree_wind};
 pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};
 
 /// The limits and tuning constants of forest generation.

@@ -178,8 +178,9 @@ impl Species {
     /// (length and width), `leaf_facing` (0 to 1: how far cards turn to face the sky, see
     /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf`, `lobed`, `serrated`, `needles` or `needle-tuft`: the card's texture),
     /// `bark_texture` (`furrowed`, `smooth` or `scaly`), `root_flare` (0 to 3: how much wider
-    /// than the trunk its base flares, see [`TurtleOptions::root_flare`]) and `tropism` (direction x y z and
-    /// susceptibility). Errors name the file, line and column;
+    /// than the trunk its base flares, see [`TurtleOptions::root_flare`]), `branch_collar` (0
+    /// to 1: how much a branch swells where it leaves its parent, see
+    /// [`TurtleOptions::branch_collar`]) and `tropism` (direction x y z and susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
     /// ```no_run
@@ -347,6 +348,7 @@ impl Species {
         }
         s.turtle.leaf_facing = number("leaf_facing", s.turtle.leaf_facing, 0.0, 1.0)?;
         s.turtle.root_flare = number("root_flare", s.turtle.root_flare, 0.0, 3.0)?;
+        s.turtle.branch_collar = number("branch_collar", s.turtle.branch_collar, 0.0, 1.0)?;
         if let Some((l, c, _, v)) = find("leaf_shape") {
             s.leaf_shape = LeafShape::from_name(v).ok_or_else(|| {
                 err(
@@ -386,6 +388,7 @@ impl Species {
                 "leaf_size",
                 "leaf_facing",
                 "root_flare",
+                "branch_collar",
                 "tropism",
                 "leaf_shape",
                 "bark_texture",

@@ -22,6 +22,36 @@ pub fn tree_tint(tree: &CompactTree) -> [f32; 3] {
     [light * (1.0 + warm), light, light * (1.0 - warm)]
 }
 
+/// The mean of [`cluster_shade`]'s lightness: a species' leaf colour divided by it, times the
+/// shade, keeps the species' colour on average.
+pub const CLUSTER_SHADE_MEAN: f32 = 0.875;
+
+/// A leaf cluster's shade: each leaf card a little lighter or darker, warmer or cooler than
+/// its tree's colour, a pure function of the card's wind phase (the fraction of
+/// [`sylva_turtle::Vertex::wind`]'s w, distinct per card), so no two neighbouring clusters
+/// match. Every channel is in `0.7..=1` (so it fits a normalized colour attribute), the
+/// lightness uniform in `0.75..=1` with mean [`CLUSTER_SHADE_MEAN`]; warm clusters lose blue,
+/// cool ones red. Exports write it as the leaves' `COLOR_0`, the viewer's shader computes the
+/// same.
+///
+/// ```
+/// use sylva_forest::cluster_shade;
+/// let shade = cluster_shade(0.3);
+/// assert_eq!(shade, cluster_shade(0.3));
+/// assert_ne!(shade, cluster_shade(0.31));
+/// assert!(shade.iter().all(|c| (0.7..=1.0).contains(c)));
+/// ```
+pub fn cluster_shade(phase: f32) -> [f32; 3] {
+    let fract = |x: f32| x - x.floor();
+    let light = 1.0 - 0.25 * fract(phase * 7.31);
+    let warm = fract(phase * 13.7);
+    [
+        light * (0.92 + 0.08 * warm),
+        light,
+        light * (1.0 - 0.12 * warm),
+    ]
+}
+
 /// A tree's wind data, the per-placement half of the wind attributes (the per-vertex half is
 /// [`sylva_turtle::Vertex::wind`]): the tree's base (xyz, world space) and a phase in
 /// `[0, 1)` (w) drawn from its seed, so neighbours do not sway in step. Every placement of a
@@ -40,4 +70,25 @@ pub fn tree_tint(tree: &CompactTree) -> [f32; 3] {
 pub fn tree_wind(tree: &CompactTree) -> [f32; 4] {
     let [x, y, z] = tree.position;
     [x, y, z, unit_f32(mix(u64::from(tree.seed) ^ 0x3147_d000))]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Over many cards the shade's lightness averages [`CLUSTER_SHADE_MEAN`], and it spreads
+    /// over its whole range.
+    #[test]
+    fn cluster_shades_average_their_mean_and_spread() {
+        let n = 10_000;
+        let greens: Vec<f32> = (0..n)
+            .map(|k| cluster_shade(unit_f32(mix(k))))
+            .map(|s| s[1])
+            .collect();
+        let mean = greens.iter().sum::<f32>() / n as f32;
+        assert!((mean - CLUSTER_SHADE_MEAN).abs() < 0.01, "{mean}");
+        let lo = greens.iter().copied().fold(1.0, f32::min);
+        let hi = greens.iter().copied().fold(0.0, f32::max);
+        assert!(lo < 0.77 && hi > 0.98, "{lo} {hi}");
+    }
 }

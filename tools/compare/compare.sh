@@ -2,12 +2,15 @@
 # Renders each default species beside the nearest ez-tree preset in three.js (headless
 # Chromium) and measures both silhouettes; writes OUT_DIR/<species>.png (side by side, eye
 # level) and OUT_DIR/measures.json, and prints a table.
-# usage: tools/compare/compare.sh OUT_DIR [SYLVA_BINARY]
+# usage: tools/compare/compare.sh OUT_DIR [SYLVA_BINARY [SPECIES_DIR [SPECIES...]]]
+# SPECIES_DIR holds <species>.species files to draw instead of the bundled ones (for tuning a
+# species); SPECIES limits the run to those named.
 # Needs Debian's chromium and node; installs npm's three and @dgreenheck/ez-tree beside this
 # script on first use.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 out="$(realpath -m "$1")"; sylva="$(realpath "${2:-target/release/sylva}")"
+species_dir="${3:+$(realpath "$3")}"; only=("${@:4}")
 mkdir -p "$out"
 if [ ! -d "$here/node_modules/@dgreenheck/ez-tree" ]; then
   (cd "$here" && npm install --no-save --no-audit --no-fund --silent three@0.170.0 @dgreenheck/ez-tree@1.1.0)
@@ -36,7 +39,9 @@ echo "{" > "$out/measures.json"
 first=1
 for pair in "${pairs[@]}"; do
   species="${pair%%:*}"; preset="${pair#*:}"; ez="${preset// /%20}"
-  "$sylva" tree --species "$species" --seed 1 --out "$here/tree_$species.glb" --quiet
+  if [ ${#only[@]} -gt 0 ] && [[ ! " ${only[*]} " == *" $species "* ]]; then continue; fi
+  source="$species"; [ -z "$species_dir" ] || source="$species_dir/$species.species"
+  "$sylva" tree --species "$source" --seed 1 --out "$here/tree_$species.glb" --quiet
   query="sylva=tree_$species.glb&ez=$ez"
   chromium "${flags[@]}" --window-size=1280,720 --screenshot="$out/$species.png" \
     "http://127.0.0.1:$port/compare.html?$query&view=side" 2>/dev/null

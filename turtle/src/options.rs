@@ -70,6 +70,11 @@ pub struct TurtleOptions {
     /// a base 1.6 times the trunk's radius. The flare fades over about three base radii up
     /// the first segment of the tree's first axis ([`MeshBuilder`](crate::MeshBuilder)).
     pub root_flare: f32,
+    /// How much a branch swells where it leaves its parent, blending into it: 0 none, 0.5 a
+    /// base 1.5 times the branch's radius at the parent's surface (never wider than the
+    /// parent), fading over a few radii. Drawn on branches long enough to hold it (two rings
+    /// each, [`MeshBuilder`](crate::MeshBuilder)).
+    pub branch_collar: f32,
     /// Deepest `[` / `{` nesting accepted.
     pub max_depth: usize,
 }
@@ -94,6 +99,7 @@ impl Default for TurtleOptions {
             caps: false,
             min_radius: 0.0,
             root_flare: 0.0,
+            branch_collar: 0.0,
             max_depth: 1 << 20,
         }
     }
@@ -103,6 +109,12 @@ impl TurtleOptions {
     /// Sets [`TurtleOptions::root_flare`].
     pub fn with_root_flare(mut self, root_flare: f32) -> Self {
         self.root_flare = root_flare;
+        self
+    }
+
+    /// Sets [`TurtleOptions::branch_collar`].
+    pub fn with_branch_collar(mut self, branch_collar: f32) -> Self {
+        self.branch_collar = branch_collar;
         self
     }
 

@@ -41,6 +41,7 @@ fn default_scene() -> Scene {
         species: world::default_species().expect("bundled species"),
         budget: 32 << 20,
         paint: None,
+        specimen: false,
     })
     .expect("default scene builds")
 }
@@ -161,6 +162,7 @@ fn wind_sways_trees_and_still_air_does_not() {
         species: vec![birch],
         budget: 4 << 20,
         paint: None,
+        specimen: false,
     })
     .expect("birch stand builds");
     let size = (160, 90);
@@ -208,6 +210,7 @@ fn a_view_streamed_again_is_the_same_picture() {
         species: vec![species[1].clone(), species[0].clone()],
         budget: 12 << 20,
         paint: None,
+        specimen: false,
     })
     .expect("world builds");
     let size = (160, 90);
@@ -238,4 +241,60 @@ fn a_view_streamed_again_is_the_same_picture() {
         first == back,
         "the view differs after streaming its cells again"
     );
+}
+
+/// A turntable shows its one tree whole from every side: the tree (bark and leaves) fills a
+/// good part of each view, nothing of it is cut by the frame's top or sides, and no other
+/// tree stands in the world.
+#[test]
+fn a_turntable_frames_its_tree_from_every_side() {
+    let oak = world::default_species().expect("bundled species")[0].clone();
+    let mut scene = Scene::build(SceneOptions {
+        seed: 1,
+        side: 0.0,
+        trees: None,
+        species: vec![oak],
+        budget: 8 << 20,
+        paint: None,
+        specimen: true,
+    })
+    .expect("a turntable's world builds");
+    let (builder, _) = scene.world.forest();
+    let whole = sylva::forest::Rect::new(
+        sylva::terrain::glam::Vec2::ZERO,
+        sylva::terrain::glam::Vec2::splat(scene.side()),
+    );
+    assert_eq!(builder.trees(&scene.world.heightmap, whole).len(), 1);
+    let size = (160, 160);
+    let Some(mut offscreen) = offscreen(&scene, size) else {
+        return;
+    };
+    let turntable = crate::turntable::Turntable { views: 4, size };
+    let (views, tree) = turntable
+        .render(&mut scene, &mut offscreen, Mode::Ids)
+        .expect("turntable renders");
+    assert_eq!(views.len(), 4);
+    assert!(tree.height > 3.0 && tree.crown > 2.0, "{tree:?}");
+    for crate::turntable::View { turn, pixels, .. } in &views {
+        let coverage = Coverage::of_ids(pixels);
+        assert!(
+            coverage.leaves + coverage.bark > 0.08,
+            "view from {turn}: {coverage}"
+        );
+        // The frame's outer rows and columns see sky or ground, never the tree.
+        let is_sky_or_ground = |x: u32, y: u32| {
+            let at = ((y * size.0 + x) * 4) as usize;
+            let c = Coverage::of_ids(&pixels[at..at + 4]);
+            c.sky + c.terrain > 0.99
+        };
+        let (w, h) = size;
+        assert!(
+            (0..w).all(|x| is_sky_or_ground(x, 0)),
+            "view from {turn}: the tree touches the top"
+        );
+        assert!(
+            (0..h).all(|y| is_sky_or_ground(0, y) && is_sky_or_ground(w - 1, y)),
+            "view from {turn}: the tree touches a side"
+        );
+    }
 }

@@ -4,7 +4,8 @@
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES | --trees N] [--budget-mb MB] [--paint MASKS_DIR]
 //!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids]
-//!     [--frames N [--walk M] | --tour N [--tour-spacing M]] [--wind S] [--time T]]
+//!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
+//!     [--wind S] [--time T]]
 //! ```
 //!
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
@@ -33,7 +34,10 @@
 //! goes. With `--ids` the picture shows flat material colours and the viewer prints what
 //! share of it terrain, bark, leaves and sky cover. `--tour N` renders N frames along a
 //! guided walk from the camera's position, `--tour-spacing` metres apart (0.5 by default),
-//! to `PATH_0000.png` and on, and prints what the walk did. Without a GPU it runs on Mesa's
+//! to `PATH_0000.png` and on, and prints what the walk did. `--turntable N` grows one canopy
+//! tree of the first species alone on its ground and renders it from N directions evenly
+//! round it, level with its middle, to `PATH_0000.png` and on, with a contact sheet of the
+//! views (four a row, half size) at `PATH`. Without a GPU it runs on Mesa's
 //! software drivers (lavapipe, or `WGPU_BACKEND=gl`).
 
 mod cell;
@@ -54,6 +58,7 @@ mod render;
 mod scene;
 mod shadow;
 mod textures;
+mod turntable;
 mod window;
 mod world;
 
@@ -109,12 +114,13 @@ struct Args {
     time: f32,
     tour: u32,
     tour_spacing: f32,
+    turntable: u32,
     paint: Option<std::path::PathBuf>,
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
                      [--paint MASKS_DIR] [--camera x,z,yaw,pitch[,height]] \
-                     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M] | --tour N [--tour-spacing M]] [--wind S] [--time T]]";
+                     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -133,6 +139,7 @@ fn parse() -> Result<Args, String> {
     let mut time = 0.0f32;
     let mut tour = 0u32;
     let mut tour_spacing = 0.5f32;
+    let mut turntable = 0u32;
     let mut paint: Option<std::path::PathBuf> = None;
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
@@ -165,6 +172,7 @@ fn parse() -> Result<Args, String> {
             "--time" => time = flags.value("--time")?,
             "--tour" => tour = flags.value("--tour")?,
             "--tour-spacing" => tour_spacing = flags.value("--tour-spacing")?,
+            "--turntable" => turntable = flags.value("--turntable")?,
             "--paint" => paint = Some(flags.value::<String>("--paint")?.into()),
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
@@ -189,6 +197,17 @@ fn parse() -> Result<Args, String> {
     if tour > 0 && screenshot.is_none() {
         return Err(format!(
             "--tour renders headless: give --screenshot PATH (frames go to PATH_0000.png ...)\n{USAGE}"
+        ));
+    }
+    if turntable > 64 {
+        return Err(format!(
+            "--turntable {turntable}: expected at most 64 views"
+        ));
+    }
+    if turntable > 0 && (screenshot.is_none() || tour > 0 || paint.is_some()) {
+        return Err(format!(
+            "--turntable renders headless one tree of the first species: give --screenshot PATH \
+             (views go to PATH_0000.png ..., a sheet of them to PATH), without --tour or --paint\n{USAGE}"
         ));
     }
     if !time.is_finite() {
@@ -218,6 +237,7 @@ fn parse() -> Result<Args, String> {
             species: Vec::new(),
             budget: budget_mb.max(1) << 20,
             paint: paint.clone(),
+            specimen: turntable > 0,
         },
         species,
         camera,
@@ -230,6 +250,7 @@ fn parse() -> Result<Args, String> {
         time,
         tour,
         tour_spacing,
+        turntable,
         paint,
     })
 }
@@ -264,6 +285,13 @@ fn run() -> Result<(), ViewerError> {
                 pollster::block_on(offscreen::Offscreen::new(&scene, args.size.0, args.size.1))?;
             offscreen.wind = args.wind;
             offscreen.time = args.time;
+            if args.turntable > 0 {
+                let turntable = turntable::Turntable {
+                    views: args.turntable,
+                    size: args.size,
+                };
+                return turntable.run(&mut scene, &mut offscreen, &path, mode);
+            }
             if args.tour > 0 {
                 let pitch = if args.camera.is_some() {
                     camera.pitch

@@ -157,7 +157,11 @@ impl Renderer {
         let source = include_str!("shader.wgsl")
             .replace("MATERIAL_COUNT", &materials.count().to_string())
             .replace("FIRST_BARK", &crate::textures::FIRST_BARK.to_string())
-            .replace("BARK_COUNT", &crate::textures::BARK_COUNT.to_string());
+            .replace("BARK_COUNT", &crate::textures::BARK_COUNT.to_string())
+            .replace(
+                "CLUSTER_SHADE_MEAN",
+                &format!("{:?}", sylva::forest::CLUSTER_SHADE_MEAN),
+            );
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shader.wgsl"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -389,7 +393,8 @@ impl Renderer {
             instances: None,
             draws,
             // Thick enough that what lies at the view distance is mostly haze.
-            fog_density: (1.2 / world.side).max(2.3 / VIEW_DISTANCE),
+            // Worlds smaller than 400 m (a turntable's) are as clear as one of 400 m.
+            fog_density: (1.2 / world.side.max(400.0)).max(2.3 / VIEW_DISTANCE),
             terrain_heights: scene
                 .terrain_vertices
                 .iter()

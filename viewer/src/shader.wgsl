@@ -71,6 +71,12 @@ fn is_terrain(material: Material) -> bool {
     return material.colour.w < -0.5;
 }
 
+// Whether the material is a leaf card's: its texture is one of the leaf shapes' layers.
+fn is_card(material: Material) -> bool {
+    let layer = i32(material.colour.w + 0.5) - 1;
+    return layer >= 0 && layer < FIRST_BARK;
+}
+
 // How far the wind moves a world-space point: the whole tree bends about its base (more the
 // higher the point), each branch sways about its pivot (more the longer its lever and the
 // deeper the branch) and leaf cards flutter, each with its own phase. Every term reads
@@ -100,6 +106,16 @@ fn to_world(in: VertexIn) -> vec3<f32> {
     return world + sway(world, pivot, in.wind.w, in.tree, is_terrain(materials[in.material]));
 }
 
+// Each leaf card (a cluster of leaves) a little lighter or darker, warmer or cooler than its
+// tree's colour, drawn from the card's own wind phase: sylva_forest::cluster_shade, repeated
+// here, over its mean (the constant is replaced when the shader is built) so the species'
+// colour holds on average.
+fn cluster_shade(phase: f32) -> vec3<f32> {
+    let light = 1.0 - 0.25 * fract(phase * 7.31);
+    let warm = fract(phase * 13.7);
+    return light * vec3<f32>(0.92 + 0.08 * warm, 1.0, 1.0 - 0.12 * warm) / CLUSTER_SHADE_MEAN;
+}
+
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
     var out: VertexOut;
@@ -108,7 +124,8 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.world = world;
     out.normal = rotate(in.rotation, in.normal);
     out.uv = in.uv;
-    out.tint = in.tint.rgb;
+    let card = is_card(materials[in.material]);
+    out.tint = in.tint.rgb * select(vec3<f32>(1.0), cluster_shade(fract(in.wind.w)), card);
     out.material = in.material;
     return out;
 }
@@ -240,7 +257,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     n = perturb(n, tex.normal, dp_dx, dp_dy, duv_dx, duv_dy);
     let l = globals.light.xyz;
     // Leaf cards pass some light through: their back faces glow a little.
-    let translucent = select(0.0, 0.35, material.colour.w > 0.5 && material.colour.w < 2.5);
+    let translucent = select(0.0, 0.35, is_card(material));
     let facing = dot(n, l);
     let diffuse = max(facing, 0.0) + translucent * max(-facing, 0.0);
     let shadow = sunlit(in.world, n);

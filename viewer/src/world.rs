@@ -100,6 +100,9 @@ pub(crate) struct SceneOptions {
     pub(crate) budget: usize,
     /// A painted forest's masks (`sylva_forest::load_masks`), if any.
     pub(crate) paint: Option<std::path::PathBuf>,
+    /// A turntable's world instead: one canopy tree of the first species in the middle of a
+    /// world of at least 80 m, no seedlings (`side` and `trees` are not used).
+    pub(crate) specimen: bool,
 }
 
 #[cfg(test)]
@@ -114,6 +117,7 @@ impl SceneOptions {
             species: default_species().expect("bundled species")[..2].to_vec(),
             budget: 8 << 20,
             paint: None,
+            specimen: false,
         }
     }
 }
@@ -130,11 +134,19 @@ impl World {
         let mut config = ForestConfig::new(options.species);
         config.seed = options.seed;
         config.budget = options.budget;
+        if options.specimen {
+            config.seedlings_per_patch = 0;
+        }
         let mut builder = ForestBuilder::new(config)?;
+        let patch = builder.density().patch;
         let side = match options.trees {
-            Some(n) => (n as f32).sqrt() * builder.density().patch,
+            _ if options.specimen => crate::turntable::world_patches(patch) as f32 * patch,
+            Some(n) => (n as f32).sqrt() * patch,
             None => options.side,
         };
+        if options.specimen {
+            builder = builder.with_composition(Some(crate::turntable::specimen(patch)))?;
+        }
         if !(side > 10.0 && side <= 20_000.0) {
             return Err(ViewerError::WorldSize { side });
         }

@@ -8,13 +8,20 @@ use super::schema::{
     InstanceAttributes, Material, Mesh, Node, NodeExtensions, Pbr, Primitive, Root, Sampler, Scene,
     Texture, TextureRef,
 };
-use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT, position_bounds};
+use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
+
+use super::extras::COLOUR_OFFSET;
+use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, position_bounds};
 use crate::error::{ExportError, Invalid};
-use sylva_forest::Species;
 
 /// Zero bytes that bring `len` to a whole number of 4-byte words.
 pub(super) fn padding(len: usize) -> usize {
     (4 - len % 4) % 4
+}
+
+/// A leaf colour before the cluster shades (mean [`CLUSTER_SHADE_MEAN`]) darken it.
+fn unshaded(leaf: [f32; 3]) -> [f32; 3] {
+    leaf.map(|c| (c / CLUSTER_SHADE_MEAN).min(1.0))
 }
 
 /// A glTF document being assembled.
@@ -26,11 +33,12 @@ pub(super) struct DocumentBuilder {
 }
 
 /// Where the four buffers of a tree mesh are: one vertex view (positions, normals, uvs, wind),
-/// the tangents, and the bark and leaf indices (none when empty).
+/// the vertex extras (tangents and leaf shades, `extras::VertexExtras`), and the bark and leaf
+/// indices (none when empty).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct TreeViews {
     pub(super) vertices: usize,
-    pub(super) tangents: usize,
+    pub(super) extras: usize,
     pub(super) bark: Option<usize>,
     pub(super) leaves: Option<usize>,
 }
@@ -83,6 +91,7 @@ impl DocumentBuilder {
             component_type: component,
             count,
             kind,
+            normalized: false,
             min: None,
             max: None,
         });
@@ -132,7 +141,8 @@ impl DocumentBuilder {
     }
 
     /// The attributes of tree vertices (48 bytes): the surface's three, then `_WIND`
-    /// ([`sylva_turtle::Vertex::wind`], after the uv) and the `TANGENT`s in their own view.
+    /// ([`sylva_turtle::Vertex::wind`], after the uv); and from the extras view the
+    /// `TANGENT`s and the leaf clusters' shades as normalized byte `COLOR_0`s.
     pub(super) fn tree_attributes(
         &mut self,
         views: TreeViews,
@@ -141,7 +151,10 @@ impl DocumentBuilder {
         let mut attributes = self.surface_attributes(views.vertices, positions);
         let count = self.root.accessors[attributes.position].count;
         attributes.wind = Some(self.accessor(views.vertices, 32, FLOAT, count, "VEC4"));
-        attributes.tangent = Some(self.accessor(views.tangents, 0, FLOAT, count, "VEC4"));
+        attributes.tangent = Some(self.accessor(views.extras, 0, FLOAT, count, "VEC4"));
+        let colour = self.accessor(views.extras, COLOUR_OFFSET, UNSIGNED_BYTE, count, "VEC4");
+        self.root.accessors[colour].normalized = true;
+        attributes.colour = Some(colour);
         attributes
     }
 
@@ -199,7 +212,9 @@ impl DocumentBuilder {
     }
 
     /// A species' bark material, over its colour and normal textures when given, and its
-    /// leaf-card material, over its leaf texture when given: `(bark, leaves)`.
+    /// leaf-card material, over its leaf texture when given: `(bark, leaves)`. The leaves'
+    /// colour is the species' over [`CLUSTER_SHADE_MEAN`] (at most 1), so that their
+    /// `COLOR_0` shades vary the clusters about the species' colour.
     pub(super) fn species_materials(
         &mut self,
         species: &Species,
@@ -210,7 +225,13 @@ impl DocumentBuilder {
         let leaf_name = format!("{} leaves", species.name);
         (
             self.material(bark_name, species.bark, roughness, (bark, normal), false),
-            self.material(leaf_name, species.leaf, roughness, (leaf, None), true),
+            self.material(
+                leaf_name,
+                unshaded(species.leaf),
+                roughness,
+                (leaf, None),
+                true,
+            ),
         )
     }
 

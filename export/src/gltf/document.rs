@@ -9,6 +9,7 @@ use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use super::builder::{DocumentBuilder, TreeViews};
+use super::extras::EXTRAS_BYTES;
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
 use super::shared::{SharedLayout, TextureSet};
 use super::{ARRAY_BUFFER, FLOAT, GltfOptions, Node};
@@ -70,7 +71,7 @@ fn lay_out_terrain(
     terrain_colours
 }
 
-/// The views of `variant`'s four buffers, in `buffer` at `at` (vertices, tangents, bark and
+/// The views of `variant`'s four buffers, in `buffer` at `at` (vertices, extras, bark and
 /// leaf indices), its attributes, and its bark and leaf materials.
 fn lay_out_variant(
     d: &mut DocumentBuilder,
@@ -80,11 +81,17 @@ fn lay_out_variant(
     textures: &TextureSet,
     options: &GltfOptions,
 ) -> VariantLayout {
-    let [vbytes, tbytes, bbytes, lbytes] = section_lengths(variant);
+    let [vbytes, ebytes, bbytes, lbytes] = section_lengths(variant);
     let stride = size_of::<Vertex>() as u32;
     let views = TreeViews {
         vertices: d.view_in(buffer, at[0], vbytes, Some(stride), Some(ARRAY_BUFFER)),
-        tangents: d.view_in(buffer, at[1], tbytes, None, Some(ARRAY_BUFFER)),
+        extras: d.view_in(
+            buffer,
+            at[1],
+            ebytes,
+            Some(EXTRAS_BYTES as u32),
+            Some(ARRAY_BUFFER),
+        ),
         bark: d.index_view(buffer, at[2], bbytes),
         leaves: d.index_view(buffer, at[3], lbytes),
     };
@@ -99,12 +106,13 @@ fn lay_out_variant(
     }
 }
 
-/// Bytes of a variant's vertices, tangents, bark indices and leaf indices.
+/// Bytes of a variant's vertices, vertex extras (tangents and leaf shades), bark indices and
+/// leaf indices.
 fn section_lengths(variant: &Variant) -> [usize; 4] {
     let cache = &variant.cache;
     [
         size_of_val(cache.vertices.as_slice()),
-        16 * cache.vertices.len(),
+        EXTRAS_BYTES * cache.vertices.len(),
         4 * cache.bark.len(),
         4 * cache.leaves.len(),
     ]
@@ -239,7 +247,7 @@ impl Document {
             let at = match &shared_layout {
                 Some((_, layout)) => {
                     let s = layout.variants[v];
-                    (1, [s.vertices, s.tangents, s.bark, s.leaves])
+                    (1, [s.vertices, s.extras, s.bark, s.leaves])
                 }
                 None => (0, section_lengths(&variants[v]).map(|len| d.reserve(len))),
             };

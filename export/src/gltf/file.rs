@@ -9,7 +9,7 @@ use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
 use super::document::Document;
-use super::tangent::tangents;
+use super::extras::vertex_extras;
 use super::{Node, PLACEMENT_BYTES, glb_header};
 use crate::error::{ExportError, Invalid};
 
@@ -61,10 +61,9 @@ pub(super) fn write_geometry(
     for &v in &document.used_variants {
         let cache = &variants[v].cache;
         put(w, bytemuck::cast_slice(&cache.vertices))?;
-        // Bark triangles give the tangents (the leaves' normals need none).
         put(
             w,
-            bytemuck::cast_slice(&tangents(&cache.vertices, &cache.bark)),
+            bytemuck::cast_slice(&vertex_extras(&cache.vertices, &cache.bark, &cache.leaves)),
         )?;
         put(w, bytemuck::cast_slice(&cache.bark))?;
         put(w, bytemuck::cast_slice(&cache.leaves))?;

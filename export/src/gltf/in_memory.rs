@@ -9,8 +9,8 @@ use sylva_terrain::TerrainMesh;
 use sylva_turtle::{Mesh, Vertex};
 
 use super::builder::{DocumentBuilder, TreeViews, padding};
+use super::extras::{EXTRAS_BYTES, vertex_extras};
 use super::schema::Primitive;
-use super::tangent::tangents;
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, glb_header};
 use crate::error::ExportError;
 
@@ -54,10 +54,14 @@ impl InMemory {
             Some(stride),
             Some(ARRAY_BUFFER),
         );
-        let t = tangents(&mesh.vertices, &mesh.bark);
+        let extras = vertex_extras(&mesh.vertices, &mesh.bark, &mesh.leaves);
         let views = TreeViews {
             vertices,
-            tangents: self.view(bytemuck::cast_slice(&t), None, Some(ARRAY_BUFFER)),
+            extras: self.view(
+                bytemuck::cast_slice(&extras),
+                Some(EXTRAS_BYTES as u32),
+                Some(ARRAY_BUFFER),
+            ),
             bark: None,
             leaves: None,
         };

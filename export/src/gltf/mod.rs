@@ -13,6 +13,7 @@
 mod builder;
 mod coarse;
 mod document;
+mod extras;
 mod file;
 mod in_memory;
 mod schema;
@@ -144,6 +145,7 @@ pub const CHUNK_BYTES: usize = 64 << 20;
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
+const UNSIGNED_BYTE: u32 = 5121;
 const UNSIGNED_INT: u32 = 5125;
 /// Bytes of one placement in the file: translation, rotation, scale (as three floats), the
 /// tree's tint and its wind data.

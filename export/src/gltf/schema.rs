@@ -203,6 +203,9 @@ pub(super) struct Accessor {
     pub(super) count: usize,
     #[serde(rename = "type")]
     pub(super) kind: &'static str,
+    /// Integers read as fractions of their maximum (colours in bytes).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub(super) normalized: bool,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) min: Option<[f32; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]

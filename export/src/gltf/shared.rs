@@ -10,7 +10,7 @@ use sylva_base::file::{AtomicFile, FileError};
 use sylva_forest::{BarkPattern, ForestBuilder, LeafShape, Species};
 
 use super::builder::padding;
-use super::tangent::tangents;
+use super::extras::{EXTRAS_BYTES, vertex_extras};
 use crate::error::ExportError;
 use crate::texture::Texture;
 
@@ -18,7 +18,7 @@ use crate::texture::Texture;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct VariantSpans {
     pub(super) vertices: usize,
-    pub(super) tangents: usize,
+    pub(super) extras: usize,
     pub(super) bark: usize,
     pub(super) leaves: usize,
 }
@@ -50,7 +50,7 @@ impl SharedLayout {
                 let c = &v.cache;
                 VariantSpans {
                     vertices: take(size_of_val(c.vertices.as_slice())),
-                    tangents: take(16 * c.vertices.len()),
+                    extras: take(EXTRAS_BYTES * c.vertices.len()),
                     bark: take(4 * c.bark.len()),
                     leaves: take(4 * c.leaves.len()),
                 }
@@ -173,8 +173,11 @@ pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usi
     for v in builder.variants() {
         let c = &v.cache;
         put(bytemuck::cast_slice(&c.vertices))?;
-        // Bark triangles give the tangents (the leaves' normals need none).
-        put(bytemuck::cast_slice(&tangents(&c.vertices, &c.bark)))?;
+        put(bytemuck::cast_slice(&vertex_extras(
+            &c.vertices,
+            &c.bark,
+            &c.leaves,
+        )))?;
         put(bytemuck::cast_slice(&c.bark))?;
         put(bytemuck::cast_slice(&c.leaves))?;
     }
