@@ -265,20 +265,44 @@ fn spray(u: f32, v: f32, x: u32, y: u32, blade: Blade) -> Option<f32> {
     None
 }
 
-/// A twig with needles in two ranks, each a thin stroke angled towards the tip.
+/// A spruce's spray: a shoot with eight side shoots in two ranks, alternating, angled towards
+/// the tip, of uneven lengths and shorter towards it; every shoot a bottle brush of short needles (a thirtieth of the card) slanting forward, so the
+/// card reads as a branchlet, not a frond.
 fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
-    if (u - 0.5).abs() < 0.015 && v < 0.97 {
-        return Some(0.5);
+    const SIDE_SHOOTS: usize = 8;
+    const NEEDLE: f32 = 0.035;
+    let p = glam::Vec2::new(u, v);
+    // Every shoot: origin, direction, length. The leading shoot first.
+    let mut shoots = vec![(glam::Vec2::new(0.5, 0.02), glam::Vec2::Y, 0.93)];
+    for k in 0..SIDE_SHOOTS {
+        let at = 0.08 + 0.11 * k as f32;
+        let side = if k % 2 == 0 { -1.0 } else { 1.0 };
+        let angle = (52.0f32 + 4.0 * (k % 3) as f32).to_radians();
+        let dir = glam::Vec2::new(side * angle.sin(), angle.cos());
+        // Lengths differ shoot to shoot, so the spray's outline is ragged, not a smooth
+        // triangle (mipmapped alpha fills the gaps between needles, not between shoots).
+        let vigour = 0.4 + 0.9 * unit_f32(hash_cell(0x5b7a, k as i64, 0, 0));
+        let length = 0.45 * (1.0 - 0.7 * at) * vigour + 0.04;
+        let origin = glam::Vec2::new(0.5, at);
+        shoots.push((origin, dir, length));
     }
-    let reach = (u - 0.5).abs();
-    if reach > 0.42 * (1.0 - 0.6 * v) + 0.05 {
-        return None;
+    for (origin, dir, length) in shoots {
+        let d = p - origin;
+        let along = d.dot(dir);
+        if !(0.0..=length).contains(&along) {
+            continue;
+        }
+        let across = (d - dir * along).length();
+        if across < 0.006 {
+            return Some(0.5);
+        }
+        // Needles shorten towards the shoot's tip; each is a stroke slanting forward.
+        let reach = NEEDLE * (1.0 - 0.45 * along / length);
+        if across < reach && ((along - across * 0.7) / 0.011).fract() < 0.62 {
+            return Some(0.78 + 0.12 * grain(x, y));
+        }
     }
-    // Needles leave the twig every 0.045 of its length, slanting 35 degrees forward (dense:
-    // three.js's mipmapped alpha test thins sparser sprays to bare twigs at a distance).
-    let along = v - reach * 0.7;
-    let phase = (along / 0.045).fract();
-    (phase < 0.62 && along > 0.0).then(|| 0.8 + 0.1 * grain(x, y))
+    None
 }
 
 /// A tuft of needles: 40 thin, slightly curved needles of different lengths fanning out
