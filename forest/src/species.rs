@@ -180,7 +180,9 @@ impl Species {
     /// `bark_texture` (`furrowed`, `smooth` or `scaly`), `root_flare` (0 to 3: how much wider
     /// than the trunk its base flares, see [`TurtleOptions::root_flare`]), `branch_collar` (0
     /// to 1: how much a branch swells where it leaves its parent, see
-    /// [`TurtleOptions::branch_collar`]) and `tropism` (direction x y z and susceptibility). Errors name the file, line and column;
+    /// [`TurtleOptions::branch_collar`]), `curve_steps` (1 to 8: pieces a thick stem is drawn
+    /// in so the tropism curves it, see [`TurtleOptions::curve_steps`]) and `tropism`
+    /// (direction x y z and susceptibility). Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
     /// ```no_run
@@ -349,6 +351,8 @@ impl Species {
         s.turtle.leaf_facing = number("leaf_facing", s.turtle.leaf_facing, 0.0, 1.0)?;
         s.turtle.root_flare = number("root_flare", s.turtle.root_flare, 0.0, 3.0)?;
         s.turtle.branch_collar = number("branch_collar", s.turtle.branch_collar, 0.0, 1.0)?;
+        s.turtle.curve_steps =
+            number("curve_steps", s.turtle.curve_steps as f32, 1.0, 8.0)?.round() as u32;
         if let Some((l, c, _, v)) = find("leaf_shape") {
             s.leaf_shape = LeafShape::from_name(v).ok_or_else(|| {
                 err(
@@ -389,6 +393,7 @@ impl Species {
                 "leaf_facing",
                 "root_flare",
                 "branch_collar",
+                "curve_steps",
                 "tropism",
                 "leaf_shape",
                 "bark_texture",

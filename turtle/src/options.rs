@@ -75,6 +75,12 @@ pub struct TurtleOptions {
     /// parent), fading over a few radii. Drawn on branches long enough to hold it (two rings
     /// each, [`MeshBuilder`](crate::MeshBuilder)).
     pub branch_collar: f32,
+    /// How many straight pieces a stem is drawn in so that the tropism bends it along its
+    /// length rather than at its end (Bloomenthal's curved stems): 1 draws every `F` as one
+    /// segment; from 2 (at most 8) stems at least 15% of the first segment's radius thick
+    /// that the tropism turns by more than a degree are drawn curved. Thin twigs, and trunks
+    /// along the tropism, stay one piece.
+    pub curve_steps: u32,
     /// Deepest `[` / `{` nesting accepted.
     pub max_depth: usize,
 }
@@ -100,6 +106,7 @@ impl Default for TurtleOptions {
             min_radius: 0.0,
             root_flare: 0.0,
             branch_collar: 0.0,
+            curve_steps: 1,
             max_depth: 1 << 20,
         }
     }
@@ -115,6 +122,12 @@ impl TurtleOptions {
     /// Sets [`TurtleOptions::branch_collar`].
     pub fn with_branch_collar(mut self, branch_collar: f32) -> Self {
         self.branch_collar = branch_collar;
+        self
+    }
+
+    /// Sets [`TurtleOptions::curve_steps`].
+    pub fn with_curve_steps(mut self, curve_steps: u32) -> Self {
+        self.curve_steps = curve_steps;
         self
     }
 

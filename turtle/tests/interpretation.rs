@@ -68,6 +68,44 @@ fn tropism_towards_gravity_bends_a_horizontal_branch_down() {
     );
 }
 
+/// With `curve_steps` a thick stem under a tropism is drawn in pieces that turn a little
+/// each, so its heading changes smoothly along its length and ends near where the one-piece
+/// stem's does; thin twigs and stems without a tropism stay one piece.
+#[test]
+fn curved_stems_bend_along_their_length() {
+    let droop = TurtleOptions::default().with_tropism(Vec3::NEG_Y, 0.3);
+    let word = "!(0.4)&(80)F(2)F(2)[!(0.02)F(1)]";
+    let straight = skeleton(word, &droop);
+    let curved = skeleton(word, &droop.clone().with_curve_steps(4));
+    assert_eq!(straight.bones.len(), 3);
+    // Two thick segments of four pieces each; the thin twig stays one piece.
+    assert_eq!(curved.bones.len(), 4 + 4 + 1);
+    let heading = |b: &sylva_turtle::Bone| (b.end - b.start).normalize();
+    let turns = |bones: &[sylva_turtle::Bone]| -> Vec<f32> {
+        bones
+            .windows(2)
+            .map(|w| heading(&w[0]).angle_between(heading(&w[1])).to_degrees())
+            .collect()
+    };
+    let one_piece = turns(&straight.bones[..2])[0];
+    let pieces = turns(&curved.bones[..8]);
+    assert!(
+        pieces.iter().all(|&t| t > 0.0 && t < one_piece * 0.5),
+        "each piece turns a little ({pieces:?}), the one-piece joint {one_piece}"
+    );
+    let (a, b) = (straight.bones[1].end, curved.bones[7].end);
+    assert!(a.distance(b) < 0.25 * 4.0, "{a} {b}");
+    // Radii run on across the pieces.
+    assert!(
+        curved.bones[..8]
+            .windows(2)
+            .all(|w| (w[0].end_radius - w[1].start_radius).abs() < 1e-6)
+    );
+    // Without a tropism nothing bends, so nothing is cut into pieces.
+    let still = skeleton(word, &TurtleOptions::default().with_curve_steps(4));
+    assert_eq!(still.bones.len(), 3);
+}
+
 #[test]
 fn mesh_bounds_contain_the_skeleton() {
     let p = preset("abop-ternary").unwrap();
