@@ -10,7 +10,7 @@
 use std::io::Write;
 
 use sylva::export::Texture;
-use sylva::export::limits::TEXTURE_SIZE;
+use sylva::export::limits::{CUTOFF_MIP_LEVEL, TEXTURE_SIZE};
 use sylva::forest::{BarkPattern, LeafShape};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -26,8 +26,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let alpha = t.rgba.chunks_exact(4).map(|p| p[3]);
         let opaque = alpha.clone().filter(|&a| a == 255).count() as f64 / (t.rgba.len() / 4) as f64;
         assert!(opaque > 0.05 && opaque < 0.95, "{shape:?}: {opaque}");
+        // The cutoff glTF files give the card: where its coverage survives mipmaps.
+        let cutoff = t.alpha_cutoff(CUTOFF_MIP_LEVEL);
+        assert!((0.1..=0.5).contains(&cutoff));
         println!(
-            "{:>12}: {:.0}% of the card is leaf",
+            "{:>12}: {:.0}% of the card is leaf, alpha cut at {cutoff:.2}",
             shape.name(),
             100.0 * opaque
         );

@@ -147,6 +147,51 @@ impl Texture {
         }
     }
 
+    /// The alpha cutoff at which this texture, box-filtered down `level` times as a client
+    /// builds its mipmaps, still covers as much of the card as at full size. The texture's
+    /// own alpha is 0 or 255, so any cutoff draws it the same up close; a client's mipmaps
+    /// average thin leaves and needles below one half at a distance, and alpha cut there
+    /// opens crowns up. Between 0.1 and 0.5.
+    ///
+    /// ```
+    /// use sylva_export::Texture;
+    /// use sylva_forest::LeafShape;
+    /// let needles = Texture::leaf(LeafShape::NeedleTuft).alpha_cutoff(4);
+    /// let broad = Texture::leaf(LeafShape::Broadleaf).alpha_cutoff(4);
+    /// assert!(needles < broad && broad <= 0.5);
+    /// ```
+    pub fn alpha_cutoff(&self, level: u32) -> f32 {
+        let mut alpha: Vec<f32> = self
+            .rgba
+            .chunks_exact(4)
+            .map(|p| f32::from(p[3]) / 255.0)
+            .collect();
+        let covered = alpha.iter().filter(|&&a| a > 0.5).count() as f32 / alpha.len() as f32;
+        let (mut w, mut h) = (self.width as usize, self.height as usize);
+        for _ in 0..level {
+            if w < 2 || h < 2 {
+                break;
+            }
+            let (nw, nh) = (w / 2, h / 2);
+            let at = |x: usize, y: usize| alpha[y * w + x];
+            alpha = (0..nh)
+                .flat_map(|y| (0..nw).map(move |x| (x, y)))
+                .map(|(x, y)| {
+                    (at(2 * x, 2 * y)
+                        + at(2 * x + 1, 2 * y)
+                        + at(2 * x, 2 * y + 1)
+                        + at(2 * x + 1, 2 * y + 1))
+                        / 4.0
+                })
+                .collect();
+            (w, h) = (nw, nh);
+        }
+        // The cutoff that keeps the same share of the small image's texels.
+        alpha.sort_by(|a, b| b.total_cmp(a));
+        let keep = ((covered * alpha.len() as f32).round() as usize).min(alpha.len() - 1);
+        alpha.get(keep).copied().unwrap_or(0.5).clamp(0.1, 0.5)
+    }
+
     /// The image as PNG bytes.
     pub fn png(&self) -> Vec<u8> {
         let mut out = Vec::new();

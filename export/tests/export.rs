@@ -27,6 +27,9 @@ fn exported_glb_is_well_formed_and_counts_match() {
     let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
     assert_eq!(json["extensionsUsed"][0], "EXT_mesh_gpu_instancing");
+    // Required too: an importer without instancing must refuse the file rather than stack
+    // every placement at the origin.
+    assert_eq!(json["extensionsRequired"][0], "EXT_mesh_gpu_instancing");
     // Leaf cards carry an alpha-masked, double-sided texture embedded as PNG.
     let images = json["images"].as_array().unwrap();
     assert!(!images.is_empty() && images.iter().all(|i| i["mimeType"] == "image/png"));
@@ -80,6 +83,65 @@ fn exported_glb_is_well_formed_and_counts_match() {
     assert!(drawable >= forest.trees.len() / 2);
 }
 
+/// The GLB's JSON and BIN chunks.
+fn chunks(bytes: &[u8]) -> (serde_json::Value, &[u8]) {
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    (json, &bytes[20 + json_len + 8..])
+}
+
+/// A small region's file holds only the instances its placements use and the vertices they
+/// reference: far less geometry than the caches, and every index within its vertices.
+#[test]
+fn a_file_carries_only_the_geometry_its_placements_use() {
+    let (b, map, _) = export_case();
+    let small = Rect::new(Vec2::new(60.0, 60.0), Vec2::new(72.0, 72.0));
+    let path = scratch("used-only");
+    write_glb(&b, &map, small, None, &GltfOptions::default(), &path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let (json, bin) = chunks(&bytes);
+    let accessors = json["accessors"].as_array().unwrap();
+    let views = json["bufferViews"].as_array().unwrap();
+    let mut vertex_bytes = 0;
+    let mut checked = 0;
+    for mesh in json["meshes"].as_array().unwrap() {
+        for p in mesh["primitives"].as_array().unwrap() {
+            let positions = &accessors[p["attributes"]["POSITION"].as_u64().unwrap() as usize];
+            let vertices = positions["count"].as_u64().unwrap();
+            let indices = &accessors[p["indices"].as_u64().unwrap() as usize];
+            let view = &views[indices["bufferView"].as_u64().unwrap() as usize];
+            let at = view["byteOffset"].as_u64().unwrap_or(0) as usize
+                + indices["byteOffset"].as_u64().unwrap_or(0) as usize;
+            let count = indices["count"].as_u64().unwrap() as usize;
+            let most = bin[at..at + 4 * count]
+                .chunks_exact(4)
+                .map(|c| u32::from_le_bytes(c.try_into().unwrap()))
+                .max()
+                .unwrap();
+            assert!(
+                u64::from(most) < vertices,
+                "index {most} of {vertices} vertices"
+            );
+            checked += 1;
+        }
+    }
+    for v in views {
+        if v["byteStride"] == 48 {
+            vertex_bytes += v["byteLength"].as_u64().unwrap();
+        }
+    }
+    let cache_bytes: usize = b
+        .variants()
+        .iter()
+        .map(|v| 48 * v.cache.vertices.len())
+        .sum();
+    assert!(checked > 0);
+    assert!(
+        (vertex_bytes as usize) * 2 < cache_bytes,
+        "{vertex_bytes} bytes of vertices for a small region, the caches hold {cache_bytes}"
+    );
+}
+
 /// Chunked writing gathers a few instances per pass; the file is the same as in one pass,
 /// and the same with one thread as with several.
 #[test]
@@ -103,10 +165,12 @@ fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
     // Known answer: the bytes of this seed's file. A change here is a change of format (or of
     // the forest); say which in the commit. Issue 31: a branch's bark continues its
     // parent's texture height; the leaves' COLOR_0 (4 more bytes a vertex); smaller density
-    // patches (more trees).
+    // patches (more trees). Issue 23: only the instances placed are embedded (this region
+    // leaves some out), instancing is a required extension and each leaf material's alpha
+    // cutoff is its texture's.
     assert_eq!(
         (reference.len(), fnv1a(&reference)),
-        (3_587_424, 3_597_720_225_423_679_608),
+        (3_361_432, 4_237_886_259_407_970_693),
         "the pinned file changed"
     );
     let (passes, chunked) = write("chunked", 1, 4096);

@@ -8,7 +8,7 @@ use super::schema::{
     InstanceAttributes, Material, Mesh, Node, NodeExtensions, Pbr, Primitive, Root, Sampler, Scene,
     Texture, TextureRef,
 };
-use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
+use sylva_forest::{CLUSTER_SHADE_MEAN, LeafShape, Species};
 
 use super::extras::COLOUR_OFFSET;
 use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, position_bounds};
@@ -17,6 +17,26 @@ use crate::error::{ExportError, Invalid};
 /// Zero bytes that bring `len` to a whole number of 4-byte words.
 pub(super) fn padding(len: usize) -> usize {
     (4 - len % 4) % 4
+}
+
+/// The alpha cutoff of `shape`'s leaf cards, computed once per shape.
+fn leaf_cutoff(shape: LeafShape) -> f32 {
+    static CUTOFFS: std::sync::OnceLock<Vec<(LeafShape, f32)>> = std::sync::OnceLock::new();
+    let cutoffs = CUTOFFS.get_or_init(|| {
+        LeafShape::ALL
+            .into_iter()
+            .map(|s| {
+                (
+                    s,
+                    crate::Texture::leaf(s).alpha_cutoff(super::CUTOFF_MIP_LEVEL),
+                )
+            })
+            .collect()
+    });
+    cutoffs
+        .iter()
+        .find(|(s, _)| *s == shape)
+        .map_or(0.5, |(_, c)| *c)
 }
 
 /// A leaf colour before the cluster shades (mean [`CLUSTER_SHADE_MEAN`]) darken it.
@@ -184,16 +204,17 @@ impl DocumentBuilder {
     }
 
     /// A dielectric material of `colour`, over `texture` when given, with a tangent-space
-    /// normal texture when given. A leaf card is double-sided, its texture's alpha cut at one
-    /// half.
+    /// normal texture when given. A leaf card (`cutoff` given) is double-sided, its
+    /// texture's alpha cut at `cutoff`.
     pub(super) fn material(
         &mut self,
         name: String,
         colour: [f32; 3],
         roughness: f32,
         (texture, normal): (Option<usize>, Option<usize>),
-        leaf_card: bool,
+        cutoff: Option<f32>,
     ) -> usize {
+        let leaf_card = cutoff.is_some();
         let [r, g, b] = colour;
         self.root.materials.push(Material {
             name,
@@ -205,7 +226,7 @@ impl DocumentBuilder {
             },
             normal_texture: normal.map(|index| TextureRef { index }),
             alpha_mode: leaf_card.then_some("MASK"),
-            alpha_cutoff: leaf_card.then_some(0.5),
+            alpha_cutoff: cutoff,
             double_sided: leaf_card,
         });
         self.root.materials.len() - 1
@@ -214,7 +235,9 @@ impl DocumentBuilder {
     /// A species' bark material, over its colour and normal textures when given, and its
     /// leaf-card material, over its leaf texture when given: `(bark, leaves)`. The leaves'
     /// colour is the species' over [`CLUSTER_SHADE_MEAN`] (at most 1), so that their
-    /// `COLOR_0` shades vary the clusters about the species' colour.
+    /// `COLOR_0` shades vary the clusters about the species' colour; the cards' alpha is cut
+    /// where the leaf shape's coverage survives a client's mipmaps
+    /// ([`Texture::alpha_cutoff`](crate::Texture::alpha_cutoff)).
     pub(super) fn species_materials(
         &mut self,
         species: &Species,
@@ -224,13 +247,13 @@ impl DocumentBuilder {
         let bark_name = format!("{} bark", species.name);
         let leaf_name = format!("{} leaves", species.name);
         (
-            self.material(bark_name, species.bark, roughness, (bark, normal), false),
+            self.material(bark_name, species.bark, roughness, (bark, normal), None),
             self.material(
                 leaf_name,
                 unshaded(species.leaf),
                 roughness,
                 (leaf, None),
-                true,
+                Some(leaf_cutoff(species.leaf_shape)),
             ),
         )
     }
@@ -297,14 +320,17 @@ impl DocumentBuilder {
         }
     }
 
-    /// The JSON chunk: one scene of every node, `EXT_mesh_gpu_instancing` declared when a
-    /// node uses it, padded with spaces to a whole number of words.
+    /// The JSON chunk: one scene of every node, `EXT_mesh_gpu_instancing` declared used and
+    /// required when a node uses it (an importer without it would stack every placement's
+    /// mesh at the origin; required, it refuses the file and the user reaches for
+    /// `--no-instancing`), padded with spaces to a whole number of words.
     pub(super) fn into_json(mut self) -> Result<String, ExportError> {
         self.root.scenes = vec![Scene {
             nodes: (0..self.root.nodes.len()).collect(),
         }];
         if self.root.nodes.iter().any(|n| n.extensions.is_some()) {
             self.root.extensions_used.push(GPU_INSTANCING.into());
+            self.root.extensions_required.push(GPU_INSTANCING.into());
         }
         let mut json =
             serde_json::to_string(&self.root).map_err(|e| Invalid::Json(e.to_string()))?;
@@ -327,7 +353,13 @@ mod tests {
         let indices = d.indices(view, 0, 3);
         let positions = d.view(36, Some(12), None);
         let position = d.positions(positions, 0, [[0.0, 1.0, 0.5], [2.0, -1.0, 0.0], [1.0; 3]]);
-        let material = d.material("leaf".into(), [0.5, 0.25, 1.0], 0.9, (Some(0), None), true);
+        let material = d.material(
+            "leaf".into(),
+            [0.5, 0.25, 1.0],
+            0.9,
+            (Some(0), None),
+            Some(0.5),
+        );
         let attributes = Attributes {
             position,
             ..Attributes::default()
@@ -351,7 +383,7 @@ mod tests {
                 r#""materials":[{"name":"leaf","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,1.0,1.0],"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":0.9},"alphaMode":"MASK","alphaCutoff":0.5,"doubleSided":true}],"#,
                 r#""accessors":[{"bufferView":0,"byteOffset":0,"componentType":5125,"count":3,"type":"SCALAR"},{"bufferView":1,"byteOffset":0,"componentType":5126,"count":3,"type":"VEC3","min":[0.0,-1.0,0.0],"max":[2.0,1.0,1.0]}],"#,
                 r#""bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":6,"target":34963},{"buffer":0,"byteOffset":8,"byteLength":36,"byteStride":12}],"#,
-                r#""buffers":[{"byteLength":44}],"extensionsUsed":["EXT_mesh_gpu_instancing"]}"#
+                r#""buffers":[{"byteLength":44}],"extensionsUsed":["EXT_mesh_gpu_instancing"],"extensionsRequired":["EXT_mesh_gpu_instancing"]}"#
             )
         );
     }

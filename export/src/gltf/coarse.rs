@@ -28,7 +28,7 @@ pub(crate) fn write_coarse_glb(
     if !terrain.indices.is_empty() {
         let material = glb
             .doc
-            .material("terrain".into(), [1.0; 3], ROUGHNESS, (None, None), false);
+            .material("terrain".into(), [1.0; 3], ROUGHNESS, (None, None), None);
         glb.terrain(terrain, material);
     }
     for (variant, (mesh, s)) in proxies.iter().enumerate() {
@@ -43,7 +43,7 @@ pub(crate) fn write_coarse_glb(
         let [trunk, crown] = [("trunk", sp.bark), ("crown", sp.leaf)].map(|(part, colour)| {
             let name = format!("{} proxy {part}", sp.name);
             glb.doc
-                .material(name, colour, ROUGHNESS, (None, None), false)
+                .material(name, colour, ROUGHNESS, (None, None), None)
         });
         let primitives = glb.tree(mesh, trunk, crown);
         let mesh = glb.doc.mesh(format!("{} proxy", sp.name), primitives);

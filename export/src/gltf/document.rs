@@ -3,8 +3,8 @@
 
 use std::sync::Arc;
 
-use sylva_forest::{ForestBuilder, Species, Variant};
-use sylva_instancing::{Instance, Similarity};
+use sylva_forest::{ForestBuilder, Species};
+use sylva_instancing::{Similarity, Span};
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
@@ -12,6 +12,7 @@ use super::builder::{DocumentBuilder, TreeViews};
 use super::extras::EXTRAS_BYTES;
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
 use super::shared::{SharedLayout, TextureSet};
+use super::subset::CacheSubset;
 use super::{ARRAY_BUFFER, FLOAT, GltfOptions, Node};
 use crate::error::ExportError;
 
@@ -19,8 +20,9 @@ use crate::error::ExportError;
 #[derive(Debug)]
 pub(super) struct Document {
     pub(super) json: String,
-    /// Variants whose buffers this file embeds, in order (none when they are shared).
-    pub(super) used_variants: Vec<usize>,
+    /// The parts of the variants' caches this file embeds, in layout order (none when the
+    /// geometry is shared).
+    pub(super) embedded: Vec<CacheSubset>,
     /// The leaf textures as PNG, in layout order after the cache buffers.
     pub(super) images: Arc<Vec<Vec<u8>>>,
     /// The terrain's ground colours, after its indices.
@@ -59,7 +61,7 @@ fn lay_out_terrain(
         options.terrain_colour,
         options.roughness,
         (None, None),
-        false,
+        None,
     );
     d.terrain(
         vertices,
@@ -71,17 +73,18 @@ fn lay_out_terrain(
     terrain_colours
 }
 
-/// The views of `variant`'s four buffers, in `buffer` at `at` (vertices, extras, bark and
-/// leaf indices), its attributes, and its bark and leaf materials.
+/// The views of a variant's four buffers (`vertices` and the lengths of the sections for
+/// them, its extras and its bark and leaf indices) in `buffer` at `at`, its attributes, and
+/// its bark and leaf materials.
 fn lay_out_variant(
     d: &mut DocumentBuilder,
-    variant: &Variant,
+    (vertices, lengths): (&[Vertex], [usize; 4]),
     species: &Species,
     (buffer, at): (usize, [usize; 4]),
     textures: &TextureSet,
     options: &GltfOptions,
 ) -> VariantLayout {
-    let [vbytes, ebytes, bbytes, lbytes] = section_lengths(variant);
+    let [vbytes, ebytes, bbytes, lbytes] = lengths;
     let stride = size_of::<Vertex>() as u32;
     let views = TreeViews {
         vertices: d.view_in(buffer, at[0], vbytes, Some(stride), Some(ARRAY_BUFFER)),
@@ -95,7 +98,7 @@ fn lay_out_variant(
         bark: d.index_view(buffer, at[2], bbytes),
         leaves: d.index_view(buffer, at[3], lbytes),
     };
-    let attributes = d.tree_attributes(views, variant.cache.vertices.iter().map(|v| v.position));
+    let attributes = d.tree_attributes(views, vertices.iter().map(|v| v.position));
     let (bark_material, leaf_material) =
         d.species_materials(species, options.roughness, textures.of_species(species));
     VariantLayout {
@@ -106,28 +109,17 @@ fn lay_out_variant(
     }
 }
 
-/// Bytes of a variant's vertices, vertex extras (tangents and leaf shades), bark indices and
-/// leaf indices.
-fn section_lengths(variant: &Variant) -> [usize; 4] {
-    let cache = &variant.cache;
-    [
-        size_of_val(cache.vertices.as_slice()),
-        EXTRAS_BYTES * cache.vertices.len(),
-        4 * cache.bark.len(),
-        4 * cache.leaves.len(),
-    ]
-}
-
-/// The bark and leaf primitives of an instance, over its variant's shared views.
+/// The bark and leaf primitives of an instance whose triangles sit at `spans` (bark, leaves)
+/// in its variant's views.
 fn instance_primitives(
     d: &mut DocumentBuilder,
-    instance: &Instance,
+    (bark, leaves): (Span, Span),
     shared: &VariantLayout,
 ) -> Vec<Primitive> {
     let mut primitives = Vec::new();
     for (view, span, material) in [
-        (shared.views.bark, instance.bark, shared.bark_material),
-        (shared.views.leaves, instance.leaves, shared.leaf_material),
+        (shared.views.bark, bark, shared.bark_material),
+        (shared.views.leaves, leaves, shared.leaf_material),
     ] {
         if let (Some(view), false) = (view, span.is_empty()) {
             let indices = d.indices(view, span.start as usize * 4, span.count as usize);
@@ -149,18 +141,18 @@ enum Placed<'a> {
     Nodes(&'a [Similarity]),
 }
 
-/// An instance's mesh (its bark and leaf primitives over its variant's views) and the node or
-/// nodes that place it.
+/// An instance's mesh (its bark and leaf primitives over its variant's views, at `spans` in
+/// them) and the node or nodes that place it.
 fn lay_out_node(
     d: &mut DocumentBuilder,
     builder: &ForestBuilder,
     node: &Node,
-    layout: &VariantLayout,
+    (layout, spans): (&VariantLayout, (Span, Span)),
     placed: Placed,
 ) {
     let variant = &builder.variants()[node.variant];
     let inst = &variant.cache.instances[node.instance];
-    let primitives = instance_primitives(d, inst, layout);
+    let primitives = instance_primitives(d, spans, layout);
     let name = &builder.config().species[variant.species].name;
     let tag = if variant.seedling { "seedling" } else { "tree" };
     match placed {
@@ -242,24 +234,44 @@ impl Document {
             Some(_) => Arc::default(),
             None => textures.images(),
         };
+        // A file of its own embeds only the instances its nodes place, and the vertices
+        // they reference.
+        let embedded: Vec<CacheSubset> = match &shared_layout {
+            Some(_) => Vec::new(),
+            None => used_variants
+                .iter()
+                .map(|&v| {
+                    let used: Vec<usize> = nodes
+                        .iter()
+                        .filter(|n| n.variant == v)
+                        .map(|n| n.instance)
+                        .collect();
+                    CacheSubset::of(v, &variants[v].cache, &used)
+                })
+                .collect(),
+        };
         let mut shared = vec![None; variants.len()];
-        for &v in &used_variants {
-            let at = match &shared_layout {
-                Some((_, layout)) => {
-                    let s = layout.variants[v];
-                    (1, [s.vertices, s.extras, s.bark, s.leaves])
-                }
-                None => (0, section_lengths(&variants[v]).map(|len| d.reserve(len))),
-            };
+        let mut subset_of = vec![None; variants.len()];
+        for (k, &v) in used_variants.iter().enumerate() {
             let s = &species[variants[v].species];
-            shared[v] = Some(lay_out_variant(
-                &mut d,
-                &variants[v],
-                s,
-                at,
-                &textures,
-                options,
-            ));
+            let layout = match (&shared_layout, embedded.get(k)) {
+                (Some((_, layout)), _) => {
+                    let at = layout.variants[v];
+                    let c = &variants[v].cache;
+                    let lengths = SharedLayout::section_lengths(c);
+                    let at = (1, [at.vertices, at.extras, at.bark, at.leaves]);
+                    lay_out_variant(&mut d, (&c.vertices, lengths), s, at, &textures, options)
+                }
+                (None, Some(subset)) => {
+                    let lengths = subset.section_lengths();
+                    let at = (0, lengths.map(|len| d.reserve(len)));
+                    subset_of[v] = Some(k);
+                    let geometry = (subset.vertices.as_slice(), lengths);
+                    lay_out_variant(&mut d, geometry, s, at, &textures, options)
+                }
+                (None, None) => continue,
+            };
+            shared[v] = Some(layout);
         }
         let image_views: Vec<usize> = match &shared_layout {
             Some((_, layout)) => layout
@@ -282,13 +294,25 @@ impl Document {
         };
         let bin_len = d.bin_len;
         for (k, node) in nodes.iter().enumerate() {
-            if let Some(layout) = &shared[node.variant] {
-                let placed = match one_node_each {
-                    Some(each) => Placed::Nodes(each.get(k).map_or(&[], Vec::as_slice)),
-                    None => Placed::Instanced(sections),
-                };
-                lay_out_node(&mut d, builder, node, layout, placed);
-            }
+            let Some(layout) = &shared[node.variant] else {
+                continue;
+            };
+            let spans = match subset_of[node.variant] {
+                Some(s) => embedded[s].spans(node.instance),
+                None => variants[node.variant]
+                    .cache
+                    .instances
+                    .get(node.instance)
+                    .map(|i| (i.bark, i.leaves)),
+            };
+            let Some(spans) = spans else {
+                continue;
+            };
+            let placed = match one_node_each {
+                Some(each) => Placed::Nodes(each.get(k).map_or(&[], Vec::as_slice)),
+                None => Placed::Instanced(sections),
+            };
+            lay_out_node(&mut d, builder, node, (layout, spans), placed);
         }
         let first_bark = textures.first_bark();
         d.images(
@@ -312,11 +336,7 @@ impl Document {
         Ok(Document {
             total: 12 + 8 + json.len() + bin_chunk,
             json,
-            used_variants: if shared_layout.is_some() {
-                Vec::new()
-            } else {
-                used_variants
-            },
+            embedded,
             images,
             terrain_colours,
             placement_base,

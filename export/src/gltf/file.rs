@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use sylva_base::file::AtomicFile;
-use sylva_forest::{ForestBuilder, PlacementBlock, Rect, Variant, tree_tint, tree_wind};
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
@@ -40,10 +40,10 @@ pub(super) fn write_file(
     Ok(passes)
 }
 
-/// Terrain and cache buffers, in layout order, each padded to 4 bytes.
+/// Terrain and cache buffers (the parts of the caches the file embeds), in layout order,
+/// each padded to 4 bytes.
 pub(super) fn write_geometry(
     w: &mut AtomicFile,
-    variants: &[Variant],
     terrain: Option<&TerrainMesh>,
     document: &Document,
 ) -> Result<(), ExportError> {
@@ -58,15 +58,18 @@ pub(super) fn write_geometry(
         put(w, bytemuck::cast_slice(&t.indices))?;
         put(w, bytemuck::cast_slice(&document.terrain_colours))?;
     }
-    for &v in &document.used_variants {
-        let cache = &variants[v].cache;
-        put(w, bytemuck::cast_slice(&cache.vertices))?;
+    for subset in &document.embedded {
+        put(w, bytemuck::cast_slice(&subset.vertices))?;
         put(
             w,
-            bytemuck::cast_slice(&vertex_extras(&cache.vertices, &cache.bark, &cache.leaves)),
+            bytemuck::cast_slice(&vertex_extras(
+                &subset.vertices,
+                &subset.bark,
+                &subset.leaves,
+            )),
         )?;
-        put(w, bytemuck::cast_slice(&cache.bark))?;
-        put(w, bytemuck::cast_slice(&cache.leaves))?;
+        put(w, bytemuck::cast_slice(&subset.bark))?;
+        put(w, bytemuck::cast_slice(&subset.leaves))?;
     }
     // Every buffer above is a whole number of 4-byte words; images are padded to one.
     for image in document.images.iter() {

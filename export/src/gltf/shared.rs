@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use sylva_base::file::{AtomicFile, FileError};
 use sylva_forest::{BarkPattern, ForestBuilder, LeafShape, Species};
+use sylva_instancing::InstanceCache;
 
 use super::builder::padding;
 use super::extras::{EXTRAS_BYTES, vertex_extras};
@@ -35,6 +36,17 @@ pub(super) struct SharedLayout {
 }
 
 impl SharedLayout {
+    /// Bytes of a whole cache's vertices, vertex extras (tangents and leaf shades), bark
+    /// indices and leaf indices.
+    pub(super) fn section_lengths(c: &InstanceCache) -> [usize; 4] {
+        [
+            size_of_val(c.vertices.as_slice()),
+            EXTRAS_BYTES * c.vertices.len(),
+            4 * c.bark.len(),
+            4 * c.leaves.len(),
+        ]
+    }
+
     pub(super) fn of(builder: &ForestBuilder) -> SharedLayout {
         let textures = TextureSet::of(&builder.config().species);
         let mut at = 0usize;
@@ -48,11 +60,12 @@ impl SharedLayout {
             .iter()
             .map(|v| {
                 let c = &v.cache;
+                let [vertices, extras, bark, leaves] = SharedLayout::section_lengths(c);
                 VariantSpans {
-                    vertices: take(size_of_val(c.vertices.as_slice())),
-                    extras: take(EXTRAS_BYTES * c.vertices.len()),
-                    bark: take(4 * c.bark.len()),
-                    leaves: take(4 * c.leaves.len()),
+                    vertices: take(vertices),
+                    extras: take(extras),
+                    bark: take(bark),
+                    leaves: take(leaves),
                 }
             })
             .collect();

@@ -31,14 +31,14 @@ pub fn write_stand_glb(
     if let Some(t) = terrain.filter(|t| !t.indices.is_empty()) {
         let material = glb
             .doc
-            .material("terrain".into(), [1.0; 3], ROUGHNESS, (None, None), false);
+            .material("terrain".into(), [1.0; 3], ROUGHNESS, (None, None), None);
         glb.terrain(t, material);
     }
     // Obstacles as grey rock, flat-shaded (no normals: clients shade each face flat).
     if !stand.obstacles.is_empty() {
         let rock = glb
             .doc
-            .material("rock".into(), [0.35, 0.34, 0.32], 0.95, (None, None), false);
+            .material("rock".into(), [0.35, 0.34, 0.32], 0.95, (None, None), None);
         for (k, (positions, indices)) in stand.obstacles.iter().enumerate() {
             let valid = indices.iter().all(|&i| (i as usize) < positions.len())
                 && positions.iter().all(|p| p.is_finite());
