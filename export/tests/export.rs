@@ -173,8 +173,10 @@ fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
         (3_361_432, 4_237_886_259_407_970_693),
         "the pinned file changed"
     );
+    // A tiny buffer writes each instance's placements in many small pieces, still in two
+    // passes over the forest (count, write).
     let (passes, chunked) = write("chunked", 1, 4096);
-    assert!(passes > 10, "{passes} passes");
+    assert_eq!(passes, 2);
     assert!(chunked == reference, "chunked writing changed the file");
     for threads in [2, 3, 8] {
         let (_, parallel) = write(&format!("threads-{threads}"), threads, 64 << 10);

@@ -3,8 +3,10 @@
 
 use std::path::Path;
 
+use rayon::prelude::*;
 use sylva_base::file::AtomicFile;
-use sylva_forest::{ForestBuilder, PlacementBlock, Rect, tree_tint, tree_wind};
+use sylva_forest::{ForestBuilder, ForestError, PlacementBlock, Rect, tree_tint, tree_wind};
+use sylva_instancing::Assembler;
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
@@ -80,9 +82,49 @@ pub(super) fn write_geometry(
     Ok(())
 }
 
-/// Streams the forest once per chunk of nodes, gathering those nodes' placements in memory
-/// and writing them to the T, R and S sections, which start at file offset `base`. Returns
-/// the number of passes.
+/// The sections of placements, in file order: translation, rotation, scale, tint and wind,
+/// with the floats each placement has in them.
+const SECTION_FLOATS: [usize; 5] = [3, 4, 3, 3, 4];
+
+/// One node's placements not yet written, section by section, and how many it has written.
+#[derive(Debug, Default)]
+struct NodeBuffer {
+    sections: [Vec<f32>; 5],
+    written: usize,
+}
+
+/// One placement as the file holds it: translation, rotation, scale, tint and wind floats.
+type PlacementFloats = [f32; 17];
+
+/// A block's placements as the file holds them, tagged with their node, in the forest's
+/// order. Tints and wind data are worked out once per tree, not per placement.
+fn block_runs(block: &PlacementBlock, node_of: &[Vec<u32>]) -> Vec<(u32, PlacementFloats)> {
+    let tints: Vec<[f32; 3]> = block.trees.iter().map(tree_tint).collect();
+    let winds: Vec<[f32; 4]> = block.trees.iter().map(tree_wind).collect();
+    block
+        .placements
+        .iter()
+        .map(|p| {
+            let node = node_of[p.variant as usize][p.instance as usize];
+            let x = &p.transform;
+            let tree = p.tree as usize;
+            let mut f = [0f32; 17];
+            f[0..3].copy_from_slice(&x.translation.to_array());
+            f[3..7].copy_from_slice(&x.rotation.normalize().to_array());
+            f[7..10].copy_from_slice(&[x.scale; 3]);
+            f[10..13].copy_from_slice(tints.get(tree).unwrap_or(&[1.0; 3]));
+            f[13..17].copy_from_slice(winds.get(tree).unwrap_or(&[0.0; 4]));
+            (node, f)
+        })
+        .collect()
+}
+
+/// Streams the forest once and writes every placement at its place in the T, R, S, tint and
+/// wind sections (which start at file offset `base`). Blocks of the forest are placed and
+/// turned into the file's floats on every core, a wave at a time, while a writer thread
+/// appends the previous wave's to each node's buffer and writes a node's buffered placements
+/// whenever it holds its share of `chunk_bytes`; memory stays within about `chunk_bytes` and
+/// two waves, however many placements there are. Returns the passes over the forest (1).
 #[allow(
     clippy::too_many_arguments,
     reason = "one call site; the pieces are all different"
@@ -98,66 +140,83 @@ pub(super) fn write_placements(
     total: usize,
     chunk_bytes: usize,
 ) -> Result<usize, ExportError> {
-    let (t_base, r_base, s_base, c_base, w_base) = (
-        base,
-        base + 12 * total,
-        base + 28 * total,
-        base + 40 * total,
-        base + 52 * total,
-    );
-    let mut passes = 0;
-    let mut start = 0;
-    while start < nodes.len() {
-        // The nodes of this pass: as many as fit in a chunk (at least one).
-        let mut end = start + 1;
-        while end < nodes.len()
-            && (nodes[end].first + nodes[end].count - nodes[start].first) * PLACEMENT_BYTES
-                <= chunk_bytes
-        {
-            end += 1;
-        }
-        let first = nodes[start].first;
-        let count = nodes[end - 1].first + nodes[end - 1].count - first;
-        let mut t = vec![0f32; 3 * count];
-        let mut r = vec![0f32; 4 * count];
-        let mut s = vec![0f32; 3 * count];
-        let mut c = vec![0f32; 3 * count];
-        let mut wind = vec![0f32; 4 * count];
-        let mut cursor: Vec<usize> = nodes[start..end].iter().map(|n| n.first - first).collect();
-        let range = start as u32..end as u32;
-        // Only the variants of this chunk's nodes need their trees expanded.
-        let (first_variant, last_variant) = (nodes[start].variant, nodes[end - 1].variant);
-        let wanted = |v: u16| (first_variant..=last_variant).contains(&usize::from(v));
-        builder.stream_variants(terrain, region, &wanted, &mut |block: &PlacementBlock| {
-            for p in &block.placements {
-                let node = node_of[p.variant as usize][p.instance as usize];
-                if !range.contains(&node) {
-                    continue;
+    let mut section_base = [0usize; 5];
+    let mut at = base;
+    for (k, floats) in SECTION_FLOATS.iter().enumerate() {
+        section_base[k] = at;
+        at += 4 * floats * total;
+    }
+    // Each node's share of the memory, in placements: at least one.
+    let flush_at = (chunk_bytes / (PLACEMENT_BYTES * nodes.len().max(1))).max(1);
+    let blocks = builder.blocks(region)?;
+    let wave = rayon::current_num_threads().max(1) * 2;
+    let everything = |_: u16| true;
+    let (sender, waves) = std::sync::mpsc::sync_channel::<Vec<Vec<(u32, PlacementFloats)>>>(1);
+    std::thread::scope(|scope| {
+        let writer = scope.spawn(move || {
+            let mut buffers: Vec<NodeBuffer> =
+                (0..nodes.len()).map(|_| NodeBuffer::default()).collect();
+            let flush = |w: &mut AtomicFile, node: &Node, buffer: &mut NodeBuffer| {
+                let count = buffer.sections[0].len() / SECTION_FLOATS[0];
+                for (k, floats) in SECTION_FLOATS.iter().enumerate() {
+                    let offset = section_base[k] + 4 * floats * (node.first + buffer.written);
+                    w.put_at(offset as u64, bytemuck::cast_slice(&buffer.sections[k]))?;
+                    buffer.sections[k].clear();
                 }
-                let k = &mut cursor[(node - range.start) as usize];
-                let x = &p.transform;
-                let q = x.rotation.normalize();
-                t[3 * *k..3 * *k + 3].copy_from_slice(&x.translation.to_array());
-                r[4 * *k..4 * *k + 4].copy_from_slice(&q.to_array());
-                s[3 * *k..3 * *k + 3].copy_from_slice(&[x.scale; 3]);
-                let tree = block.trees.get(p.tree as usize);
-                c[3 * *k..3 * *k + 3].copy_from_slice(&tree.map_or([1.0; 3], tree_tint));
-                wind[4 * *k..4 * *k + 4].copy_from_slice(&tree.map_or([0.0; 4], tree_wind));
-                *k += 1;
+                buffer.written += count;
+                Ok::<(), ExportError>(())
+            };
+            for runs in waves.iter().flatten() {
+                for (node, f) in runs {
+                    let Some(buffer) = buffers.get_mut(node as usize) else {
+                        continue;
+                    };
+                    let [t, r, s, c, wind] = &mut buffer.sections;
+                    t.extend_from_slice(&f[0..3]);
+                    r.extend_from_slice(&f[3..7]);
+                    s.extend_from_slice(&f[7..10]);
+                    c.extend_from_slice(&f[10..13]);
+                    wind.extend_from_slice(&f[13..17]);
+                    if t.len() / 3 >= flush_at {
+                        flush(w, &nodes[node as usize], buffer)?;
+                    }
+                }
+            }
+            for (node, buffer) in nodes.iter().zip(&mut buffers) {
+                flush(w, node, buffer)?;
+                if buffer.written != node.count {
+                    return Err(ExportError::from(Invalid::Layout {
+                        written: buffer.written as u64,
+                        layout: node.count as u64,
+                    }));
+                }
             }
             Ok(())
-        })?;
-        for (section, data, width) in [
-            (t_base, &t, 12),
-            (r_base, &r, 16),
-            (s_base, &s, 12),
-            (c_base, &c, 12),
-            (w_base, &wind, 16),
-        ] {
-            w.put_at((section + first * width) as u64, bytemuck::cast_slice(data))?;
-        }
-        passes += 1;
-        start = end;
-    }
-    Ok(passes)
+        });
+        let placed = (|| {
+            for (k, rects) in blocks.chunks(wave).enumerate() {
+                let runs: Vec<Vec<(u32, PlacementFloats)>> = rects
+                    .par_iter()
+                    .enumerate()
+                    .map_init(Assembler::new, |assembler, (j, &rect)| {
+                        builder
+                            .block(terrain, k * wave + j, rect, &everything, assembler)
+                            .map(|block| block_runs(&block, node_of))
+                    })
+                    .collect::<Result<_, ForestError>>()?;
+                // A writer that stopped (an error) has dropped its end: stop placing.
+                if sender.send(runs).is_err() {
+                    break;
+                }
+            }
+            Ok::<(), ExportError>(())
+        })();
+        drop(sender);
+        // A panic in the writer is a bug, not bad input: it carries on as the panic it is.
+        let written = writer
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        placed.and(written)
+    })?;
+    Ok(1)
 }

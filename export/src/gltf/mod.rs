@@ -54,8 +54,9 @@ pub struct GltfOptions {
     pub terrain_colour: [f32; 3],
     /// Roughness of every material (all are dielectric: metallic 0).
     pub roughness: f32,
-    /// Most bytes of placements gathered in memory per writing pass (at least one instance's
-    /// worth is always gathered). Smaller means less memory and more passes; the file is the
+    /// Most bytes of placements buffered in memory while writing, shared among the instances
+    /// (at least one placement each): a buffer is written at its place in the file when it
+    /// holds its share. Smaller means less memory and more, smaller writes; the file is the
     /// same. Default [`CHUNK_BYTES`].
     pub chunk_bytes: usize,
     /// The URI (relative to the GLB) of a file written by [`write_shared_geometry`] for the
@@ -134,7 +135,8 @@ pub struct GlbStats {
     /// Placements of instances with no geometry (a branch introduced at the last generation
     /// of a species without leaf symbols), left out of the file.
     pub empty_placements: usize,
-    /// Times the forest was streamed: one count, then one per chunk of placements.
+    /// Times the forest was streamed: once to count the placements, once to write them (two;
+    /// one with no placements to write).
     pub passes: usize,
     /// Branch triangles drawn by the placements (the terrain not included).
     pub triangles: u64,
@@ -148,7 +150,7 @@ pub struct GlbStats {
 /// at one half: 60% and 6%).
 pub const CUTOFF_MIP_LEVEL: u32 = 6;
 
-/// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, 1.6 million placements of 40 bytes.
+/// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, about a million placements of 68 bytes.
 pub const CHUNK_BYTES: usize = 64 << 20;
 
 const ARRAY_BUFFER: u32 = 34962;
