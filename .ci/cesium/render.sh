@@ -11,12 +11,14 @@ port=$((20000 + RANDOM % 10000))
 # A static server on loopback only, stopped when the script ends.
 node "$here/../serve.js" "$here" "$port" &
 server=$!
-trap 'kill $server 2>/dev/null; rm -f "$here/world"' EXIT
+# Chromium's profile for this run, removed with the rest on exit.
+profile="$(mktemp -d)"
+trap 'kill $server 2>/dev/null; rm -f "$here/world"; rm -rf "$profile"' EXIT
 sleep 1
 url="http://127.0.0.1:$port/render.html?tileset=world/tileset.json${query:+&$query}"
 flags=(--headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader
   --disable-quic --no-first-run --disable-background-networking --disable-component-update
-  --disable-sync --user-data-dir="$(mktemp -d)" --window-size=960,540
+  --disable-sync --user-data-dir="$profile" --window-size=960,540
   --virtual-time-budget=900000)
 title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>[^<]*</title>' || true)
 echo "CesiumJS: $title"

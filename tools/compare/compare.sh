@@ -20,11 +20,13 @@ pairs=("oak:Oak Large" "birch:Aspen Large" "pine:Pine Large" "hazel:Bush 1" "spr
 port=$((20000 + RANDOM % 10000))
 node "$here/../../.ci/serve.js" "$here" "$port" &
 server=$!
-trap 'kill $server 2>/dev/null; rm -f "$here"/tree_*.glb' EXIT
+# Chromium's profile for this run, removed with the rest on exit.
+profile="$(mktemp -d)"
+trap 'kill $server 2>/dev/null; rm -f "$here"/tree_*.glb; rm -rf "$profile"' EXIT
 sleep 1
 flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
   --disable-quic --no-first-run --disable-background-networking --disable-component-update
-  --disable-sync --user-data-dir="$(mktemp -d)" --virtual-time-budget=120000)
+  --disable-sync --user-data-dir="$profile" --virtual-time-budget=120000)
 title() {  # the page's title for the query $1, trying twice (headless Chromium now and then
            # quits before the page has rendered)
   local t=""
