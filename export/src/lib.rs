@@ -49,7 +49,7 @@ pub use tiles::{
 
 /// The limits and tuning constants of export.
 pub mod limits {
-    pub use crate::gltf::{CHUNK_BYTES, CUTOFF_MIP_LEVEL, MAX_NODE_PLACEMENTS};
-    pub use crate::texture::TEXTURE_SIZE;
+    pub use crate::gltf::{CHUNK_BYTES, MAX_NODE_PLACEMENTS};
+    pub use crate::texture::{CUTOFF_MIP_LEVEL, TEXTURE_SIZE};
     pub use crate::tiles::MAX_TILES;
 }

@@ -237,22 +237,79 @@ impl ForestBuilder {
         sink: &mut dyn FnMut(&PlacementBlock) -> Result<(), E>,
     ) -> Result<StreamStats, E> {
         let blocks = self.blocks(region)?;
-        let wave = rayon::current_num_threads().max(1) * 2;
+        let wave = wave_size();
         let mut stats = StreamStats::default();
         for (w, rects) in blocks.chunks(wave).enumerate() {
-            let done: Vec<Result<PlacementBlock, ForestError>> = rects
-                .par_iter()
-                .enumerate()
-                .map_init(Assembler::new, |assembler, (k, &rect)| {
-                    self.block(terrain, w * wave + k, rect, expand, assembler)
-                })
-                .collect();
-            for block in done {
-                let block = block?;
-                stats.blocks += 1;
-                stats.trees += block.trees.len();
-                let variants = self.variants();
-                stats.seedlings += block
+            let done = self.place_wave(terrain, rects, w * wave, expand, &|block| block);
+            drain(done, &mut stats, &mut |block: PlacementBlock| sink(&block))?;
+        }
+        Ok(stats)
+    }
+
+    /// As [`ForestBuilder::stream_with`], turning each block into a `T` with `map` on the
+    /// thread that placed it, so that a consumer's own per-block work (converting placements
+    /// for a file, say) runs on every core; `sink` gets the `T`s in block order, one wave of
+    /// blocks while the next is placed.
+    ///
+    /// ```
+    /// use sylva_forest::{ForestBuilder, ForestConfig, ForestError, PlacementBlock, Rect, Species};
+    /// use sylva_terrain::{FlatPlane, glam::Vec2};
+    ///
+    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
+    /// config.budget = 1 << 20;
+    /// let builder = ForestBuilder::new(config)?;
+    /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
+    /// let region = Rect::new(Vec2::ZERO, Vec2::splat(200.0));
+    /// let mut counts = Vec::new();
+    /// let count = |b: PlacementBlock| b.placements.len();
+    /// let stats = builder.stream_map::<_, ForestError>(&ground, region, &|_| true, &count, &mut |n| {
+    ///     counts.push(n);
+    ///     Ok(())
+    /// })?;
+    /// assert_eq!(counts.iter().sum::<usize>(), stats.placements);
+    /// # Ok::<(), ForestError>(())
+    /// ```
+    pub fn stream_map<T: Send, E: From<ForestError> + Send>(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        region: Rect,
+        expand: &(dyn Fn(u16) -> bool + Sync),
+        map: &(dyn Fn(PlacementBlock) -> T + Sync),
+        sink: &mut (dyn FnMut(T) -> Result<(), E> + Send),
+    ) -> Result<StreamStats, E> {
+        let blocks = self.blocks(region)?;
+        let wave = wave_size();
+        let mut stats = StreamStats::default();
+        let mut pending = Vec::new();
+        for (w, rects) in blocks.chunks(wave).enumerate() {
+            let (done, sunk) = rayon::join(
+                || self.place_wave(terrain, rects, w * wave, expand, map),
+                || drain(std::mem::take(&mut pending), &mut stats, sink),
+            );
+            sunk?;
+            pending = done;
+        }
+        drain(pending, &mut stats, sink)?;
+        Ok(stats)
+    }
+
+    /// The blocks `rects` (numbered from `first`) placed on every core, each turned into a
+    /// `T` by `map` where it was placed, with what it held.
+    fn place_wave<T: Send>(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        rects: &[Rect],
+        first: usize,
+        expand: &(dyn Fn(u16) -> bool + Sync),
+        map: &(dyn Fn(PlacementBlock) -> T + Sync),
+    ) -> Vec<Result<(StreamStats, T), ForestError>> {
+        let variants = self.variants();
+        rects
+            .par_iter()
+            .enumerate()
+            .map_init(Assembler::new, |assembler, (k, &rect)| {
+                let block = self.block(terrain, first + k, rect, expand, assembler)?;
+                let seedlings = block
                     .trees
                     .iter()
                     .filter(|t| {
@@ -261,10 +318,37 @@ impl ForestBuilder {
                             .is_some_and(|v| v.seedling)
                     })
                     .count();
-                stats.placements += block.placements.len();
-                sink(&block)?;
-            }
-        }
-        Ok(stats)
+                let held = StreamStats {
+                    blocks: 1,
+                    trees: block.trees.len(),
+                    seedlings,
+                    placements: block.placements.len(),
+                };
+                Ok((held, map(block)))
+            })
+            .collect()
     }
+}
+
+/// Blocks placed at once: two per thread, so a slow block does not idle the others.
+fn wave_size() -> usize {
+    rayon::current_num_threads().max(1) * 2
+}
+
+/// Hands a wave's blocks to `sink` in order, adding what they held to `stats`; the first
+/// error stops it.
+fn drain<T, E: From<ForestError>>(
+    done: Vec<Result<(StreamStats, T), ForestError>>,
+    stats: &mut StreamStats,
+    sink: &mut dyn FnMut(T) -> Result<(), E>,
+) -> Result<(), E> {
+    for block in done {
+        let (held, mapped) = block?;
+        stats.blocks += held.blocks;
+        stats.trees += held.trees;
+        stats.seedlings += held.seedlings;
+        stats.placements += held.placements;
+        sink(mapped)?;
+    }
+    Ok(())
 }

@@ -8,7 +8,7 @@ use super::schema::{
     InstanceAttributes, Material, Mesh, Node, NodeExtensions, Pbr, Primitive, Root, Sampler, Scene,
     Texture, TextureRef,
 };
-use sylva_forest::{CLUSTER_SHADE_MEAN, LeafShape, Species};
+use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
 use super::extras::COLOUR_OFFSET;
 use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, position_bounds};
@@ -17,26 +17,6 @@ use crate::error::{ExportError, Invalid};
 /// Zero bytes that bring `len` to a whole number of 4-byte words.
 pub(super) fn padding(len: usize) -> usize {
     (4 - len % 4) % 4
-}
-
-/// The alpha cutoff of `shape`'s leaf cards, computed once per shape.
-fn leaf_cutoff(shape: LeafShape) -> f32 {
-    static CUTOFFS: std::sync::OnceLock<Vec<(LeafShape, f32)>> = std::sync::OnceLock::new();
-    let cutoffs = CUTOFFS.get_or_init(|| {
-        LeafShape::ALL
-            .into_iter()
-            .map(|s| {
-                (
-                    s,
-                    crate::Texture::leaf(s).alpha_cutoff(super::CUTOFF_MIP_LEVEL),
-                )
-            })
-            .collect()
-    });
-    cutoffs
-        .iter()
-        .find(|(s, _)| *s == shape)
-        .map_or(0.5, |(_, c)| *c)
 }
 
 /// A leaf colour before the cluster shades (mean [`CLUSTER_SHADE_MEAN`]) darken it.
@@ -253,7 +233,7 @@ impl DocumentBuilder {
                 unshaded(species.leaf),
                 roughness,
                 (leaf, None),
-                Some(leaf_cutoff(species.leaf_shape)),
+                Some(crate::texture::card_alpha_cutoff(species.leaf_shape)),
             ),
         )
     }

@@ -11,7 +11,7 @@ use sylva_turtle::Vertex;
 use super::builder::{DocumentBuilder, TreeViews};
 use super::extras::EXTRAS_BYTES;
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
-use super::shared::{SharedLayout, TextureSet};
+use super::shared::{SharedLayout, TextureSet, section_lengths};
 use super::subset::CacheSubset;
 use super::{ARRAY_BUFFER, FLOAT, GltfOptions, Node};
 use crate::error::ExportError;
@@ -234,44 +234,38 @@ impl Document {
             Some(_) => Arc::default(),
             None => textures.images(),
         };
-        // A file of its own embeds only the instances its nodes place, and the vertices
-        // they reference.
-        let embedded: Vec<CacheSubset> = match &shared_layout {
-            Some(_) => Vec::new(),
-            None => used_variants
-                .iter()
-                .map(|&v| {
-                    let used: Vec<usize> = nodes
-                        .iter()
-                        .filter(|n| n.variant == v)
-                        .map(|n| n.instance)
-                        .collect();
-                    CacheSubset::of(v, &variants[v].cache, &used)
-                })
-                .collect(),
-        };
+        // A file of its own embeds, per variant, only the instances its nodes place and the
+        // vertices they reference.
+        let mut subsets: Vec<Option<CacheSubset>> = vec![None; variants.len()];
+        if shared_layout.is_none() {
+            let mut used: Vec<Vec<usize>> = vec![Vec::new(); variants.len()];
+            for n in nodes {
+                used[n.variant].push(n.instance);
+            }
+            for &v in &used_variants {
+                subsets[v] = Some(CacheSubset::of(&variants[v].cache, &used[v]));
+            }
+        }
         let mut shared = vec![None; variants.len()];
-        let mut subset_of = vec![None; variants.len()];
-        for (k, &v) in used_variants.iter().enumerate() {
-            let s = &species[variants[v].species];
-            let layout = match (&shared_layout, embedded.get(k)) {
+        for &v in &used_variants {
+            let c = &variants[v].cache;
+            let (vertices, lengths, at) = match (&shared_layout, &subsets[v]) {
                 (Some((_, layout)), _) => {
                     let at = layout.variants[v];
-                    let c = &variants[v].cache;
-                    let lengths = SharedLayout::section_lengths(c);
+                    let lengths = section_lengths(&c.vertices, &c.bark, &c.leaves);
                     let at = (1, [at.vertices, at.extras, at.bark, at.leaves]);
-                    lay_out_variant(&mut d, (&c.vertices, lengths), s, at, &textures, options)
+                    (c.vertices.as_slice(), lengths, at)
                 }
                 (None, Some(subset)) => {
                     let lengths = subset.section_lengths();
                     let at = (0, lengths.map(|len| d.reserve(len)));
-                    subset_of[v] = Some(k);
-                    let geometry = (subset.vertices.as_slice(), lengths);
-                    lay_out_variant(&mut d, geometry, s, at, &textures, options)
+                    (subset.vertices.as_slice(), lengths, at)
                 }
                 (None, None) => continue,
             };
-            shared[v] = Some(layout);
+            let s = &species[variants[v].species];
+            let geometry = (vertices, lengths);
+            shared[v] = Some(lay_out_variant(&mut d, geometry, s, at, &textures, options));
         }
         let image_views: Vec<usize> = match &shared_layout {
             Some((_, layout)) => layout
@@ -297,8 +291,8 @@ impl Document {
             let Some(layout) = &shared[node.variant] else {
                 continue;
             };
-            let spans = match subset_of[node.variant] {
-                Some(s) => embedded[s].spans(node.instance),
+            let spans = match &subsets[node.variant] {
+                Some(subset) => subset.spans(node.instance),
                 None => variants[node.variant]
                     .cache
                     .instances
@@ -336,7 +330,7 @@ impl Document {
         Ok(Document {
             total: 12 + 8 + json.len() + bin_chunk,
             json,
-            embedded,
+            embedded: subsets.into_iter().flatten().collect(),
             images,
             terrain_colours,
             placement_base,

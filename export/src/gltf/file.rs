@@ -3,10 +3,8 @@
 
 use std::path::Path;
 
-use rayon::prelude::*;
 use sylva_base::file::AtomicFile;
-use sylva_forest::{ForestBuilder, ForestError, PlacementBlock, Rect, tree_tint, tree_wind};
-use sylva_instancing::Assembler;
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
@@ -98,7 +96,7 @@ type PlacementFloats = [f32; 17];
 
 /// A block's placements as the file holds them, tagged with their node, in the forest's
 /// order. Tints and wind data are worked out once per tree, not per placement.
-fn block_runs(block: &PlacementBlock, node_of: &[Vec<u32>]) -> Vec<(u32, PlacementFloats)> {
+fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Vec<(u32, PlacementFloats)> {
     let tints: Vec<[f32; 3]> = block.trees.iter().map(tree_tint).collect();
     let winds: Vec<[f32; 4]> = block.trees.iter().map(tree_wind).collect();
     block
@@ -120,11 +118,11 @@ fn block_runs(block: &PlacementBlock, node_of: &[Vec<u32>]) -> Vec<(u32, Placeme
 }
 
 /// Streams the forest once and writes every placement at its place in the T, R, S, tint and
-/// wind sections (which start at file offset `base`). Blocks of the forest are placed and
-/// turned into the file's floats on every core, a wave at a time, while a writer thread
-/// appends the previous wave's to each node's buffer and writes a node's buffered placements
-/// whenever it holds its share of `chunk_bytes`; memory stays within about `chunk_bytes` and
-/// two waves, however many placements there are. Returns the passes over the forest (1).
+/// wind sections (which start at file offset `base`). Blocks are placed and turned into the
+/// file's floats on every core while the previous wave is written
+/// ([`ForestBuilder::stream_map`]); each node's placements are buffered and written at their place whenever the node holds its share of `chunk_bytes`,
+/// so memory stays within about `chunk_bytes` however many placements there are. Returns
+/// the passes over the forest (1).
 #[allow(
     clippy::too_many_arguments,
     reason = "one call site; the pieces are all different"
@@ -148,75 +146,44 @@ pub(super) fn write_placements(
     }
     // Each node's share of the memory, in placements: at least one.
     let flush_at = (chunk_bytes / (PLACEMENT_BYTES * nodes.len().max(1))).max(1);
-    let blocks = builder.blocks(region)?;
-    let wave = rayon::current_num_threads().max(1) * 2;
-    let everything = |_: u16| true;
-    let (sender, waves) = std::sync::mpsc::sync_channel::<Vec<Vec<(u32, PlacementFloats)>>>(1);
-    std::thread::scope(|scope| {
-        let writer = scope.spawn(move || {
-            let mut buffers: Vec<NodeBuffer> =
-                (0..nodes.len()).map(|_| NodeBuffer::default()).collect();
-            let flush = |w: &mut AtomicFile, node: &Node, buffer: &mut NodeBuffer| {
-                let count = buffer.sections[0].len() / SECTION_FLOATS[0];
-                for (k, floats) in SECTION_FLOATS.iter().enumerate() {
-                    let offset = section_base[k] + 4 * floats * (node.first + buffer.written);
-                    w.put_at(offset as u64, bytemuck::cast_slice(&buffer.sections[k]))?;
-                    buffer.sections[k].clear();
-                }
-                buffer.written += count;
-                Ok::<(), ExportError>(())
+    let mut buffers: Vec<NodeBuffer> = (0..nodes.len()).map(|_| NodeBuffer::default()).collect();
+    let flush = |w: &mut AtomicFile, node: &Node, buffer: &mut NodeBuffer| {
+        let count = buffer.sections[0].len() / SECTION_FLOATS[0];
+        for (k, floats) in SECTION_FLOATS.iter().enumerate() {
+            let offset = section_base[k] + 4 * floats * (node.first + buffer.written);
+            w.put_at(offset as u64, bytemuck::cast_slice(&buffer.sections[k]))?;
+            buffer.sections[k].clear();
+        }
+        buffer.written += count;
+        Ok::<(), ExportError>(())
+    };
+    let runs = |block: PlacementBlock| block_runs(block, node_of);
+    builder.stream_map::<_, ExportError>(terrain, region, &|_| true, &runs, &mut |runs| {
+        for (node, f) in runs {
+            let Some(buffer) = buffers.get_mut(node as usize) else {
+                continue;
             };
-            for runs in waves.iter().flatten() {
-                for (node, f) in runs {
-                    let Some(buffer) = buffers.get_mut(node as usize) else {
-                        continue;
-                    };
-                    let [t, r, s, c, wind] = &mut buffer.sections;
-                    t.extend_from_slice(&f[0..3]);
-                    r.extend_from_slice(&f[3..7]);
-                    s.extend_from_slice(&f[7..10]);
-                    c.extend_from_slice(&f[10..13]);
-                    wind.extend_from_slice(&f[13..17]);
-                    if t.len() / 3 >= flush_at {
-                        flush(w, &nodes[node as usize], buffer)?;
-                    }
-                }
+            let [t, r, s, c, wind] = &mut buffer.sections;
+            t.extend_from_slice(&f[0..3]);
+            r.extend_from_slice(&f[3..7]);
+            s.extend_from_slice(&f[7..10]);
+            c.extend_from_slice(&f[10..13]);
+            wind.extend_from_slice(&f[13..17]);
+            if t.len() / 3 >= flush_at {
+                flush(w, &nodes[node as usize], buffer)?;
             }
-            for (node, buffer) in nodes.iter().zip(&mut buffers) {
-                flush(w, node, buffer)?;
-                if buffer.written != node.count {
-                    return Err(ExportError::from(Invalid::Layout {
-                        written: buffer.written as u64,
-                        layout: node.count as u64,
-                    }));
-                }
-            }
-            Ok(())
-        });
-        let placed = (|| {
-            for (k, rects) in blocks.chunks(wave).enumerate() {
-                let runs: Vec<Vec<(u32, PlacementFloats)>> = rects
-                    .par_iter()
-                    .enumerate()
-                    .map_init(Assembler::new, |assembler, (j, &rect)| {
-                        builder
-                            .block(terrain, k * wave + j, rect, &everything, assembler)
-                            .map(|block| block_runs(&block, node_of))
-                    })
-                    .collect::<Result<_, ForestError>>()?;
-                // A writer that stopped (an error) has dropped its end: stop placing.
-                if sender.send(runs).is_err() {
-                    break;
-                }
-            }
-            Ok::<(), ExportError>(())
-        })();
-        drop(sender);
-        // A panic in the writer is a bug, not bad input: it carries on as the panic it is.
-        let written = writer
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        placed.and(written)
+        }
+        Ok(())
     })?;
+    for (node, buffer) in nodes.iter().zip(&mut buffers) {
+        flush(w, node, buffer)?;
+        if buffer.written != node.count {
+            return Err(Invalid::Layout {
+                written: buffer.written as u64,
+                layout: node.count as u64,
+            }
+            .into());
+        }
+    }
     Ok(1)
 }

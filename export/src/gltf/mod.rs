@@ -142,14 +142,6 @@ pub struct GlbStats {
     pub triangles: u64,
 }
 
-/// The mip level whose coverage a leaf card's alpha cutoff keeps
-/// ([`Texture::alpha_cutoff`](crate::Texture::alpha_cutoff)): 4 x 4 texels of the 256 x 256
-/// card, about what a client samples for a card 150 m away at 1280 x 720. Nearer, the card
-/// draws as it is (its alpha is 0 or 1); farther, it keeps its coverage instead of fading
-/// out. Measured in three.js from above: 72% foliage from 70 m and 74% from 260 m (the cutoff
-/// at one half: 60% and 6%).
-pub const CUTOFF_MIP_LEVEL: u32 = 6;
-
 /// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, about a million placements of 68 bytes.
 pub const CHUNK_BYTES: usize = 64 << 20;
 

@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use sylva_base::file::{AtomicFile, FileError};
 use sylva_forest::{BarkPattern, ForestBuilder, LeafShape, Species};
-use sylva_instancing::InstanceCache;
+use sylva_turtle::Vertex;
 
 use super::builder::padding;
 use super::extras::{EXTRAS_BYTES, vertex_extras};
@@ -35,18 +35,18 @@ pub(super) struct SharedLayout {
     pub(super) len: usize,
 }
 
-impl SharedLayout {
-    /// Bytes of a whole cache's vertices, vertex extras (tangents and leaf shades), bark
-    /// indices and leaf indices.
-    pub(super) fn section_lengths(c: &InstanceCache) -> [usize; 4] {
-        [
-            size_of_val(c.vertices.as_slice()),
-            EXTRAS_BYTES * c.vertices.len(),
-            4 * c.bark.len(),
-            4 * c.leaves.len(),
-        ]
-    }
+/// Bytes of the four sections a tree mesh is written in: its vertices, their extras
+/// (tangents and leaf shades), its bark indices and its leaf indices.
+pub(super) fn section_lengths(vertices: &[Vertex], bark: &[u32], leaves: &[u32]) -> [usize; 4] {
+    [
+        size_of_val(vertices),
+        EXTRAS_BYTES * vertices.len(),
+        4 * bark.len(),
+        4 * leaves.len(),
+    ]
+}
 
+impl SharedLayout {
     pub(super) fn of(builder: &ForestBuilder) -> SharedLayout {
         let textures = TextureSet::of(&builder.config().species);
         let mut at = 0usize;
@@ -60,7 +60,8 @@ impl SharedLayout {
             .iter()
             .map(|v| {
                 let c = &v.cache;
-                let [vertices, extras, bark, leaves] = SharedLayout::section_lengths(c);
+                let [vertices, extras, bark, leaves] =
+                    section_lengths(&c.vertices, &c.bark, &c.leaves);
                 VariantSpans {
                     vertices: take(vertices),
                     extras: take(extras),

@@ -5,14 +5,14 @@
 use sylva_instancing::{InstanceCache, Span};
 use sylva_turtle::Vertex;
 
+use super::shared::section_lengths;
+
 /// The used instances' geometry of one cache: the vertices their triangles reference, in the
 /// cache's order, and their bark and leaf triangles renumbered onto them, instance after
 /// instance in the cache's order. When every instance is used, these are the cache's own
 /// buffers, byte for byte.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct CacheSubset {
-    /// The variant it is taken from.
-    pub(super) variant: usize,
     pub(super) vertices: Vec<Vertex>,
     pub(super) bark: Vec<u32>,
     pub(super) leaves: Vec<u32>,
@@ -22,9 +22,9 @@ pub(super) struct CacheSubset {
 }
 
 impl CacheSubset {
-    /// The subset of `cache` (variant `variant`) that instances `used` (indices into its
-    /// instances, in any order, repeats allowed) draw. Indices outside the cache are left out.
-    pub(super) fn of(variant: usize, cache: &InstanceCache, used: &[usize]) -> CacheSubset {
+    /// The subset of `cache` that instances `used` (indices into its instances, in any
+    /// order, repeats allowed) draw. Indices outside the cache are left out.
+    pub(super) fn of(cache: &InstanceCache, used: &[usize]) -> CacheSubset {
         let mut wanted = vec![false; cache.instances.len()];
         for &i in used {
             if let Some(w) = wanted.get_mut(i) {
@@ -44,22 +44,27 @@ impl CacheSubset {
         let bark_ranges = Ranges::union(used().map(|i| i.bark), cache.bark.len());
         let leaf_ranges = Ranges::union(used().map(|i| i.leaves), cache.leaves.len());
         // Which vertices those triangles reference, numbered anew in cache order.
-        let mut new_index = vec![u32::MAX; cache.vertices.len()];
+        let mut kept = vec![false; cache.vertices.len()];
         for &i in bark_ranges
             .indices(&cache.bark)
             .chain(leaf_ranges.indices(&cache.leaves))
         {
-            if let Some(n) = new_index.get_mut(i as usize) {
-                *n = 0;
+            if let Some(k) = kept.get_mut(i as usize) {
+                *k = true;
             }
         }
         let mut vertices = Vec::new();
-        for (n, v) in new_index.iter_mut().zip(&cache.vertices) {
-            if *n == 0 {
-                *n = vertices.len() as u32;
-                vertices.push(*v);
-            }
-        }
+        let new_index: Vec<u32> = kept
+            .iter()
+            .zip(&cache.vertices)
+            .map(|(&k, v)| {
+                let n = vertices.len() as u32;
+                if k {
+                    vertices.push(*v);
+                }
+                n
+            })
+            .collect();
         let renumber = |ranges: &Ranges, of: &[u32]| -> Vec<u32> {
             ranges.indices(of).map(|&i| new_index[i as usize]).collect()
         };
@@ -74,7 +79,6 @@ impl CacheSubset {
             })
             .collect();
         CacheSubset {
-            variant,
             vertices,
             bark,
             leaves,
@@ -89,12 +93,7 @@ impl CacheSubset {
 
     /// Bytes of its vertices, vertex extras, bark indices and leaf indices.
     pub(super) fn section_lengths(&self) -> [usize; 4] {
-        [
-            size_of_val(self.vertices.as_slice()),
-            super::extras::EXTRAS_BYTES * self.vertices.len(),
-            4 * self.bark.len(),
-            4 * self.leaves.len(),
-        ]
+        section_lengths(&self.vertices, &self.bark, &self.leaves)
     }
 }
 
@@ -182,7 +181,7 @@ mod tests {
     fn the_whole_cache_is_its_own_subset() {
         let cache = cache();
         let all: Vec<usize> = (0..cache.instances.len()).collect();
-        let subset = CacheSubset::of(0, &cache, &all);
+        let subset = CacheSubset::of(&cache, &all);
         // Compared by length and equality, not printed: the buffers are long.
         assert!(subset.vertices == cache.vertices, "vertices differ");
         assert!(subset.bark == cache.bark, "bark indices differ");
@@ -206,7 +205,7 @@ mod tests {
             .collect();
         assert!(drawn.len() > 4, "{}", drawn.len());
         let used = [drawn[1], drawn[3], drawn[1]];
-        let subset = CacheSubset::of(0, &cache, &used);
+        let subset = CacheSubset::of(&cache, &used);
         assert!(subset.vertices.len() < cache.vertices.len());
         for &k in &used {
             let inst = &cache.instances[k];
