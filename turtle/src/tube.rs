@@ -269,10 +269,10 @@ impl GeometrySink for MeshBuilder {
     fn segment(&mut self, s: &Segment) {
         let start = s.start();
         let end = s.end();
-        let shared = match (self.shape, s.continues_parent, s.parent) {
-            (BranchShape::Frustum, true, Some(p)) => self.ends.get(p as usize).copied(),
-            _ => None,
-        };
+        // Where the segment's parent ended: the ring a continuing frustum shares, the texture
+        // height a new axis continues, the surface a branch's collar meets.
+        let parent = s.parent.and_then(|p| self.ends.get(p as usize)).copied();
+        let shared = parent.filter(|_| self.shape == BranchShape::Frustum && s.continues_parent);
         let (a, v0, ring, wind) = match shared {
             Some(e) => (
                 e.first_vertex,
@@ -285,10 +285,7 @@ impl GeometrySink for MeshBuilder {
                 // parent's texture height there, so the bark runs on across the joint.
                 let wind = Wind::branch(start, s.depth, s.id).packed();
                 let ring = RingFrame::of(&s.frame);
-                let v = s
-                    .parent
-                    .and_then(|p| self.ends.get(p as usize))
-                    .map_or(0.0, |e| e.v);
+                let v = parent.map_or(0.0, |e| e.v);
                 if self.caps {
                     self.cap(start, &ring, s.start_radius, false, wind);
                 }
@@ -304,12 +301,8 @@ impl GeometrySink for MeshBuilder {
         }
         let swelling = if s.id == 0 && s.depth == 0 {
             swell::flare(s, self.root_flare).map(|(base, p)| (Some(base), p))
-        } else if shared.is_none()
-            && !s.continues_parent
-            && s.start_radius >= COLLAR_MIN_SHARE * self.base_radius
-        {
-            s.parent
-                .and_then(|p| self.ends.get(p as usize))
+        } else if !s.continues_parent && s.start_radius >= COLLAR_MIN_SHARE * self.base_radius {
+            parent
                 .and_then(|e| swell::collar(s, e.ring.heading, e.radius, self.branch_collar))
                 .map(|p| (None, p))
         } else {

@@ -3,6 +3,8 @@
 use glam::Vec3;
 use sylva_lsys::Word;
 
+mod stem;
+
 use crate::error::TurtleError;
 use crate::frame::Frame;
 use crate::options::{Tropism, TurtleOptions};
@@ -155,19 +157,11 @@ struct Turtle<'o, 's, S: GeometrySink + ?Sized> {
     /// The scale in force: explicit lengths are multiplied by it.
     scale: f32,
     next_id: u32,
-    /// The radius of the first segment drawn: stems of at least [`CURVE_MIN_SHARE`] of it
-    /// are drawn curved ([`TurtleOptions::curve_steps`]).
+    /// The radius of the first segment drawn: stems of at least `stem::CURVE_MIN_SHARE` of
+    /// it are drawn curved ([`TurtleOptions::curve_steps`]).
     base_radius: Option<f32>,
     stats: InterpretStats,
 }
-
-/// The thinnest stem drawn curved, as a share of the first segment's radius: thinner ones
-/// are too short for their bend to show.
-const CURVE_MIN_SHARE: f32 = 0.15;
-/// The least bend, radians, for which a stem is drawn curved.
-const MIN_CURVE_BEND: f32 = 0.02;
-/// The most pieces a curved stem is drawn in.
-pub(crate) const MAX_CURVE_STEPS: u32 = 8;
 
 impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
     fn new(options: &'o TurtleOptions, sink: &'s mut S) -> Self {
@@ -221,131 +215,6 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
             });
         }
         Ok(())
-    }
-
-    /// `F` and `f`: a step forward (parameter: its length), drawing a segment when `draw`,
-    /// tracing a polygon's outline inside one, only moving inside a generalized cylinder;
-    /// then bent by the tropism in force.
-    fn advance(&mut self, args: Args, draw: bool) -> Result<(), TurtleError> {
-        let length = args.get(0)?.map_or(self.state.step, |l| {
-            l * self.options.length_unit * self.scale
-        });
-        let start = self.state.frame;
-        self.state.frame.position += self.state.frame.heading() * length;
-        let reach = self.state.frame.position.abs().max_element();
-        if reach.is_nan() || reach > MAX_COORDINATE {
-            return Err(args.out_of_range(f64::from(length)));
-        }
-        let steps = self.curve_steps();
-        if draw && steps > 1 && self.curve.is_none() && self.polygons.is_empty() {
-            self.state.frame = start;
-            self.draw_curved(length, steps);
-            return Ok(());
-        }
-        if self.curve.is_some() {
-            // Inside a generalized cylinder the turtle only moves; the tube comes from the
-            // control points.
-        } else if let Some(poly) = self.polygons.last_mut() {
-            // Inside a polygon, moves trace its outline instead of drawing branches.
-            if poly.is_empty() {
-                poly.push(start.position);
-            }
-            poly.push(self.state.frame.position);
-        } else if draw {
-            self.draw(start, length);
-        } else {
-            end_axis(&mut self.state, self.sink);
-        }
-        if let Some(t) = self.state.tropism {
-            self.state
-                .frame
-                .bend_towards(t.direction.normalize_or_zero(), t.susceptibility);
-        }
-        Ok(())
-    }
-
-    /// How many pieces the segment drawn now is drawn in: [`TurtleOptions::curve_steps`] for
-    /// stems of at least [`CURVE_MIN_SHARE`] of the first segment's radius that the tropism
-    /// bends by more than [`MIN_CURVE_BEND`]; 1 otherwise.
-    fn curve_steps(&self) -> u32 {
-        let steps = self.options.curve_steps.clamp(1, MAX_CURVE_STEPS);
-        // The first segment sets the base radius, so it is thick by definition.
-        let thick = self
-            .base_radius
-            .is_none_or(|base| self.radius() >= CURVE_MIN_SHARE * base);
-        // A stem the tropism would turn by less than a degree (a trunk along gravity) has
-        // nothing to curve.
-        let bend = self.state.tropism.map_or(0.0, |t| {
-            let h = self.state.frame.heading();
-            t.susceptibility.abs() * h.cross(t.direction.normalize_or_zero()).length()
-        });
-        if steps > 1 && thick && bend > MIN_CURVE_BEND {
-            steps
-        } else {
-            1
-        }
-    }
-
-    /// A segment of `length` from the turtle drawn as `steps` straight pieces with the
-    /// tropism bending the heading after each by a `steps`-th of its susceptibility, so the
-    /// stem curves through its length instead of turning once at its end; the radius runs
-    /// from the start's to the end's across the pieces.
-    fn draw_curved(&mut self, length: f32, steps: u32) {
-        let continues = self.state.same_axis && self.state.last.is_some();
-        let (from, to) = match (continues, self.options.shape) {
-            (true, crate::BranchShape::Frustum) => (self.state.last_radius, self.radius()),
-            _ => (self.radius(), self.radius()),
-        };
-        let piece = length / steps as f32;
-        for k in 0..steps {
-            let radius = |t: f32| from + (to - from) * t;
-            let start = self.state.frame;
-            self.state.frame.position += self.state.frame.heading() * piece;
-            let (r0, r1) = (
-                radius(k as f32 / steps as f32),
-                radius((k + 1) as f32 / steps as f32),
-            );
-            self.draw_piece(start, piece, (r0, r1));
-            if let Some(t) = self.state.tropism {
-                self.state.frame.bend_towards(
-                    t.direction.normalize_or_zero(),
-                    t.susceptibility / steps as f32,
-                );
-            }
-        }
-    }
-
-    /// A segment of `length` from `start`, continuing the axis of the last one when nothing
-    /// branched off between them.
-    fn draw(&mut self, start: Frame, length: f32) {
-        let radius = self.radius();
-        let continues = self.state.same_axis && self.state.last.is_some();
-        let start_radius = match (continues, self.options.shape) {
-            (true, crate::BranchShape::Frustum) => self.state.last_radius,
-            _ => radius,
-        };
-        self.draw_piece(start, length, (start_radius, radius));
-    }
-
-    /// One straight segment of `length` from `start` with the radii at its ends.
-    fn draw_piece(&mut self, start: Frame, length: f32, (start_radius, radius): (f32, f32)) {
-        let continues = self.state.same_axis && self.state.last.is_some();
-        self.base_radius.get_or_insert(start_radius);
-        self.sink.segment(&Segment {
-            id: self.next_id,
-            parent: self.state.last,
-            continues_parent: continues,
-            frame: start,
-            length,
-            start_radius,
-            end_radius: radius,
-            depth: self.state.depth,
-        });
-        self.state.last = Some(self.next_id);
-        self.state.same_axis = true;
-        self.state.last_radius = radius;
-        self.next_id = self.next_id.saturating_add(1);
-        self.stats.segments += 1;
     }
 
     /// The rotations: yaw, pitch and roll by the parameter (degrees) or the angle in force,
