@@ -54,6 +54,7 @@ mod loader;
 mod materials;
 mod offscreen;
 mod painting;
+mod pipelines;
 mod render;
 mod scene;
 mod shadow;

@@ -2,8 +2,6 @@
 //! instance buffer, one `draw_indexed` per instance range and bark or leaves; the materials
 //! are one array bound once per pass, indexed by a material number on each vertex.
 
-use std::num::NonZeroU64;
-
 use bytemuck::{Pod, Zeroable};
 use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::turtle::Vertex;
@@ -11,8 +9,9 @@ use sylva::turtle::Vertex;
 use crate::cells::{LOD_DISTANCE, Streamed, VIEW_DISTANCE};
 use crate::cull::{Volume, visible_instances};
 use crate::error::ViewerError;
-use crate::gpu::{DEPTH, buffer, index_buffer, scene_pipeline};
+use crate::gpu::{DEPTH, buffer, index_buffer};
 use crate::materials::Materials;
+use crate::pipelines::Pipelines;
 use crate::scene::Scene;
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::textures;
@@ -127,22 +126,6 @@ impl Renderer {
     ) -> Result<Renderer, ViewerError> {
         let world = &scene.world;
         let (texture_layout, texture_group) = textures(device, queue);
-        let uniform_layout = |size: u64| {
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: None,
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: NonZeroU64::new(size),
-                    },
-                    count: None,
-                }],
-            })
-        };
-        let globals_layout = uniform_layout(size_of::<Globals>() as u64);
         let materials = Materials::of(world);
         let most = device.limits().max_uniform_buffer_binding_size;
         if materials.bytes.len() as u64 > most {
@@ -152,93 +135,13 @@ impl Renderer {
                 most,
             });
         }
-        let material_layout = uniform_layout(materials.bytes.len() as u64);
-        // The material array is sized to the world's materials.
-        let source = include_str!("shader.wgsl")
-            .replace("MATERIAL_COUNT", &materials.count().to_string())
-            .replace("FIRST_BARK", &crate::textures::FIRST_BARK.to_string())
-            .replace("BARK_COUNT", &crate::textures::BARK_COUNT.to_string())
-            .replace(
-                "CLUSTER_SHADE_MEAN",
-                &format!("{:?}", sylva::forest::CLUSTER_SHADE_MEAN),
-            );
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("shader.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
         let shadow = ShadowMap::new(device, DEPTH);
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: None,
-            bind_group_layouts: &[
-                Some(&globals_layout),
-                Some(&material_layout),
-                Some(&texture_layout),
-                Some(&shadow.layout),
-            ],
-            immediate_size: 0,
-        });
-        // The shadow pass writes the map, so its pipeline does not read it.
-        let shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("shadow"),
-            bind_group_layouts: &[
-                Some(&globals_layout),
-                Some(&material_layout),
-                Some(&texture_layout),
-            ],
-            immediate_size: 0,
-        });
-        // Against shadow acne on surfaces lit at a grazing angle.
-        let acne = wgpu::DepthBiasState {
-            constant: 2,
-            slope_scale: 2.0,
-            clamp: 0.0,
-        };
-        let shadow_pipeline = scene_pipeline(
+        let pipelines = Pipelines::new(
             device,
-            &shader,
-            &shadow_layout,
-            ("vs_shadow", "fs_shadow"),
-            None,
-            acne,
+            format,
+            (size_of::<Globals>() as u64, &materials),
+            (&texture_layout, &shadow.layout),
         );
-        // The sky: drawn first, behind everything, without touching depth.
-        let sky = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("sky"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_sky"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_sky"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let pipeline = |fragment: &str| {
-            scene_pipeline(
-                device,
-                &shader,
-                &layout,
-                ("vs_main", fragment),
-                Some(format),
-                Default::default(),
-            )
-        };
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: size_of::<Globals>() as u64,
@@ -253,7 +156,7 @@ impl Renderer {
         );
         let globals_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: &globals_layout,
+            layout: &pipelines.globals_layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
                 resource: globals.as_entire_binding(),
@@ -261,7 +164,7 @@ impl Renderer {
         });
         let material_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: &material_layout,
+            layout: &pipelines.material_layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
                 resource: material_buffer.as_entire_binding(),
@@ -356,10 +259,10 @@ impl Renderer {
             .collect();
         Ok(Renderer {
             texture_group,
-            shaded: pipeline("fs_main"),
-            ids: pipeline("fs_id"),
-            shadow_pipeline,
-            sky,
+            shaded: pipelines.shaded,
+            ids: pipelines.ids,
+            shadow_pipeline: pipelines.shadow,
+            sky: pipelines.sky,
             shadow,
             globals,
             globals_group,
