@@ -7,19 +7,11 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 world="$(realpath "$1")"; out="$(realpath -m "$2")"; query="${3:-}"
 rm -rf "$here/world"; ln -s "$world" "$here/world"
-port=$((20000 + RANDOM % 10000))
-# A static server on loopback only, stopped when the script ends.
-node "$here/../serve.js" "$here" "$port" &
-server=$!
-# Chromium's profile for this run, removed with the rest on exit.
-profile="$(mktemp -d)"
-trap 'kill $server 2>/dev/null; rm -f "$here/world"; rm -rf "$profile"' EXIT
-sleep 1
+# A static server on loopback only and a Chromium profile, both gone when the script ends.
+source "$here/../headless.sh"
+headless_serve "$here" 'rm -f "$here/world"'
 url="http://127.0.0.1:$port/render.html?tileset=world/tileset.json${query:+&$query}"
-flags=(--headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader
-  --disable-quic --no-first-run --disable-background-networking --disable-component-update
-  --disable-sync --user-data-dir="$profile" --window-size=960,540
-  --virtual-time-budget=900000)
+flags=("${headless[@]}" --window-size=960,540 --virtual-time-budget=900000)
 title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>[^<]*</title>' || true)
 echo "CesiumJS: $title"
 chromium "${flags[@]}" --screenshot="$out" "$url" 2>/dev/null

@@ -8,19 +8,11 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 glb="$(realpath "$1")"; out="$(realpath -m "$2")"; eye="${3:-}"; query="${4:-}"
 cp "$glb" "$here/forest.glb"
-port=$((20000 + RANDOM % 10000))
-# A static server on loopback only, stopped when the script ends.
-node "$here/../serve.js" "$here" "$port" &
-server=$!
-# Chromium's profile for this run, removed with the rest on exit.
-profile="$(mktemp -d)"
-trap 'kill $server 2>/dev/null; rm -f "$here/forest.glb"; rm -rf "$profile"' EXIT
-sleep 1
+# A static server on loopback only and a Chromium profile, both gone when the script ends.
+source "$here/../headless.sh"
+headless_serve "$here" 'rm -f "$here/forest.glb"'
 url="http://127.0.0.1:$port/render.html?file=forest.glb${eye:+&eye=$eye}${query:+&$query}"
-flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
-  --disable-quic --no-first-run --disable-background-networking --disable-component-update
-  --disable-sync --user-data-dir="$profile" --window-size=960,540
-  --virtual-time-budget=120000)
+flags=("${headless[@]}" --disable-gpu --window-size=960,540 --virtual-time-budget=120000)
 title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>[^<]*</title>' || true)
 echo "three.js: $title"
 chromium "${flags[@]}" --screenshot="$out" "$url" 2>/dev/null

@@ -17,20 +17,14 @@ if [ ! -d "$here/node_modules/@dgreenheck/ez-tree" ]; then
 fi
 # sylva species and the ez-tree preset each stands beside.
 pairs=("oak:Oak Large" "birch:Aspen Large" "pine:Pine Large" "hazel:Bush 1" "spruce:Pine Medium")
-port=$((20000 + RANDOM % 10000))
-node "$here/../../.ci/serve.js" "$here" "$port" &
-server=$!
-# Chromium's profile for this run, removed with the rest on exit.
-profile="$(mktemp -d)"
-trap 'kill $server 2>/dev/null; rm -f "$here"/tree_*.glb; rm -rf "$profile"' EXIT
-sleep 1
-flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
-  --disable-quic --no-first-run --disable-background-networking --disable-component-update
-  --disable-sync --user-data-dir="$profile" --virtual-time-budget=120000)
-title() {  # the page's title for the query $1, trying twice (headless Chromium now and then
+# A static server on loopback only and a Chromium profile, both gone when the script ends.
+source "$here/../../.ci/headless.sh"
+headless_serve "$here" 'rm -f "$here"/tree_*.glb'
+flags=("${headless[@]}" --disable-gpu --virtual-time-budget=120000)
+title() {  # the page's title for the query $1, trying three times (headless Chromium now and then
            # quits before the page has rendered)
   local t=""
-  for _ in 1 2; do
+  for _ in 1 2 3; do
     t=$(chromium "${flags[@]}" --window-size=1280,720 --dump-dom "http://127.0.0.1:$port/compare.html?$1" 2>/dev/null \
       | grep -o '<title>measured [^<]*</title>' | sed 's/<[^>]*>//g; s/^measured //' || true)
     [ -n "$t" ] && break
