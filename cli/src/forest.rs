@@ -1,12 +1,12 @@
 //! `sylva forest`: the main job. A terrain, a few species, a forest of thousands of trees,
-//! written as one binary glTF and the heightmap as a 16-bit PNG.
+//! written as one binary glTF (or USD, or both) and the heightmap as a 16-bit PNG.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 use serde::Serialize;
-use sylva::export::{GltfOptions, write_glb};
+use sylva::export::{GltfOptions, UsdOptions, write_glb, write_usda};
 use sylva::forest::{ForestBuilder, ForestError, PlacementBlock, Rect};
 use sylva::instancing::Assembler;
 use sylva::terrain::Heightmap;
@@ -20,14 +20,19 @@ use crate::world::WorldArgs;
 #[command(
     after_help = "With no flags: an 800 m square of smoothed diamond-square terrain with \
     the five bundled species (oak, birch, spruce, pine, hazel), written to forest.glb and \
-    forest_height.png."
+    forest_height.png. With --usd forest.usda: the same forest as a USD point instancer (its \
+    textures in forest_textures/ beside it) instead of the glTF; add --out for both."
 )]
 pub(crate) struct ForestArgs {
     #[command(flatten)]
     world: WorldArgs,
-    /// The glTF file to write.
-    #[arg(long, value_name = "FILE", default_value = "forest.glb")]
-    out: PathBuf,
+    /// The glTF file to write (default forest.glb; with --usd, only when given).
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Also or instead write the forest as USD text (.usda): one point instancer whose
+    /// prototypes are the branch instances, for Blender, Houdini, Omniverse, Maya and Unreal.
+    #[arg(long, value_name = "FILE")]
+    usd: Option<PathBuf>,
     /// The heightmap to write, a 16-bit PNG.
     #[arg(long, value_name = "FILE", default_value = "forest_height.png")]
     heightmap: PathBuf,
@@ -66,8 +71,26 @@ struct ForestFigures {
     export_ms: f64,
     export_passes: usize,
     glb_bytes: usize,
+    /// Time writing the USD file (0 without --usd).
+    usd_ms: f64,
+    usd_bytes: u64,
     peak_rss_mb: f64,
     threads: usize,
+}
+
+/// What the files written hold: the same forest whichever format.
+#[derive(Debug, Default)]
+struct Written {
+    trees: usize,
+    seedlings: usize,
+    placements: usize,
+    empty_placements: usize,
+    /// Instanced meshes (glTF nodes, USD prototypes).
+    instances: usize,
+    passes: usize,
+    glb_bytes: usize,
+    usd_bytes: u64,
+    usd_images: usize,
 }
 
 pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
@@ -84,21 +107,54 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
     } else {
         None
     };
-    let (written, export_time) = phase(hidden, "placing trees and writing glTF", || {
+    // The glTF unless only USD was asked for.
+    let glb = match (&args.out, &args.usd) {
+        (Some(out), _) => Some(out.clone()),
+        (None, None) => Some(PathBuf::from("forest.glb")),
+        (None, Some(_)) => None,
+    };
+    let mut written = Written::default();
+    let (glb_written, export_time) = phase(hidden, "placing trees and writing glTF", || {
+        let Some(glb) = &glb else {
+            return Ok::<_, Failure>(());
+        };
         let mut options = GltfOptions::default();
         options.one_node_per_placement = args.no_instancing;
-        let stats = write_glb(
-            builder,
-            map,
-            region,
-            Some(&terrain_mesh),
-            &options,
-            &args.out,
-        )?;
-        write_heightmap(map, &args.heightmap)?;
-        Ok::<_, Failure>(stats)
+        let stats = write_glb(builder, map, region, Some(&terrain_mesh), &options, glb)?;
+        written = Written {
+            trees: stats.trees,
+            seedlings: stats.seedlings,
+            placements: stats.placements,
+            empty_placements: stats.empty_placements,
+            instances: stats.instance_nodes,
+            passes: stats.passes,
+            glb_bytes: stats.bytes,
+            ..Written::default()
+        };
+        Ok(())
     });
-    let written = written?;
+    glb_written?;
+    let (usd_written, usd_time) = phase(hidden, "placing trees and writing USD", || {
+        let Some(usd) = &args.usd else {
+            return Ok::<_, Failure>(());
+        };
+        let options = UsdOptions::default();
+        let stats = write_usda(builder, map, region, Some(&terrain_mesh), &options, usd)?;
+        written = Written {
+            trees: stats.trees,
+            seedlings: stats.seedlings,
+            placements: stats.placements,
+            empty_placements: stats.empty_placements,
+            instances: stats.prototypes,
+            passes: stats.passes,
+            usd_bytes: stats.bytes,
+            usd_images: stats.images,
+            ..written
+        };
+        Ok(())
+    });
+    usd_written?;
+    write_heightmap(map, &args.heightmap)?;
     let built = builder.stats();
     let side = world.side;
     if let Some((m, placement_time)) = measured {
@@ -116,13 +172,15 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
             placements_per_tree: m.placements as f64 / trees,
             distinct_compositions: m.distinct,
             empty_placements: written.empty_placements,
-            instance_nodes: written.instance_nodes,
+            instance_nodes: written.instances,
             hero_ms: ms(world.hero_time),
             placement_ms: ms(placement_time),
             placements_per_s: m.placements as f64 / placement_time.as_secs_f64().max(1e-9),
             export_ms: ms(export_time),
             export_passes: written.passes,
-            glb_bytes: written.bytes,
+            glb_bytes: written.glb_bytes,
+            usd_ms: ms(usd_time),
+            usd_bytes: written.usd_bytes,
             peak_rss_mb: peak_rss_mb(),
             threads: rayon::current_num_threads(),
         });
@@ -153,16 +211,28 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         ms(world.hero_time)
     );
     println!(
-        "  {} instance placements in {} instanced meshes ({} more of branches with no geometry yet)",
-        written.placements, written.instance_nodes, written.empty_placements
+        "  {} instance placements of {} instances ({} more of branches with no geometry yet)",
+        written.placements, written.instances, written.empty_placements
     );
-    println!(
-        "wrote {} ({:.1} MB) and {} in {:.0} ms",
-        args.out.display(),
-        written.bytes as f64 / (1 << 20) as f64,
-        args.heightmap.display(),
-        ms(export_time)
-    );
+    let mb = |bytes: f64| bytes / (1 << 20) as f64;
+    if let Some(glb) = &glb {
+        println!(
+            "wrote {} ({:.1} MB) in {:.0} ms",
+            glb.display(),
+            mb(written.glb_bytes as f64),
+            ms(export_time)
+        );
+    }
+    if let Some(usd) = &args.usd {
+        println!(
+            "wrote {} ({:.1} MB, a point instancer; {} textures beside it) in {:.0} ms",
+            usd.display(),
+            mb(written.usd_bytes as f64),
+            written.usd_images,
+            ms(usd_time)
+        );
+    }
+    println!("wrote {}", args.heightmap.display());
     Ok(())
 }
 

@@ -1,4 +1,4 @@
-//! Errors of export: glTF files, shared geometry and 3D Tiles.
+//! Errors of export: glTF and USD files, shared geometry and 3D Tiles.
 
 use glam::Vec2;
 use sylva_base::file::FileError;
@@ -17,7 +17,7 @@ pub enum ExportError {
     #[error("{0}")]
     File(#[from] FileError),
     /// The exporter found something that would make an invalid file, and wrote nothing.
-    #[error("refusing to write an invalid glTF file: {0}")]
+    #[error("refusing to write an invalid file: {0}")]
     Invalid(#[from] Invalid),
     /// The file would pass the 4 GiB a GLB can hold: export a smaller region, or tiles.
     #[error("{bytes} bytes is beyond the 4 GiB a GLB can hold (write a smaller region, or tiles)")]
@@ -43,6 +43,12 @@ pub enum ExportError {
         species: usize,
         /// Species given.
         count: usize,
+    },
+    /// USD is written as text: the file's name must end in `.usda`.
+    #[error("{}: sylva writes USD as text; name the file .usda (for example forest.usda)", path.display())]
+    NotUsda {
+        /// The name given.
+        path: std::path::PathBuf,
     },
     /// A tile id is not `c_X_Y` or `f_X_Y`.
     #[error("tile '{id}': expected c_X_Y (coarse) or f_X_Y (fine), X and Y whole numbers")]

@@ -1,6 +1,7 @@
 //! Every file format of sylva: binary glTF (instanced with `EXT_mesh_gpu_instancing`, or a
-//! node per placement), the geometry a world's tiles share, OGC 3D Tiles 1.1 worlds with two
-//! levels of detail, grown stands, and the procedural leaf and bark textures as images.
+//! node per placement), USD (a point instancer, as text), the geometry a world's tiles share,
+//! OGC 3D Tiles 1.1 worlds with two levels of detail, grown stands, and the procedural leaf
+//! and bark textures as images.
 //!
 //! Every file is written whole or not at all: beside its destination under a temporary name,
 //! flushed to disk and renamed into place, so a full disk or an interrupted run leaves the
@@ -32,10 +33,12 @@
 //! glTF's: right-handed, +Y up, metres; colours in linear RGB. Tiles are placed on the globe
 //! by an east-north-up frame at [`TilesetOptions::origin`].
 
+mod census;
 mod error;
 mod gltf;
 mod texture;
 mod tiles;
+mod usd;
 
 pub use error::{ExportError, Invalid};
 pub use gltf::{
@@ -46,6 +49,7 @@ pub use tiles::{
     Level, TileId, TileScheme, TileStats, TilesetOptions, check_tileset_folder, tile_path,
     write_tile, write_tileset,
 };
+pub use usd::{UsdOptions, UsdStats, write_usda};
 
 /// The limits and tuning constants of export.
 pub mod limits {

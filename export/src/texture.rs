@@ -216,6 +216,48 @@ impl Texture {
         alpha.get(keep).copied().unwrap_or(0.5).clamp(0.1, 0.5)
     }
 
+    /// This texture with its colour multiplied by `colour` (linear RGB) as a renderer
+    /// multiplies a material's colour factor: each texel decoded from sRGB, multiplied and
+    /// encoded again; alpha kept. For formats whose clients read a material's texture without
+    /// a factor (USD files give each species its own tinted leaf and bark images).
+    ///
+    /// ```
+    /// use sylva_export::Texture;
+    /// use sylva_forest::LeafShape;
+    /// let white = Texture::leaf(LeafShape::Broadleaf);
+    /// let green = white.tinted([0.1, 0.5, 0.05]);
+    /// let middle = ((white.height / 2 * white.width + white.width / 2) * 4) as usize;
+    /// let (w, g) = (&white.rgba[middle..middle + 4], &green.rgba[middle..middle + 4]);
+    /// assert!(g[1] > g[0] && g[1] > g[2] && g[1] <= w[1]); // greener, never brighter
+    /// assert_eq!(g[3], w[3]); // the same cut-out
+    /// ```
+    pub fn tinted(&self, colour: [f32; 3]) -> Texture {
+        let decode = |v: u8| {
+            let s = f32::from(v) / 255.0;
+            if s <= 0.040_45 {
+                s / 12.92
+            } else {
+                ((s + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        let encode = |x: f32| {
+            let x = x.clamp(0.0, 1.0);
+            let s = if x <= 0.003_130_8 {
+                12.92 * x
+            } else {
+                1.055 * x.powf(1.0 / 2.4) - 0.055
+            };
+            (s * 255.0).round() as u8
+        };
+        let mut rgba = self.rgba.clone();
+        for px in rgba.chunks_exact_mut(4) {
+            for (c, factor) in px[..3].iter_mut().zip(colour) {
+                *c = encode(decode(*c) * factor);
+            }
+        }
+        Texture { rgba, ..*self }
+    }
+
     /// The image as PNG bytes.
     pub fn png(&self) -> Vec<u8> {
         let mut out = Vec::new();

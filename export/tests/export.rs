@@ -6,7 +6,7 @@ use std::path::Path;
 use sylva_export::{ExportError, GltfOptions, Texture, write_glb};
 use sylva_forest::{BarkPattern, LeafShape, Rect, Species};
 use sylva_terrain::glam::Vec2;
-use sylva_testkit::{export_case, scratch};
+use sylva_testkit::{export_case, fnv1a, scratch};
 
 #[test]
 fn exported_glb_is_well_formed_and_counts_match() {
@@ -303,11 +303,4 @@ fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
     let e = write_glb(&large, &ground, world, None, &options, &big).unwrap_err();
     assert!(e.to_string().contains("limit"), "{e}");
     assert!(!big.exists());
-}
-
-/// FNV-1a, 64 bits: a pin for a file's bytes.
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
 }

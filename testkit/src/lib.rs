@@ -69,3 +69,10 @@ pub fn bare_species() -> Species {
     std::fs::write(dir.join("bare.lsys"), "axiom: A\nA -> [+A][-A]A").unwrap();
     Species::parse_file(text, &dir.join("bare.species")).unwrap()
 }
+
+/// FNV-1a, 64 bits: a pin for a file's bytes in known-answer tests.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}

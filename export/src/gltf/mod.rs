@@ -29,11 +29,11 @@ pub use stand::{write_stand_glb, write_tree_glb};
 use std::path::Path;
 
 use sylva_terrain::{HeightField, TerrainMesh};
-use sylva_turtle::Vertex;
 
-use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats, Variant};
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats};
 
-use crate::error::{ExportError, Invalid};
+use crate::census::{Drawn, Node, check_geometry, count_placements, drawn_instances};
+use crate::error::ExportError;
 use document::Document;
 use file::{write_file, write_geometry, write_placements};
 
@@ -154,16 +154,6 @@ const UNSIGNED_INT: u32 = 5125;
 /// tree's tint and its wind data.
 const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12 + 16;
 
-/// One instance that is drawn: a node with its own instancing accessors.
-#[derive(Debug, Clone, Copy)]
-struct Node {
-    pub(crate) variant: usize,
-    pub(crate) instance: usize,
-    /// First placement of this node in the T/R/S sections, counted in placements.
-    pub(crate) first: usize,
-    pub(crate) count: usize,
-}
-
 /// Writes the forest of `region` on `terrain`, and optionally a terrain mesh, as a binary glTF
 /// at `path`. The file declares EXT_mesh_gpu_instancing; every node of an instance mesh
 /// carries TRANSLATION, ROTATION and SCALE accessors of equal count, float components and unit
@@ -198,29 +188,7 @@ pub fn write_glb(
 ) -> Result<GlbStats, ExportError> {
     let variants = builder.variants();
     let terrain_mesh = terrain_mesh.filter(|t| !t.indices.is_empty());
-    if let Some(t) = terrain_mesh {
-        check_mesh(
-            t.vertices.iter().map(|v| (&v.position, &v.normal)),
-            &t.indices,
-        )?;
-    }
-    for v in variants {
-        check_mesh(
-            v.cache
-                .vertices
-                .iter()
-                .map(|v: &Vertex| (&v.position, &v.normal)),
-            v.cache.bark.iter().chain(&v.cache.leaves),
-        )?;
-        let (bark, leaves) = (v.cache.bark.len(), v.cache.leaves.len());
-        if v.cache
-            .instances
-            .iter()
-            .any(|i| i.bark.end() as usize > bark || i.leaves.end() as usize > leaves)
-        {
-            return Err(Invalid::InstanceSpan.into());
-        }
-    }
+    check_geometry(variants, terrain_mesh)?;
 
     // Pass 1: count the placements of every instance, checking each transform.
     let (counts, counted) = count_placements(builder, terrain, region)?;
@@ -297,87 +265,6 @@ pub fn write_glb(
     })
 }
 
-/// Placements of every instance of every variant (by variant, then instance), each transform
-/// checked, and what streaming the forest found.
-fn count_placements(
-    builder: &ForestBuilder,
-    terrain: &(dyn HeightField + Sync),
-    region: Rect,
-) -> Result<(Vec<Vec<u32>>, StreamStats), ExportError> {
-    let mut counts: Vec<Vec<u32>> = builder
-        .variants()
-        .iter()
-        .map(|v| vec![0; v.cache.instances.len()])
-        .collect();
-    let counted = builder.stream_with::<ExportError>(
-        terrain,
-        region,
-        &|_| true,
-        &mut |block: &PlacementBlock| {
-            for p in &block.placements {
-                let t = &p.transform;
-                if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
-                    return Err(Invalid::Transform(*t).into());
-                }
-                let slot = counts
-                    .get_mut(p.variant as usize)
-                    .and_then(|c| c.get_mut(p.instance as usize))
-                    .ok_or(Invalid::UnknownInstance)?;
-                *slot = slot.saturating_add(1);
-            }
-            Ok(())
-        },
-    )?;
-    Ok((counts, counted))
-}
-
-/// The instances a forest draws, as nodes in order, and what they hold.
-struct Drawn {
-    nodes: Vec<Node>,
-    /// Per variant and instance, its node (`u32::MAX`: none).
-    node_of: Vec<Vec<u32>>,
-    placements: usize,
-    /// Placements of instances with no geometry, left out.
-    empty_placements: usize,
-    triangles: u64,
-}
-
-/// A node for every instance placed at least once that has geometry, its placements laid end
-/// to end after the previous node's.
-fn drawn_instances(variants: &[Variant], counts: &[Vec<u32>]) -> Drawn {
-    let mut drawn = Drawn {
-        nodes: Vec::new(),
-        node_of: Vec::with_capacity(variants.len()),
-        placements: 0,
-        empty_placements: 0,
-        triangles: 0,
-    };
-    for (v, variant) in variants.iter().enumerate() {
-        let mut map = vec![u32::MAX; variant.cache.instances.len()];
-        for (i, inst) in variant.cache.instances.iter().enumerate() {
-            let count = counts[v][i] as usize;
-            if count == 0 {
-                continue;
-            }
-            if inst.bark.is_empty() && inst.leaves.is_empty() {
-                drawn.empty_placements += count;
-                continue;
-            }
-            map[i] = drawn.nodes.len() as u32;
-            drawn.nodes.push(Node {
-                variant: v,
-                instance: i,
-                first: drawn.placements,
-                count,
-            });
-            drawn.placements += count;
-            drawn.triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);
-        }
-        drawn.node_of.push(map);
-    }
-    drawn
-}
-
 /// The lowest and highest corner of `positions` (glTF requires them on POSITION accessors)
 /// and how many there are.
 fn position_bounds(positions: impl IntoIterator<Item = [f32; 3]>) -> ([f32; 3], [f32; 3], usize) {
@@ -414,25 +301,4 @@ fn glb_header(total: usize, json: &str, bin: Option<usize>) -> Result<Vec<u8>, E
         out.extend_from_slice(b"BIN\0");
     }
     Ok(out)
-}
-
-/// Every vertex finite with a unit normal, every index in range.
-fn check_mesh<'a>(
-    vertices: impl ExactSizeIterator<Item = (&'a [f32; 3], &'a [f32; 3])>,
-    indices: impl IntoIterator<Item = &'a u32>,
-) -> Result<(), ExportError> {
-    let n = vertices.len() as u32;
-    for (p, normal) in vertices {
-        if !p.iter().all(|c| c.is_finite()) {
-            return Err(Invalid::VertexPosition.into());
-        }
-        let len = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
-        if !(len - 1.0).abs().lt(&1e-3) {
-            return Err(Invalid::Normal(*normal).into());
-        }
-    }
-    if indices.into_iter().any(|&i| i >= n) {
-        return Err(Invalid::Index.into());
-    }
-    Ok(())
 }

@@ -1,0 +1,157 @@
+//! The census of a forest before any file is written: which instances its placements use
+//! and how often, counted in one streaming pass, with every transform and mesh checked. The
+//! counts fix a file's whole layout (glTF offsets, USD prototypes) before a byte is written.
+
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats, Variant};
+use sylva_terrain::{HeightField, TerrainMesh};
+use sylva_turtle::Vertex;
+
+use crate::error::{ExportError, Invalid};
+
+/// One instance that is drawn: a glTF node with its own instancing accessors, a USD
+/// prototype.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Node {
+    pub(crate) variant: usize,
+    pub(crate) instance: usize,
+    /// Its first placement in the file's placement sections, counted in placements: the
+    /// placements of all nodes before it.
+    pub(crate) first: usize,
+    /// Its placements.
+    pub(crate) count: usize,
+}
+
+/// Placements of every instance of every variant (by variant, then instance), each transform
+/// checked, and what streaming the forest found.
+pub(crate) fn count_placements(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    region: Rect,
+) -> Result<(Vec<Vec<u32>>, StreamStats), ExportError> {
+    let mut counts: Vec<Vec<u32>> = builder
+        .variants()
+        .iter()
+        .map(|v| vec![0; v.cache.instances.len()])
+        .collect();
+    let counted = builder.stream_with::<ExportError>(
+        terrain,
+        region,
+        &|_| true,
+        &mut |block: &PlacementBlock| {
+            for p in &block.placements {
+                let t = &p.transform;
+                if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
+                    return Err(Invalid::Transform(*t).into());
+                }
+                let slot = counts
+                    .get_mut(p.variant as usize)
+                    .and_then(|c| c.get_mut(p.instance as usize))
+                    .ok_or(Invalid::UnknownInstance)?;
+                *slot = slot.saturating_add(1);
+            }
+            Ok(())
+        },
+    )?;
+    Ok((counts, counted))
+}
+
+/// The instances a forest draws, as nodes in order, and what they hold.
+pub(crate) struct Drawn {
+    pub(crate) nodes: Vec<Node>,
+    /// Per variant and instance, its node (`u32::MAX`: none).
+    pub(crate) node_of: Vec<Vec<u32>>,
+    pub(crate) placements: usize,
+    /// Placements of instances with no geometry, left out.
+    pub(crate) empty_placements: usize,
+    /// Branch triangles the placements draw.
+    pub(crate) triangles: u64,
+}
+
+/// A node for every instance placed at least once that has geometry, its placements laid end
+/// to end after the previous node's.
+pub(crate) fn drawn_instances(variants: &[Variant], counts: &[Vec<u32>]) -> Drawn {
+    let mut drawn = Drawn {
+        nodes: Vec::new(),
+        node_of: Vec::with_capacity(variants.len()),
+        placements: 0,
+        empty_placements: 0,
+        triangles: 0,
+    };
+    for (v, variant) in variants.iter().enumerate() {
+        let mut map = vec![u32::MAX; variant.cache.instances.len()];
+        for (i, inst) in variant.cache.instances.iter().enumerate() {
+            let count = counts[v][i] as usize;
+            if count == 0 {
+                continue;
+            }
+            if inst.bark.is_empty() && inst.leaves.is_empty() {
+                drawn.empty_placements += count;
+                continue;
+            }
+            map[i] = drawn.nodes.len() as u32;
+            drawn.nodes.push(Node {
+                variant: v,
+                instance: i,
+                first: drawn.placements,
+                count,
+            });
+            drawn.placements += count;
+            drawn.triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);
+        }
+        drawn.node_of.push(map);
+    }
+    drawn
+}
+
+/// Every variant's cache and the terrain mesh, if any, checked as [`check_mesh`] does, and
+/// every instance's spans within its cache's indices.
+pub(crate) fn check_geometry(
+    variants: &[Variant],
+    terrain_mesh: Option<&TerrainMesh>,
+) -> Result<(), ExportError> {
+    if let Some(t) = terrain_mesh {
+        check_mesh(
+            t.vertices.iter().map(|v| (&v.position, &v.normal)),
+            &t.indices,
+        )?;
+    }
+    for v in variants {
+        check_mesh(
+            v.cache
+                .vertices
+                .iter()
+                .map(|v: &Vertex| (&v.position, &v.normal)),
+            v.cache.bark.iter().chain(&v.cache.leaves),
+        )?;
+        let (bark, leaves) = (v.cache.bark.len(), v.cache.leaves.len());
+        if v.cache
+            .instances
+            .iter()
+            .any(|i| i.bark.end() as usize > bark || i.leaves.end() as usize > leaves)
+        {
+            return Err(Invalid::InstanceSpan.into());
+        }
+    }
+    Ok(())
+}
+
+/// Every vertex finite with a unit normal, every index in range.
+pub(crate) fn check_mesh<'a>(
+    vertices: impl ExactSizeIterator<Item = (&'a [f32; 3], &'a [f32; 3])>,
+    indices: impl IntoIterator<Item = &'a u32>,
+) -> Result<(), ExportError> {
+    let n = vertices.len() as u32;
+    for (p, normal) in vertices {
+        if !p.iter().all(|c| c.is_finite()) {
+            return Err(Invalid::VertexPosition.into());
+        }
+        let len = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+        if !(len - 1.0).abs().lt(&1e-3) {
+            return Err(Invalid::Normal(*normal).into());
+        }
+    }
+    if indices.into_iter().any(|&i| i >= n) {
+        return Err(Invalid::Index.into());
+    }
+    Ok(())
+}
