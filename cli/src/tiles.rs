@@ -32,6 +32,10 @@ pub(crate) struct TilesArgs {
     /// Side of a fine tile in metres.
     #[arg(long, value_name = "M", default_value_t = 250.0)]
     tile_size: f32,
+    /// Fine tiles along each side of a coarse tile (1 to 64): smaller coarse tiles refine to
+    /// branches over a smaller area near the camera.
+    #[arg(long, value_name = "N", default_value_t = 4)]
+    group: u32,
     /// Write this tile alone (c_X_Y or f_X_Y).
     #[arg(long, value_name = "ID", conflicts_with = "tileset_only")]
     tile: Option<String>,
@@ -79,7 +83,7 @@ pub(crate) fn run(args: TilesArgs) -> Result<(), Failure> {
     let tile: Option<TileId> = args.tile.as_deref().map(str::parse).transpose()?;
     let world = args.world.world(hidden)?;
     let (builder, map) = (&world.builder, &world.map);
-    let scheme = TileScheme::new(world.region, args.tile_size, 4)?;
+    let scheme = TileScheme::new(world.region, args.tile_size, args.group)?;
     let mut options = TilesetOptions::default();
     options.origin = args.origin;
     let start = Instant::now();

@@ -59,7 +59,11 @@ fn the_instancer_holds_every_placement_the_gltf_holds() {
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.len() as u64, stats.bytes);
     assert!(text.starts_with("#usda 1.0\n"));
-    for metadata in ["defaultPrim = \"Forest\"", "upAxis = \"Y\"", "metersPerUnit = 1"] {
+    for metadata in [
+        "defaultPrim = \"Forest\"",
+        "upAxis = \"Y\"",
+        "metersPerUnit = 1",
+    ] {
         assert!(text.contains(metadata), "{metadata}");
     }
     // Every array has an element per placement, and each index names a prototype.
@@ -70,7 +74,11 @@ fn the_instancer_holds_every_placement_the_gltf_holds() {
     }
     let prototypes = array(&text, "prototypes");
     assert_eq!(prototypes.len(), stats.prototypes);
-    assert!(prototypes.iter().all(|p| p.starts_with("</Forest/Trees/Prototypes/p")));
+    assert!(
+        prototypes
+            .iter()
+            .all(|p| p.starts_with("</Forest/Trees/Prototypes/p"))
+    );
     let mut used = vec![false; stats.prototypes];
     for id in &ids {
         used[id.parse::<usize>().unwrap()] = true;
@@ -128,7 +136,10 @@ fn the_file_is_the_same_at_any_thread_count() {
         "the pinned file changed"
     );
     for threads in [2, 5] {
-        assert!(write(threads) == reference, "{threads} threads changed the file");
+        assert!(
+            write(threads) == reference,
+            "{threads} threads changed the file"
+        );
     }
 }
 
