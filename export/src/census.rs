@@ -2,7 +2,8 @@
 //! and how often, counted in one streaming pass, with every transform and mesh checked. The
 //! counts fix a file's whole layout (glTF offsets, USD prototypes) before a byte is written.
 
-use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats, Variant};
+use sylva_forest::{ForestBuilder, Rect, StreamStats, Variant};
+use sylva_instancing::Similarity;
 use sylva_terrain::{HeightField, TerrainMesh};
 use sylva_turtle::Vertex;
 
@@ -21,38 +22,26 @@ pub(crate) struct Node {
     pub(crate) count: usize,
 }
 
-/// Placements of every instance of every variant (by variant, then instance), each transform
-/// checked, and what streaming the forest found.
+/// Placements of every instance of every variant (by variant, then instance), and what
+/// streaming the forest would hold: counted on every core without computing a transform
+/// ([`ForestBuilder::count_instances`]); the writing pass checks each transform
+/// ([`check_transform`]).
 pub(crate) fn count_placements(
     builder: &ForestBuilder,
     terrain: &(dyn HeightField + Sync),
     region: Rect,
 ) -> Result<(Vec<Vec<u32>>, StreamStats), ExportError> {
-    let mut counts: Vec<Vec<u32>> = builder
-        .variants()
-        .iter()
-        .map(|v| vec![0; v.cache.instances.len()])
-        .collect();
-    let counted = builder.stream_with::<ExportError>(
-        terrain,
-        region,
-        &|_| true,
-        &mut |block: &PlacementBlock| {
-            for p in &block.placements {
-                let t = &p.transform;
-                if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
-                    return Err(Invalid::Transform(*t).into());
-                }
-                let slot = counts
-                    .get_mut(p.variant as usize)
-                    .and_then(|c| c.get_mut(p.instance as usize))
-                    .ok_or(Invalid::UnknownInstance)?;
-                *slot = slot.saturating_add(1);
-            }
-            Ok(())
-        },
-    )?;
-    Ok((counts, counted))
+    let counted = builder.count_instances(terrain, region)?;
+    Ok((counted.counts, counted.stats))
+}
+
+/// A placement is a translation, a unit rotation and a positive scale, all finite: what
+/// glTF's instancing attributes and USD's point instancer can hold.
+pub(crate) fn check_transform(t: &Similarity) -> Result<(), Invalid> {
+    if !(t.is_finite() && t.scale > 0.0) || (t.rotation.length() - 1.0).abs() > 1e-3 {
+        return Err(Invalid::Transform(*t));
+    }
+    Ok(())
 }
 
 /// The instances a forest draws, as nodes in order, and what they hold.

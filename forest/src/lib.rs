@@ -38,6 +38,7 @@
 //! region): regions generated apart join without seams.
 
 mod appearance;
+mod census;
 mod composition;
 mod density;
 mod error;
@@ -51,6 +52,7 @@ mod variety;
 mod walk;
 
 pub use appearance::{BarkPattern, LeafShape};
+pub use census::InstanceCounts;
 pub use composition::ComposedDensity;
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;

@@ -124,10 +124,31 @@ fn pick(seed: u32, counter: u32, n: usize) -> usize {
     (((z >> 32) * n as u64) >> 32) as usize
 }
 
+/// What the assembly carries down a tree to each exit: a placement's frame D, or nothing
+/// when only which instances a tree places matters (counting them needs no transforms).
+trait Frame: Copy {
+    /// The frame one step on: D * E.
+    fn then(&self, step: &Similarity) -> Self;
+}
+
+impl Frame for Similarity {
+    #[inline]
+    fn then(&self, step: &Similarity) -> Self {
+        self.mul(step)
+    }
+}
+
+impl Frame for () {
+    #[inline]
+    fn then(&self, _: &Similarity) -> Self {}
+}
+
 /// Reusable state for expanding trees.
 #[derive(Debug, Default)]
 pub struct Assembler {
     stack: Vec<(u32, u32, Similarity, u32)>,
+    /// The stack of [`Assembler::instances_with`], which carries no frames.
+    bare: Vec<(u32, u32, (), u32)>,
     /// Instances the current tree uses, to avoid repeats within one crown.
     used: Vec<u32>,
     /// Limits applied to every tree.
@@ -149,12 +170,64 @@ impl Assembler {
         tree: &CompactTree,
         mut place: impl FnMut(u32, Similarity),
     ) -> Result<usize, InstancingError> {
-        self.stack.clear();
+        let mut stack = std::mem::take(&mut self.stack);
+        let placed = self.walk(&mut stack, cache, tree, tree.root(), |instance, desired| {
+            place(
+                instance,
+                desired.mul(&cache.instances[instance as usize].frame_inverse),
+            );
+        });
+        self.stack = stack;
+        placed
+    }
+
+    /// The instances one tree places, in the order [`Assembler::expand_with`] places them,
+    /// without their transforms: `visit(instance)` for each. For counting a forest's
+    /// instances before writing them.
+    ///
+    /// ```
+    /// use sylva_instancing::{build_cache, Assembler, CompactTree, HeroOptions};
+    ///
+    /// let grammar = sylva_lsys::preset("kenwood-leafy").unwrap().lsystem()?;
+    /// let options = HeroOptions::default().with_budget(1 << 20).with_generations(4);
+    /// let cache = build_cache(&grammar, &options)?.cache;
+    /// let tree = CompactTree { scale: 1.0, seed: 9, ..Default::default() };
+    /// let mut assembler = Assembler::new();
+    /// let (mut placed, mut visited) = (Vec::new(), Vec::new());
+    /// assembler.expand_with(&cache, &tree, |i, _| placed.push(i))?;
+    /// assembler.instances_with(&cache, &tree, |i| visited.push(i))?;
+    /// assert_eq!(placed, visited);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn instances_with(
+        &mut self,
+        cache: &InstanceCache,
+        tree: &CompactTree,
+        mut visit: impl FnMut(u32),
+    ) -> Result<usize, InstancingError> {
+        let mut stack = std::mem::take(&mut self.bare);
+        let placed = self.walk(&mut stack, cache, tree, (), |instance, ()| visit(instance));
+        self.bare = stack;
+        placed
+    }
+
+    /// Kenwood's algorithm 2 over `stack`, from `root`: chooses each instance of the tree
+    /// and calls `place(instance, frame)` with the frame D it is placed at.
+    #[inline]
+    fn walk<F: Frame>(
+        &mut self,
+        stack: &mut Vec<(u32, u32, F, u32)>,
+        cache: &InstanceCache,
+        tree: &CompactTree,
+        root: F,
+        mut place: impl FnMut(u32, F),
+    ) -> Result<usize, InstancingError> {
+        stack.clear();
         self.used.clear();
-        self.stack.push((ROOT.0, ROOT.1, tree.root(), 0));
+        stack.push((ROOT.0, ROOT.1, root, 0));
         let mut placed = 0usize;
         let mut counter = 0u32;
-        while let Some((id, age, desired, depth)) = self.stack.pop() {
+        while let Some((id, age, desired, depth)) = stack.pop() {
             if depth > self.limits.max_depth {
                 return Err(InstancingError::AssemblyLimit("depth"));
             }
@@ -208,14 +281,13 @@ impl Assembler {
             };
             self.used.push(chosen);
             let instance = &cache.instances[chosen as usize];
-            place(chosen, desired.mul(&instance.frame_inverse));
+            place(chosen, desired);
             placed += 1;
             if placed > self.limits.max_instances {
                 return Err(InstancingError::AssemblyLimit("instances per tree"));
             }
             for exit in cache.exits_of(instance) {
-                self.stack
-                    .push((exit.id, exit.age, desired.mul(&exit.frame), depth + 1));
+                stack.push((exit.id, exit.age, desired.then(&exit.frame), depth + 1));
             }
         }
         Ok(placed)

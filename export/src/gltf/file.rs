@@ -11,6 +11,7 @@ use super::builder::padding;
 use super::document::Document;
 use super::extras::vertex_extras;
 use super::{Node, PLACEMENT_BYTES, glb_header};
+use crate::census::check_transform;
 use crate::error::{ExportError, Invalid};
 
 /// Writes `path` whole or not at all: the GLB header, the JSON chunk and the BIN chunk
@@ -80,6 +81,10 @@ pub(super) fn write_geometry(
     Ok(())
 }
 
+/// Placement bytes put between requests that the disk catch up
+/// ([`AtomicFile::start_writeback`]).
+const WRITEBACK_BYTES: usize = 128 << 20;
+
 /// The sections of placements, in file order: translation, rotation, scale, tint and wind,
 /// with the floats each placement has in them.
 const SECTION_FLOATS: [usize; 5] = [3, 4, 3, 3, 4];
@@ -91,30 +96,60 @@ struct NodeBuffer {
     written: usize,
 }
 
-/// One placement as the file holds it: translation, rotation, scale, tint and wind floats.
-type PlacementFloats = [f32; 17];
+/// A block's placements as the file holds them, grouped by node: the runs `(node, count)` in
+/// ascending node order (each node's placements in the forest's order), and their floats
+/// section by section in the same order.
+#[derive(Debug, Default)]
+struct BlockRuns {
+    runs: Vec<(u32, u32)>,
+    sections: [Vec<f32>; 5],
+}
 
-/// A block's placements as the file holds them, tagged with their node, in the forest's
-/// order. Tints and wind data are worked out once per tree, not per placement.
-fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Vec<(u32, PlacementFloats)> {
+/// Groups `block`'s placements by node and spells them as the file's floats, each transform
+/// checked. Tints and wind data are worked out once per tree, not per placement. Runs on the
+/// core that placed the block, so the writer only copies whole runs.
+fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, Invalid> {
     let tints: Vec<[f32; 3]> = block.trees.iter().map(tree_tint).collect();
     let winds: Vec<[f32; 4]> = block.trees.iter().map(tree_wind).collect();
-    block
+    let nodes = block
         .placements
         .iter()
         .map(|p| {
-            let node = node_of[p.variant as usize][p.instance as usize];
-            let x = &p.transform;
-            let tree = p.tree as usize;
-            let mut f = [0f32; 17];
-            f[0..3].copy_from_slice(&x.translation.to_array());
-            f[3..7].copy_from_slice(&x.rotation.normalize().to_array());
-            f[7..10].copy_from_slice(&[x.scale; 3]);
-            f[10..13].copy_from_slice(tints.get(tree).unwrap_or(&[1.0; 3]));
-            f[13..17].copy_from_slice(winds.get(tree).unwrap_or(&[0.0; 4]));
-            (node, f)
+            check_transform(&p.transform)?;
+            node_of
+                .get(p.variant as usize)
+                .and_then(|v| v.get(p.instance as usize))
+                .copied()
+                .ok_or(Invalid::UnknownInstance)
         })
-        .collect()
+        .collect::<Result<Vec<u32>, Invalid>>()?;
+    // A stable sort keeps each node's placements in the forest's order.
+    let mut order: Vec<u32> = (0..nodes.len() as u32).collect();
+    order.sort_by_key(|&k| nodes[k as usize]);
+    let mut out = BlockRuns {
+        runs: Vec::new(),
+        sections: SECTION_FLOATS.map(|floats| Vec::with_capacity(floats * nodes.len())),
+    };
+    for &k in &order {
+        let node = nodes[k as usize];
+        if node == u32::MAX {
+            // An instance without geometry: not in the file.
+            continue;
+        }
+        match out.runs.last_mut() {
+            Some((n, count)) if *n == node => *count += 1,
+            _ => out.runs.push((node, 1)),
+        }
+        let p = &block.placements[k as usize];
+        let (x, tree) = (&p.transform, p.tree as usize);
+        let [t, r, s, c, w] = &mut out.sections;
+        t.extend_from_slice(&x.translation.to_array());
+        r.extend_from_slice(&x.rotation.normalize().to_array());
+        s.extend_from_slice(&[x.scale; 3]);
+        c.extend_from_slice(tints.get(tree).unwrap_or(&[1.0; 3]));
+        w.extend_from_slice(winds.get(tree).unwrap_or(&[0.0; 4]));
+    }
+    Ok(out)
 }
 
 /// Streams the forest once and writes every placement at its place in the T, R, S, tint and
@@ -147,7 +182,9 @@ pub(super) fn write_placements(
     // Each node's share of the memory, in placements: at least one.
     let flush_at = (chunk_bytes / (PLACEMENT_BYTES * nodes.len().max(1))).max(1);
     let mut buffers: Vec<NodeBuffer> = (0..nodes.len()).map(|_| NodeBuffer::default()).collect();
-    let flush = |w: &mut AtomicFile, node: &Node, buffer: &mut NodeBuffer| {
+    // Bytes put since the disk was last asked to catch up.
+    let mut unsynced = 0usize;
+    let mut flush = |w: &mut AtomicFile, node: &Node, buffer: &mut NodeBuffer| {
         let count = buffer.sections[0].len() / SECTION_FLOATS[0];
         for (k, floats) in SECTION_FLOATS.iter().enumerate() {
             let offset = section_base[k] + 4 * floats * (node.first + buffer.written);
@@ -155,21 +192,28 @@ pub(super) fn write_placements(
             buffer.sections[k].clear();
         }
         buffer.written += count;
+        // The disk writes behind the placing, so that the final flush finds little left.
+        unsynced += count * PLACEMENT_BYTES;
+        if unsynced >= WRITEBACK_BYTES {
+            w.start_writeback()?;
+            unsynced = 0;
+        }
         Ok::<(), ExportError>(())
     };
     let runs = |block: PlacementBlock| block_runs(block, node_of);
     builder.stream_map::<_, ExportError>(terrain, region, &|_| true, &runs, &mut |runs| {
-        for (node, f) in runs {
+        let runs = runs?;
+        let mut from = [0usize; 5];
+        for &(node, count) in &runs.runs {
             let Some(buffer) = buffers.get_mut(node as usize) else {
                 continue;
             };
-            let [t, r, s, c, wind] = &mut buffer.sections;
-            t.extend_from_slice(&f[0..3]);
-            r.extend_from_slice(&f[3..7]);
-            s.extend_from_slice(&f[7..10]);
-            c.extend_from_slice(&f[10..13]);
-            wind.extend_from_slice(&f[13..17]);
-            if t.len() / 3 >= flush_at {
+            for (k, floats) in SECTION_FLOATS.iter().enumerate() {
+                let to = from[k] + floats * count as usize;
+                buffer.sections[k].extend_from_slice(&runs.sections[k][from[k]..to]);
+                from[k] = to;
+            }
+            if buffer.sections[0].len() / SECTION_FLOATS[0] >= flush_at {
                 flush(w, &nodes[node as usize], buffer)?;
             }
         }

@@ -32,7 +32,9 @@ use sylva_terrain::{HeightField, TerrainMesh};
 
 use sylva_forest::{ForestBuilder, PlacementBlock, Rect, StreamStats};
 
-use crate::census::{Drawn, Node, check_geometry, count_placements, drawn_instances};
+use crate::census::{
+    Drawn, Node, check_geometry, check_transform, count_placements, drawn_instances,
+};
 use crate::error::ExportError;
 use document::Document;
 use file::{write_file, write_geometry, write_placements};
@@ -210,15 +212,17 @@ pub fn write_glb(
             });
         }
         let mut each: Vec<Vec<sylva_instancing::Similarity>> = vec![Vec::new(); nodes.len()];
-        builder.stream(terrain, region, &mut |block: &PlacementBlock| {
+        let gather = &mut |block: &PlacementBlock| -> Result<(), ExportError> {
             for p in &block.placements {
                 let node = node_of[p.variant as usize][p.instance as usize];
                 if let Some(list) = each.get_mut(node as usize) {
+                    check_transform(&p.transform)?;
                     list.push(p.transform);
                 }
             }
             Ok(())
-        })?;
+        };
+        builder.stream_with(terrain, region, &|_| true, gather)?;
         Some(each)
     } else {
         None

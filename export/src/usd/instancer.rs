@@ -13,7 +13,8 @@ use sylva_terrain::HeightField;
 use sylva_terrain::glam::Vec3;
 
 use super::text::{half, tuple};
-use crate::error::ExportError;
+use crate::census::check_transform;
+use crate::error::{ExportError, Invalid};
 
 /// The instancer's arrays, in the order the file holds them, with their USD types.
 pub(super) const ARRAYS: [(&str, &str); 4] = [
@@ -36,7 +37,11 @@ struct BlockText {
 /// Spells `block`'s placements: those of instances with a prototype (`prototype_of`, per
 /// variant and instance, `u32::MAX` for none), each reaching `radius[prototype]` times its
 /// scale from its translation.
-fn block_text(block: PlacementBlock, prototype_of: &[Vec<u32>], radius: &[f32]) -> BlockText {
+fn block_text(
+    block: PlacementBlock,
+    prototype_of: &[Vec<u32>],
+    radius: &[f32],
+) -> Result<BlockText, Invalid> {
     let mut text = BlockText {
         lo: Vec3::INFINITY,
         hi: Vec3::NEG_INFINITY,
@@ -58,6 +63,7 @@ fn block_text(block: PlacementBlock, prototype_of: &[Vec<u32>], radius: &[f32]) 
             ", "
         };
         let x = &p.transform;
+        check_transform(x)?;
         ids.push_str(separator);
         ids.push_str(&proto.to_string());
         positions.push_str(separator);
@@ -80,7 +86,7 @@ fn block_text(block: PlacementBlock, prototype_of: &[Vec<u32>], radius: &[f32]) 
         text.hi = text.hi.max(x.translation + reach);
         text.placements += 1;
     }
-    text
+    Ok(text)
 }
 
 /// A file beside the destination holding one array's text while the forest streams; removed
@@ -159,6 +165,7 @@ impl Arrays {
         let mut placements = 0usize;
         let map = |block: PlacementBlock| block_text(block, prototype_of, radius);
         builder.stream_map::<_, ExportError>(terrain, region, &|_| true, &map, &mut |text| {
+            let text = text?;
             if text.placements == 0 {
                 return Ok(());
             }
@@ -227,7 +234,7 @@ mod tests {
             placements: vec![placement(0, 10.0), placement(1, 20.0), placement(2, 30.0)],
         };
         // Instance 1 has no prototype (no geometry).
-        let text = block_text(block, &[vec![4, u32::MAX, 0]], &[2.0, 0.0, 0.0, 0.0, 6.0]);
+        let text = block_text(block, &[vec![4, u32::MAX, 0]], &[2.0, 0.0, 0.0, 0.0, 6.0]).unwrap();
         assert_eq!(text.placements, 2);
         assert_eq!(text.arrays[0], ",\n4, 0");
         assert_eq!(text.arrays[1], ",\n(10, 1, 2), (30, 1, 2)");

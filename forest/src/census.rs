@@ -1,0 +1,105 @@
+//! How often a forest places each cached instance, counted without placing anything: the
+//! figure a file's layout needs before its placements are written.
+
+use rayon::prelude::*;
+use sylva_instancing::Assembler;
+use sylva_terrain::HeightField;
+
+use crate::density::Rect;
+use crate::error::ForestError;
+use crate::forest::ForestBuilder;
+use crate::stream::StreamStats;
+
+/// Per variant and cached instance, how many placements a region's forest has of it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InstanceCounts {
+    /// `counts[variant][instance]`: placements of that instance (saturating at `u32::MAX`).
+    pub counts: Vec<Vec<u32>>,
+    /// What a stream of the same region would hold: blocks, trees, seedlings, placements.
+    pub stats: StreamStats,
+}
+
+impl ForestBuilder {
+    /// Counts the placements of every instance in the forest of `region` on `terrain`: the
+    /// same trees as [`ForestBuilder::stream`], each assembled for which instances it draws
+    /// but without their transforms, on every core. The counts equal what streaming the
+    /// region and counting its placements gives, at any thread count.
+    ///
+    /// ```
+    /// use sylva_forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
+    /// use sylva_terrain::{FlatPlane, glam::Vec2};
+    ///
+    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
+    /// config.budget = 1 << 20;
+    /// let builder = ForestBuilder::new(config)?;
+    /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(100.0) };
+    /// let region = Rect::new(Vec2::ZERO, Vec2::splat(100.0));
+    /// let counted = builder.count_instances(&ground, region)?;
+    /// let mut streamed: Vec<Vec<u32>> = counted.counts.iter().map(|c| vec![0; c.len()]).collect();
+    /// let stats = builder.stream(&ground, region, &mut |b: &PlacementBlock| {
+    ///     for p in &b.placements {
+    ///         streamed[p.variant as usize][p.instance as usize] += 1;
+    ///     }
+    ///     Ok(())
+    /// })?;
+    /// assert_eq!(counted.counts, streamed);
+    /// assert_eq!(counted.stats, stats);
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn count_instances(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        region: Rect,
+    ) -> Result<InstanceCounts, ForestError> {
+        let blocks = self.blocks(region)?;
+        let variants = self.variants();
+        let empty = || InstanceCounts {
+            counts: variants
+                .iter()
+                .map(|v| vec![0; v.cache.instances.len()])
+                .collect(),
+            stats: StreamStats::default(),
+        };
+        blocks
+            .par_iter()
+            .try_fold(
+                || (empty(), Assembler::new()),
+                |(mut tally, mut assembler), &rect| {
+                    let trees = self.trees(terrain, rect);
+                    for tree in &trees {
+                        let v = usize::from(tree.variant);
+                        let (variant, counts) = variants
+                            .get(v)
+                            .zip(tally.counts.get_mut(v))
+                            .ok_or(ForestError::UnknownVariant {
+                                variant: tree.variant,
+                                variants: variants.len(),
+                            })?;
+                        let placed = assembler.instances_with(&variant.cache, tree, |i| {
+                            if let Some(c) = counts.get_mut(i as usize) {
+                                *c = c.saturating_add(1);
+                            }
+                        })?;
+                        tally.stats.placements += placed;
+                        tally.stats.seedlings += usize::from(variant.seedling);
+                    }
+                    tally.stats.trees += trees.len();
+                    tally.stats.blocks += 1;
+                    Ok((tally, assembler))
+                },
+            )
+            .map(|folded| folded.map(|(tally, _)| tally))
+            .try_reduce(empty, |mut a, b| {
+                for (x, y) in a.counts.iter_mut().zip(&b.counts) {
+                    for (p, q) in x.iter_mut().zip(y) {
+                        *p = p.saturating_add(*q);
+                    }
+                }
+                a.stats.blocks += b.stats.blocks;
+                a.stats.trees += b.stats.trees;
+                a.stats.seedlings += b.stats.seedlings;
+                a.stats.placements += b.stats.placements;
+                Ok(a)
+            })
+    }
+}
