@@ -8,7 +8,7 @@ use clap::Args;
 use sylva::base::file::FileError;
 use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{FlatPlane, HeightRange, Heightmap};
+use sylva::terrain::{HeightRange, Heightmap};
 
 use crate::Failure;
 use crate::progress::phase;
@@ -121,9 +121,7 @@ impl WorldArgs {
             None => {
                 let side = match (self.area, self.trees) {
                     (Some(a), _) => a,
-                    (None, Some(n)) => {
-                        (n as f32 / canopy_per_patch(&builder)).sqrt() * builder.density().patch
-                    }
+                    (None, Some(n)) => builder.side_for_canopy_trees(n),
                     (None, None) => 800.0,
                 };
                 let (map, _) = phase(quiet, "generating terrain", || {
@@ -144,29 +142,6 @@ impl WorldArgs {
             hero_time,
         })
     }
-}
-
-/// Canopy trees per density patch, counted on flat ground over a sample of 40 x 40 patches:
-/// not every patch holds one (some are gaps, some hold only seedlings), so a side of
-/// sqrt(N) patches would hold about three quarters of N. At least 0.01.
-fn canopy_per_patch(builder: &ForestBuilder) -> f32 {
-    let side = 40.0 * builder.density().patch;
-    let ground = FlatPlane {
-        height: 0.0,
-        min: Vec2::ZERO,
-        max: Vec2::splat(side),
-    };
-    let trees = builder.trees(&ground, Rect::new(Vec2::ZERO, Vec2::splat(side)));
-    let variants = builder.variants();
-    let canopy = trees
-        .iter()
-        .filter(|t| {
-            variants
-                .get(usize::from(t.variant))
-                .is_some_and(|v| !v.seedling)
-        })
-        .count();
-    (canopy as f32 / 1600.0).max(0.01)
 }
 
 /// Reads a user's heightmap: a 16-bit PNG, or a square RAW of little-endian 16-bit samples.

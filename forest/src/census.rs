@@ -1,14 +1,19 @@
-//! How often a forest places each cached instance, counted without placing anything: the
-//! figure a file's layout needs before its placements are written.
+//! Counting a forest without placing it: how often it places each cached instance (the
+//! figure a file's layout needs before its placements are written), and how large a world
+//! holds a number of canopy trees.
 
 use rayon::prelude::*;
 use sylva_instancing::Assembler;
-use sylva_terrain::HeightField;
+use sylva_terrain::glam::Vec2;
+use sylva_terrain::{FlatPlane, HeightField};
 
 use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
 use crate::stream::StreamStats;
+
+/// Patches along each side of the sample [`ForestBuilder::side_for_canopy_trees`] counts.
+const SAMPLE_PATCHES: f32 = 40.0;
 
 /// Per variant and cached instance, how many placements a region's forest has of it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -20,6 +25,47 @@ pub struct InstanceCounts {
 }
 
 impl ForestBuilder {
+    /// The side of a square world that holds about `n` canopy trees (seedlings not
+    /// counted): not every density patch holds one (some are gaps, some hold only
+    /// seedlings), so the share that does is counted on flat ground over a sample of 40 x 40
+    /// patches. Painted or masked forests hold fewer where their masks leave ground bare.
+    ///
+    /// ```
+    /// use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
+    /// use sylva_terrain::{FlatPlane, glam::Vec2};
+    ///
+    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
+    /// config.budget = 1 << 20;
+    /// let builder = ForestBuilder::new(config)?;
+    /// let side = builder.side_for_canopy_trees(2000);
+    /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(side) };
+    /// let trees = builder.trees(&ground, Rect::new(Vec2::ZERO, Vec2::splat(side)));
+    /// let canopy = trees.iter().filter(|t| !builder.variants()[t.variant as usize].seedling).count();
+    /// assert!((1800..2200).contains(&canopy), "{canopy}");
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn side_for_canopy_trees(&self, n: usize) -> f32 {
+        let patch = self.density().patch;
+        let side = SAMPLE_PATCHES * patch;
+        let ground = FlatPlane {
+            height: 0.0,
+            min: Vec2::ZERO,
+            max: Vec2::splat(side),
+        };
+        let variants = self.variants();
+        let canopy = self
+            .trees(&ground, Rect::new(Vec2::ZERO, Vec2::splat(side)))
+            .iter()
+            .filter(|t| {
+                variants
+                    .get(usize::from(t.variant))
+                    .is_some_and(|v| !v.seedling)
+            })
+            .count();
+        let per_patch = (canopy as f32 / (SAMPLE_PATCHES * SAMPLE_PATCHES)).max(0.01);
+        (n as f32 / per_patch).sqrt() * patch
+    }
+
     /// Counts the placements of every instance in the forest of `region` on `terrain`: the
     /// same trees as [`ForestBuilder::stream`], each assembled for which instances it draws
     /// but without their transforms, on every core. The counts equal what streaming the

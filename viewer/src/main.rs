@@ -11,8 +11,8 @@
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
 //! (every branch) within 250 m and as whole-tree proxies to 1,500 m, so a world of millions
 //! of trees is walked like a small one. `--trees N` sizes the world as `sylva forest`
-//! does, for N canopy trees (`--trees 1000000`: 6.2 km a side, 3.2 million trees with the
-//! seedlings).
+//! does, for about N canopy trees (`--trees 1000000`: 7.7 km a side, 5 million trees with
+//! the seedlings).
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
 //! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run; the

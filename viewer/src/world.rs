@@ -141,7 +141,7 @@ impl World {
         let patch = builder.density().patch;
         let side = match options.trees {
             _ if options.specimen => crate::turntable::world_patches(patch) as f32 * patch,
-            Some(n) => (n as f32).sqrt() * patch,
+            Some(n) => builder.side_for_canopy_trees(n as usize),
             None => options.side,
         };
         if options.specimen {
