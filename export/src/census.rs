@@ -3,11 +3,12 @@
 //! counts fix a file's whole layout (glTF offsets, USD prototypes) before a byte is written.
 
 use sylva_forest::{ForestBuilder, Rect, StreamStats, Variant};
-use sylva_instancing::Similarity;
+use sylva_instancing::{CompactTree, Similarity};
 use sylva_terrain::{HeightField, TerrainMesh};
 use sylva_turtle::Vertex;
 
 use crate::error::{ExportError, Invalid};
+use crate::spill::TreeSpill;
 
 /// One instance that is drawn: a glTF node with its own instancing accessors, a USD
 /// prototype.
@@ -24,15 +25,32 @@ pub(crate) struct Node {
 
 /// Placements of every instance of every variant (by variant, then instance), and what
 /// streaming the forest would hold: counted on every core without computing a transform
-/// ([`ForestBuilder::count_instances`]); the writing pass checks each transform
-/// ([`check_transform`]).
+/// ([`ForestBuilder::count_instances_keeping`]), each block's trees kept in `spill` for the
+/// writing pass, which checks each transform ([`check_transform`]).
 pub(crate) fn count_placements(
     builder: &ForestBuilder,
     terrain: &(dyn HeightField + Sync),
     region: Rect,
+    spill: &TreeSpill,
 ) -> Result<(Vec<Vec<u32>>, StreamStats), ExportError> {
-    let counted = builder.count_instances(terrain, region)?;
+    let keep = |block: usize, trees: &[CompactTree]| -> Result<(), ExportError> {
+        Ok(spill.keep(block, trees)?)
+    };
+    let counted = builder.count_instances_keeping(terrain, region, &keep)?;
     Ok((counted.counts, counted.stats))
+}
+
+/// The trees of block `block` (of rectangle `rect`) as the counting pass kept them in
+/// `spill`, placed again if it did not.
+pub(crate) fn kept_trees(
+    builder: &ForestBuilder,
+    terrain: &(dyn HeightField + Sync),
+    spill: &TreeSpill,
+    (block, rect): (usize, Rect),
+) -> Result<Vec<CompactTree>, ExportError> {
+    Ok(spill
+        .trees(block)?
+        .unwrap_or_else(|| builder.trees(terrain, rect)))
 }
 
 /// A placement is a translation, a unit rotation and a positive scale, all finite: what

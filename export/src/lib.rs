@@ -36,6 +36,7 @@
 mod census;
 mod error;
 mod gltf;
+mod spill;
 mod texture;
 mod tiles;
 mod usd;

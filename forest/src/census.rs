@@ -10,7 +10,7 @@ use sylva_terrain::{FlatPlane, HeightField};
 use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
-use crate::stream::StreamStats;
+use crate::stream::{KeepTrees, StreamStats};
 
 /// Patches along each side of the sample [`ForestBuilder::side_for_canopy_trees`] counts.
 const SAMPLE_PATCHES: f32 = 40.0;
@@ -97,6 +97,19 @@ impl ForestBuilder {
         terrain: &(dyn HeightField + Sync),
         region: Rect,
     ) -> Result<InstanceCounts, ForestError> {
+        self.count_instances_keeping(terrain, region, &|_, _| Ok(()))
+    }
+
+    /// As [`ForestBuilder::count_instances`], handing each block's trees to `keep(block,
+    /// trees)` (on the thread that placed them, blocks in any order) so that a second pass
+    /// can expand them without placing them again ([`ForestBuilder::stream_map_from`]).
+    /// Errors of `keep` stop the count and come back as they were.
+    pub fn count_instances_keeping<E: From<ForestError> + Send>(
+        &self,
+        terrain: &(dyn HeightField + Sync),
+        region: Rect,
+        keep: &KeepTrees<'_, E>,
+    ) -> Result<InstanceCounts, E> {
         let blocks = self.blocks(region)?;
         let variants = self.variants();
         let empty = || InstanceCounts {
@@ -108,9 +121,10 @@ impl ForestBuilder {
         };
         blocks
             .par_iter()
+            .enumerate()
             .try_fold(
                 || (empty(), Assembler::new()),
-                |(mut tally, mut assembler), &rect| {
+                |(mut tally, mut assembler), (index, &rect)| {
                     let trees = self.trees(terrain, rect);
                     for tree in &trees {
                         let v = usize::from(tree.variant);
@@ -121,17 +135,20 @@ impl ForestBuilder {
                                 variant: tree.variant,
                                 variants: variants.len(),
                             })?;
-                        let placed = assembler.instances_with(&variant.cache, tree, |i| {
-                            if let Some(c) = counts.get_mut(i as usize) {
-                                *c = c.saturating_add(1);
-                            }
-                        })?;
+                        let placed = assembler
+                            .instances_with(&variant.cache, tree, |i| {
+                                if let Some(c) = counts.get_mut(i as usize) {
+                                    *c = c.saturating_add(1);
+                                }
+                            })
+                            .map_err(ForestError::from)?;
                         tally.stats.placements += placed;
                         tally.stats.seedlings += usize::from(variant.seedling);
                     }
                     tally.stats.trees += trees.len();
                     tally.stats.blocks += 1;
-                    Ok((tally, assembler))
+                    keep(index, &trees)?;
+                    Ok::<_, E>((tally, assembler))
                 },
             )
             .map(|folded| folded.map(|(tally, _)| tally))

@@ -63,7 +63,7 @@ pub use patch::{Composition, PatchDensity, PatchSpecies};
 pub use proxy::{Extent, tree_proxy};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
-pub use stream::{Placement, PlacementBlock, PlacementSink, StreamStats};
+pub use stream::{KeepTrees, Placement, PlacementBlock, PlacementSink, StreamStats, TreesOf};
 pub use variety::{CLUSTER_SHADE_MEAN, cluster_shade, tree_tint, tree_wind};
 pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};
 

@@ -33,6 +33,14 @@ pub struct Placement {
     pub tree: u32,
 }
 
+/// Gives the trees of block `block` (of rectangle `rect`): what [`ForestBuilder::trees`]
+/// places there, or what an earlier pass kept of it.
+pub type TreesOf<'a, E> = dyn Fn(usize, Rect) -> Result<Vec<CompactTree>, E> + Sync + 'a;
+
+/// Takes the trees of block `block` as a first pass placed them
+/// ([`ForestBuilder::count_instances_keeping`]).
+pub type KeepTrees<'a, E> = dyn Fn(usize, &[CompactTree]) -> Result<(), E> + Sync + 'a;
+
 /// The trees of one block and their placements, in tree order.
 #[derive(Debug, Clone)]
 pub struct PlacementBlock {
@@ -129,6 +137,20 @@ impl ForestBuilder {
         assembler: &mut Assembler,
     ) -> Result<PlacementBlock, ForestError> {
         let trees = self.trees(terrain, region);
+        self.block_of(index, region, trees, expand, assembler)
+    }
+
+    /// The block of `trees` (those of `region`, as [`ForestBuilder::trees`] gives them, kept
+    /// from an earlier pass perhaps) with the placements of those whose variant `expand`
+    /// accepts.
+    fn block_of(
+        &self,
+        index: usize,
+        region: Rect,
+        trees: Vec<CompactTree>,
+        expand: &(dyn Fn(u16) -> bool + Sync),
+        assembler: &mut Assembler,
+    ) -> Result<PlacementBlock, ForestError> {
         let mut placements = Vec::with_capacity(trees.len() * 8);
         let variants = self.variants();
         for (position, tree) in trees.iter().enumerate().filter(|(_, t)| expand(t.variant)) {
@@ -239,8 +261,9 @@ impl ForestBuilder {
         let blocks = self.blocks(region)?;
         let wave = wave_size();
         let mut stats = StreamStats::default();
+        let placed = |_: usize, rect: Rect| Ok::<_, ForestError>(self.trees(terrain, rect));
         for (w, rects) in blocks.chunks(wave).enumerate() {
-            let done = self.place_wave(terrain, rects, w * wave, expand, &|block| block);
+            let done = self.place_wave(rects, w * wave, &placed, expand, &|block| block);
             drain(done, &mut stats, &mut |block: PlacementBlock| sink(&block))?;
         }
         Ok(stats)
@@ -277,13 +300,30 @@ impl ForestBuilder {
         map: &(dyn Fn(PlacementBlock) -> T + Sync),
         sink: &mut (dyn FnMut(T) -> Result<(), E> + Send),
     ) -> Result<StreamStats, E> {
+        let placed = |_: usize, rect: Rect| Ok(self.trees(terrain, rect));
+        self.stream_map_from(region, &placed, expand, map, sink)
+    }
+
+    /// As [`ForestBuilder::stream_map`], with each block's trees from `trees_of(block, rect)`
+    /// instead of placed anew: the trees an earlier pass kept
+    /// ([`ForestBuilder::count_instances_keeping`]), which must be what
+    /// [`ForestBuilder::trees`] gives for that block's rectangle. Placing trees is most of a
+    /// stream's work; a writer that streams a forest twice places them once.
+    pub fn stream_map_from<T: Send, E: From<ForestError> + Send>(
+        &self,
+        region: Rect,
+        trees_of: &TreesOf<'_, E>,
+        expand: &(dyn Fn(u16) -> bool + Sync),
+        map: &(dyn Fn(PlacementBlock) -> T + Sync),
+        sink: &mut (dyn FnMut(T) -> Result<(), E> + Send),
+    ) -> Result<StreamStats, E> {
         let blocks = self.blocks(region)?;
         let wave = wave_size();
         let mut stats = StreamStats::default();
-        let mut pending = Vec::new();
+        let mut pending: Vec<Result<(StreamStats, T), E>> = Vec::new();
         for (w, rects) in blocks.chunks(wave).enumerate() {
             let (done, sunk) = rayon::join(
-                || self.place_wave(terrain, rects, w * wave, expand, map),
+                || self.place_wave(rects, w * wave, trees_of, expand, map),
                 || drain(std::mem::take(&mut pending), &mut stats, sink),
             );
             sunk?;
@@ -293,22 +333,23 @@ impl ForestBuilder {
         Ok(stats)
     }
 
-    /// The blocks `rects` (numbered from `first`) placed on every core, each turned into a
-    /// `T` by `map` where it was placed, with what it held.
-    fn place_wave<T: Send>(
+    /// The blocks `rects` (numbered from `first`, their trees from `trees_of`) expanded on
+    /// every core, each turned into a `T` by `map` where it was placed, with what it held.
+    fn place_wave<T: Send, E: From<ForestError> + Send>(
         &self,
-        terrain: &(dyn HeightField + Sync),
         rects: &[Rect],
         first: usize,
+        trees_of: &TreesOf<'_, E>,
         expand: &(dyn Fn(u16) -> bool + Sync),
         map: &(dyn Fn(PlacementBlock) -> T + Sync),
-    ) -> Vec<Result<(StreamStats, T), ForestError>> {
+    ) -> Vec<Result<(StreamStats, T), E>> {
         let variants = self.variants();
         rects
             .par_iter()
             .enumerate()
             .map_init(Assembler::new, |assembler, (k, &rect)| {
-                let block = self.block(terrain, first + k, rect, expand, assembler)?;
+                let trees = trees_of(first + k, rect)?;
+                let block = self.block_of(first + k, rect, trees, expand, assembler)?;
                 let seedlings = block
                     .trees
                     .iter()
@@ -330,17 +371,18 @@ impl ForestBuilder {
     }
 }
 
-/// Blocks placed at once: eight per thread, so that a slow block does not idle the others
-/// (a wave waits for its slowest block; at two per thread a million-tree export placed 20%
-/// slower), while a wave's blocks stay tens of megabytes.
+/// Blocks placed at once: six per thread, so that a slow block does not idle the others (a
+/// wave waits for its slowest block; at two per thread a million-tree export ran 20% slower),
+/// while two waves' placements stay within about 150 MB (at eight per thread the export's
+/// peak memory neared 350 MB).
 fn wave_size() -> usize {
-    rayon::current_num_threads().max(1) * 8
+    rayon::current_num_threads().max(1) * 6
 }
 
 /// Hands a wave's blocks to `sink` in order, adding what they held to `stats`; the first
 /// error stops it.
-fn drain<T, E: From<ForestError>>(
-    done: Vec<Result<(StreamStats, T), ForestError>>,
+fn drain<T, D, E: From<D>>(
+    done: Vec<Result<(StreamStats, T), D>>,
     stats: &mut StreamStats,
     sink: &mut dyn FnMut(T) -> Result<(), E>,
 ) -> Result<(), E> {

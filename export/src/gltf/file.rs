@@ -11,8 +11,9 @@ use super::builder::padding;
 use super::document::Document;
 use super::extras::vertex_extras;
 use super::{Node, PLACEMENT_BYTES, glb_header};
-use crate::census::check_transform;
+use crate::census::{check_transform, kept_trees};
 use crate::error::{ExportError, Invalid};
+use crate::spill::TreeSpill;
 
 /// Writes `path` whole or not at all: the GLB header, the JSON chunk and the BIN chunk
 /// header, then the binary content by `body`; returns what `body` returns.
@@ -165,8 +166,7 @@ fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, 
 pub(super) fn write_placements(
     w: &mut AtomicFile,
     builder: &ForestBuilder,
-    terrain: &(dyn HeightField + Sync),
-    region: Rect,
+    (terrain, region, spill): (&(dyn HeightField + Sync), Rect, &TreeSpill),
     nodes: &[Node],
     node_of: &[Vec<u32>],
     base: usize,
@@ -201,7 +201,8 @@ pub(super) fn write_placements(
         Ok::<(), ExportError>(())
     };
     let runs = |block: PlacementBlock| block_runs(block, node_of);
-    builder.stream_map::<_, ExportError>(terrain, region, &|_| true, &runs, &mut |runs| {
+    let trees = |block: usize, rect: Rect| kept_trees(builder, terrain, spill, (block, rect));
+    builder.stream_map_from(region, &trees, &|_| true, &runs, &mut |runs| {
         let runs = runs?;
         let mut from = [0usize; 5];
         for &(node, count) in &runs.runs {

@@ -36,6 +36,7 @@ use crate::census::{
     Drawn, Node, check_geometry, check_transform, count_placements, drawn_instances,
 };
 use crate::error::ExportError;
+use crate::spill::TreeSpill;
 use document::Document;
 use file::{write_file, write_geometry, write_placements};
 
@@ -192,8 +193,9 @@ pub fn write_glb(
     let terrain_mesh = terrain_mesh.filter(|t| !t.indices.is_empty());
     check_geometry(variants, terrain_mesh)?;
 
-    // Pass 1: count the placements of every instance, checking each transform.
-    let (counts, counted) = count_placements(builder, terrain, region)?;
+    // Pass 1: count the placements of every instance, keeping each block's trees.
+    let spill = TreeSpill::create(path, builder.blocks(region)?.len())?;
+    let (counts, counted) = count_placements(builder, terrain, region, &spill)?;
     // The layout: which instances become nodes, and where every byte goes.
     let Drawn {
         nodes,
@@ -244,8 +246,7 @@ pub fn write_glb(
         write_placements(
             file,
             builder,
-            terrain,
-            region,
+            (terrain, region, &spill),
             &nodes,
             &node_of,
             document.bin_start() + document.placement_base,

@@ -13,8 +13,9 @@ use sylva_terrain::HeightField;
 use sylva_terrain::glam::Vec3;
 
 use super::text::{half, tuple};
-use crate::census::check_transform;
+use crate::census::{check_transform, kept_trees};
 use crate::error::{ExportError, Invalid};
+use crate::spill::TreeSpill;
 
 /// The instancer's arrays, in the order the file holds them, with their USD types.
 pub(super) const ARRAYS: [(&str, &str); 4] = [
@@ -149,11 +150,11 @@ pub(super) struct Arrays {
 }
 
 impl Arrays {
-    /// Streams the forest of `region` once and spells every placement of an instance with a
-    /// prototype.
+    /// Streams the forest of `region` once (its trees as the counting pass kept them in the
+    /// spill) and spells every placement of an instance with a prototype.
     pub(super) fn stream(
         builder: &ForestBuilder,
-        (terrain, region): (&(dyn HeightField + Sync), Rect),
+        (terrain, region, spill): (&(dyn HeightField + Sync), Rect, &TreeSpill),
         (prototype_of, radius): (&[Vec<u32>], &[f32]),
         destination: &Path,
     ) -> Result<Arrays, ExportError> {
@@ -164,7 +165,8 @@ impl Arrays {
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         let mut placements = 0usize;
         let map = |block: PlacementBlock| block_text(block, prototype_of, radius);
-        builder.stream_map::<_, ExportError>(terrain, region, &|_| true, &map, &mut |text| {
+        let trees = |block: usize, rect: Rect| kept_trees(builder, terrain, spill, (block, rect));
+        builder.stream_map_from(region, &trees, &|_| true, &map, &mut |text| {
             let text = text?;
             if text.placements == 0 {
                 return Ok(());

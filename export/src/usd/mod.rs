@@ -20,6 +20,7 @@ use sylva_terrain::{HeightField, TerrainMesh};
 
 use crate::census::{Drawn, Node, check_geometry, count_placements, drawn_instances};
 use crate::error::ExportError;
+use crate::spill::TreeSpill;
 use instancer::Arrays;
 use material::{MATERIALS, SpeciesMaterials, write_terrain_material};
 use mesh::MeshData;
@@ -154,8 +155,9 @@ pub fn write_usda(
     let terrain_mesh = terrain_mesh.filter(|t| !t.indices.is_empty());
     check_geometry(variants, terrain_mesh)?;
 
-    // Pass 1: which instances are placed, and how often.
-    let (counts, counted) = count_placements(builder, terrain, region)?;
+    // Pass 1: which instances are placed, and how often, keeping each block's trees.
+    let spill = TreeSpill::create(path, builder.blocks(region)?.len())?;
+    let (counts, counted) = count_placements(builder, terrain, region, &spill)?;
     let Drawn {
         nodes,
         node_of,
@@ -200,7 +202,13 @@ pub fn write_usda(
         .collect();
 
     // Pass 2: every placement, spelt into scratch files.
-    let arrays = Arrays::stream(builder, (terrain, region), (&node_of, &radius), path)?;
+    let arrays = Arrays::stream(
+        builder,
+        (terrain, region, &spill),
+        (&node_of, &radius),
+        path,
+    )?;
+    drop(spill);
     if arrays.placements != placements {
         return Err(crate::error::Invalid::Layout {
             written: arrays.placements as u64,
