@@ -1,5 +1,5 @@
 //! Writing a laid-out GLB: the header and JSON chunk, the geometry and textures, then the
-//! placements chunk by chunk, each chunk gathered from one streaming pass.
+//! placements from one streaming pass, each instance's buffered and put at its offsets.
 
 use std::path::Path;
 
@@ -153,12 +153,13 @@ fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, 
     Ok(out)
 }
 
-/// Streams the forest once and writes every placement at its place in the T, R, S, tint and
-/// wind sections (which start at file offset `base`). Blocks are placed and turned into the
-/// file's floats on every core while the previous wave is written
-/// ([`ForestBuilder::stream_map`]); each node's placements are buffered and written at their place whenever the node holds its share of `chunk_bytes`,
-/// so memory stays within about `chunk_bytes` however many placements there are. Returns
-/// the passes over the forest (1).
+/// Streams the forest once, from the trees the counting pass kept in `spill`, and writes
+/// every placement at its place in the T, R, S, tint and wind sections (which start at file
+/// offset `base`). Blocks are expanded and turned into the file's floats on every core while
+/// the previous wave is written ([`ForestBuilder::stream_map_from`]); each node's placements
+/// are buffered and written at their place whenever the node holds its share of
+/// `chunk_bytes`, so memory stays within about `chunk_bytes` however many placements there
+/// are. Returns the passes over the forest (1).
 #[allow(
     clippy::too_many_arguments,
     reason = "one call site; the pieces are all different"
@@ -206,16 +207,20 @@ pub(super) fn write_placements(
         let runs = runs?;
         let mut from = [0usize; 5];
         for &(node, count) in &runs.runs {
-            let Some(buffer) = buffers.get_mut(node as usize) else {
+            let at = from;
+            for (k, floats) in SECTION_FLOATS.iter().enumerate() {
+                from[k] += floats * count as usize;
+            }
+            let (Some(buffer), Some(node)) =
+                (buffers.get_mut(node as usize), nodes.get(node as usize))
+            else {
                 continue;
             };
-            for (k, floats) in SECTION_FLOATS.iter().enumerate() {
-                let to = from[k] + floats * count as usize;
-                buffer.sections[k].extend_from_slice(&runs.sections[k][from[k]..to]);
-                from[k] = to;
+            for k in 0..SECTION_FLOATS.len() {
+                buffer.sections[k].extend_from_slice(&runs.sections[k][at[k]..from[k]]);
             }
             if buffer.sections[0].len() / SECTION_FLOATS[0] >= flush_at {
-                flush(w, &nodes[node as usize], buffer)?;
+                flush(w, node, buffer)?;
             }
         }
         Ok(())

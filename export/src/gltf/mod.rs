@@ -2,10 +2,11 @@
 //! and each instance's placements through EXT_mesh_gpu_instancing.
 //!
 //! A forest of a million trees has millions of placements, more than should sit in memory at
-//! once. The writer streams the forest twice or more: a first pass counts the placements of
-//! every instance, which fixes the whole layout (JSON and binary offsets); then each pass
-//! gathers the placements of a range of instances (at most [`CHUNK_BYTES`] of them) and
-//! writes them where the layout says. Memory holds the caches, the JSON text and one chunk.
+//! once. The writer streams the forest twice: a first pass counts the placements of every
+//! instance, which fixes the whole layout (JSON and binary offsets), and keeps each block's
+//! trees in a scratch file; the second expands those trees and puts every placement where
+//! the layout says, buffering at most about [`CHUNK_BYTES`] of them. Memory holds the
+//! caches, the JSON text, the buffers and a couple of waves of blocks.
 //! The file is written beside its destination under a temporary name and renamed when
 //! complete ([`sylva_base::file::AtomicFile`]), so an error (a bad path, a full disk) never
 //! leaves a half-written file.
