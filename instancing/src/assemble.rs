@@ -4,7 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Quat, Vec3};
 
-use crate::cache::InstanceCache;
+use crate::cache::{Instance, InstanceCache};
 use crate::error::InstancingError;
 use crate::options::ROOT;
 use crate::similarity::Similarity;
@@ -171,12 +171,15 @@ impl Assembler {
         mut place: impl FnMut(u32, Similarity),
     ) -> Result<usize, InstancingError> {
         let mut stack = std::mem::take(&mut self.stack);
-        let placed = self.walk(&mut stack, cache, tree, tree.root(), |instance, desired| {
-            place(
-                instance,
-                desired.mul(&cache.instances[instance as usize].frame_inverse),
-            );
-        });
+        let placed = self.walk(
+            &mut stack,
+            cache,
+            tree,
+            tree.root(),
+            |k, instance, desired| {
+                place(k, desired.mul(&instance.frame_inverse));
+            },
+        );
         self.stack = stack;
         placed
     }
@@ -206,13 +209,14 @@ impl Assembler {
         mut visit: impl FnMut(u32),
     ) -> Result<usize, InstancingError> {
         let mut stack = std::mem::take(&mut self.bare);
-        let placed = self.walk(&mut stack, cache, tree, (), |instance, ()| visit(instance));
+        let placed = self.walk(&mut stack, cache, tree, (), |k, _, ()| visit(k));
         self.bare = stack;
         placed
     }
 
     /// Kenwood's algorithm 2 over `stack`, from `root`: chooses each instance of the tree
-    /// and calls `place(instance, frame)` with the frame D it is placed at.
+    /// and calls `place(index, instance, frame)` with the frame D it is placed at (the
+    /// instance looked up once, here).
     #[inline]
     fn walk<F: Frame>(
         &mut self,
@@ -220,7 +224,7 @@ impl Assembler {
         cache: &InstanceCache,
         tree: &CompactTree,
         root: F,
-        mut place: impl FnMut(u32, F),
+        mut place: impl FnMut(u32, &Instance, F),
     ) -> Result<usize, InstancingError> {
         stack.clear();
         self.used.clear();
@@ -281,7 +285,7 @@ impl Assembler {
             };
             self.used.push(chosen);
             let instance = &cache.instances[chosen as usize];
-            place(chosen, desired);
+            place(chosen, instance, desired);
             placed += 1;
             if placed > self.limits.max_instances {
                 return Err(InstancingError::AssemblyLimit("instances per tree"));
