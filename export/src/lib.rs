@@ -45,7 +45,7 @@ pub use error::{ExportError, Invalid};
 pub use gltf::{
     GlbStats, GltfOptions, write_glb, write_shared_geometry, write_stand_glb, write_tree_glb,
 };
-pub use texture::Texture;
+pub use texture::{Texture, linear_to_srgb, srgb_to_linear};
 pub use tiles::{
     Level, TileId, TileScheme, TileStats, TilesetOptions, check_tileset_folder, tile_path,
     write_tile, write_tileset,

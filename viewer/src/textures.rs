@@ -1,7 +1,7 @@
 //! The procedural textures on the GPU: leaf cards and bark as one texture array, and which
 //! layer a material reads.
 
-use sylva::export::Texture;
+use sylva::export::{Texture, linear_to_srgb};
 use sylva::forest::{BarkPattern, LeafShape};
 use wgpu::util::DeviceExt;
 
@@ -28,18 +28,9 @@ pub(crate) fn leaf_layer(shape: LeafShape) -> u32 {
 /// A texture of plain values (a normal map) re-encoded so that the sRGB array, which decodes
 /// every texel to linear, hands the shader the original values.
 fn srgb_encoded(mut texture: Texture) -> Texture {
-    let encode = |v: u8| {
-        let x = f32::from(v) / 255.0;
-        let s = if x <= 0.003_130_8 {
-            12.92 * x
-        } else {
-            1.055 * x.powf(1.0 / 2.4) - 0.055
-        };
-        (s * 255.0).round() as u8
-    };
     for px in texture.rgba.chunks_exact_mut(4) {
         for c in &mut px[..3] {
-            *c = encode(*c);
+            *c = linear_to_srgb(f32::from(*c) / 255.0);
         }
     }
     texture
