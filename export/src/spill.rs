@@ -11,6 +11,15 @@ use std::sync::Mutex;
 use sylva_base::file::FileError;
 use sylva_instancing::CompactTree;
 
+/// The name of a writer's scratch file `tag` beside `destination`: hidden, so that folders
+/// checked for foreign files (a tileset's) take it for their own, and removed by its owner.
+pub(crate) fn scratch_beside(destination: &Path, tag: &str) -> PathBuf {
+    let name = destination
+        .file_name()
+        .map_or_else(|| "forest".into(), |n| n.to_string_lossy().into_owned());
+    destination.with_file_name(format!(".{name}.{tag}.sylva-scratch"))
+}
+
 /// The scratch file and where each block's trees are in it.
 #[derive(Debug)]
 struct Spilled {
@@ -32,10 +41,7 @@ pub(crate) struct TreeSpill {
 impl TreeSpill {
     /// A spill beside `destination` for `blocks` blocks.
     pub(crate) fn create(destination: &Path, blocks: usize) -> Result<TreeSpill, FileError> {
-        let name = destination
-            .file_name()
-            .map_or_else(|| "forest".into(), |n| n.to_string_lossy().into_owned());
-        let path = destination.with_file_name(format!(".{name}.trees.sylva-scratch"));
+        let path = scratch_beside(destination, "trees");
         let file = File::options()
             .read(true)
             .write(true)

@@ -15,7 +15,7 @@ use sylva_terrain::glam::Vec3;
 use super::text::{half, tuple};
 use crate::census::{check_transform, kept_trees};
 use crate::error::{ExportError, Invalid};
-use crate::spill::TreeSpill;
+use crate::spill::{TreeSpill, scratch_beside};
 
 /// The instancer's arrays, in the order the file holds them, with their USD types.
 pub(super) const ARRAYS: [(&str, &str); 4] = [
@@ -100,10 +100,7 @@ struct Scratch {
 
 impl Scratch {
     fn create(destination: &Path, array: &str) -> Result<Scratch, FileError> {
-        let name = destination
-            .file_name()
-            .map_or_else(|| "forest".into(), |n| n.to_string_lossy().into_owned());
-        let path = destination.with_file_name(format!(".{name}.{array}.sylva-scratch"));
+        let path = scratch_beside(destination, array);
         let file = File::create(&path).map_err(FileError::at(&path))?;
         Ok(Scratch {
             writer: Some(BufWriter::with_capacity(1 << 20, file)),
