@@ -1,5 +1,5 @@
-//! Procedural leaf textures: alpha-masked cards drawn in Rust, deterministic from their
-//! parameters, so a forest's look needs no image files.
+//! Procedural textures, leaf cards (alpha-masked) and bark (colour and normal maps), drawn in
+//! Rust and deterministic from their parameters, so a forest's look needs no image files.
 //!
 //! A leaf card's texture runs from the petiole at v = 0 to the tip at v = 1, across the blade
 //! in u. Colours are near white with veins and blotches darker: the species' leaf colour is
