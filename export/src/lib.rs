@@ -36,6 +36,7 @@
 mod census;
 mod error;
 mod gltf;
+pub mod lod;
 mod spill;
 mod texture;
 mod tiles;

@@ -1,0 +1,19 @@
+//! Levels of detail: coarser meshes of every cached instance and whole tree
+//! ([`simplify_mesh`], [`CacheLods`]), impostors drawn on the CPU ([`Impostor`]), and the
+//! distances at which each takes over.
+
+mod cache;
+mod chain;
+mod compare;
+mod impostor;
+mod raster;
+mod simplify;
+mod tree;
+
+pub use cache::{CacheLods, LevelSpans};
+pub use chain::{LodChain, PIXELS_PER_RADIAN_1080P};
+pub use compare::{SilhouetteMatch, calibrate_leaves, compare_silhouettes};
+pub use impostor::{Impostor, ImpostorOptions, hemi_octahedral_direction, hemi_octahedral_uv};
+pub use raster::{OrthoView, Picture, TreeLook, draw};
+pub use simplify::{LodLevel, simplify_mesh};
+pub use tree::variant_tree;

@@ -1,0 +1,288 @@
+//! A small software rasteriser: a tree mesh seen along one direction in an orthographic
+//! view, with its bark and leaf textures, alpha-tested cards and a depth buffer. It draws the
+//! views of impostor atlases and measures silhouettes, with no GPU, so tests and CI make
+//! them as a user's machine does.
+
+use glam::{Vec2, Vec3};
+use sylva_turtle::Mesh;
+
+use crate::texture::{Texture, srgb_to_linear};
+
+/// How a species' tree looks: colours (linear RGB) and textures.
+#[derive(Debug, Clone)]
+pub struct TreeLook {
+    /// Bark colour, multiplied by the bark texture.
+    pub bark: [f32; 3],
+    /// Leaf colour, multiplied by the leaf texture.
+    pub leaf: [f32; 3],
+    /// The bark texture (tiled).
+    pub bark_texture: Texture,
+    /// The leaf card texture; its alpha cuts the cards.
+    pub leaf_texture: Texture,
+}
+
+impl TreeLook {
+    /// The look of `species`: its colours with its leaf and bark textures.
+    pub fn of(species: &sylva_forest::Species) -> TreeLook {
+        TreeLook {
+            bark: species.bark,
+            leaf: species.leaf,
+            bark_texture: Texture::bark(species.bark_pattern),
+            leaf_texture: Texture::leaf(species.leaf_shape),
+        }
+    }
+
+    /// Untextured, for silhouettes: the colours alone, every card whole.
+    pub fn plain(bark: [f32; 3], leaf: [f32; 3]) -> TreeLook {
+        let white = Texture {
+            width: 1,
+            height: 1,
+            rgba: vec![255; 4],
+        };
+        TreeLook {
+            bark,
+            leaf,
+            bark_texture: white.clone(),
+            leaf_texture: white,
+        }
+    }
+}
+
+/// An orthographic view of a tree: the square of side `2 half` about `centre`, seen from
+/// `toward` (a unit vector from the tree to the viewer), `size` pixels across.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OrthoView {
+    /// The middle of the picture, in the mesh's space.
+    pub centre: Vec3,
+    /// From the tree towards the viewer (unit).
+    pub toward: Vec3,
+    /// Half the picture's side, in the mesh's units.
+    pub half: f32,
+    /// Pixels across (and down).
+    pub size: u32,
+}
+
+impl OrthoView {
+    /// The picture's right and up directions: right is horizontal (perpendicular to +Y and
+    /// `toward`), up completes the frame; looking straight down, right is +X and up is -Z.
+    pub fn axes(toward: Vec3) -> (Vec3, Vec3) {
+        let right = Vec3::Y.cross(toward);
+        let right = if right.length_squared() > 1e-8 {
+            right.normalize()
+        } else {
+            Vec3::X
+        };
+        (right, toward.cross(right).normalize())
+    }
+}
+
+/// What a view saw, per pixel (rows from the top).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Picture {
+    /// Pixels across and down.
+    pub size: u32,
+    /// Linear colour of what covers the pixel (black where nothing does).
+    pub colour: Vec<[f32; 3]>,
+    /// Share of the pixel covered, 0 to 1.
+    pub coverage: Vec<f32>,
+    /// The surface's normal in the mesh's space, facing the viewer (zero where uncovered).
+    pub normal: Vec<[f32; 3]>,
+    /// Nearness of the nearest surface: its distance towards the viewer from the view's
+    /// centre over `half`, in `[-1, 1]` (−1 where uncovered).
+    pub depth: Vec<f32>,
+    /// Share of the covered part that is leaves rather than bark.
+    pub leaf: Vec<f32>,
+}
+
+impl Picture {
+    /// Pixels at least half covered.
+    pub fn covered(&self) -> usize {
+        self.coverage.iter().filter(|&&c| c >= 0.5).count()
+    }
+}
+
+/// One sample of the supersampled buffer.
+#[derive(Clone, Copy)]
+struct Sample {
+    depth: f32,
+    colour: Vec3,
+    normal: Vec3,
+    leaf: bool,
+}
+
+/// Samples per pixel along each axis.
+const SUPERSAMPLE: u32 = 2;
+
+/// `mesh` seen in `view`, with `look`'s colours and textures, cards cut where their texture's
+/// alpha is below one half; each pixel the average of 2 x 2 samples.
+///
+/// ```
+/// use sylva_export::lod::{OrthoView, TreeLook, draw};
+/// use glam::Vec3;
+/// let species = sylva_forest::Species::from_preset("sylva-hazel", 3)?;
+/// let mesh = species.mesh(3, 1)?;
+/// let (lo, hi) = mesh.bounds().unwrap();
+/// let view = OrthoView { centre: (lo + hi) * 0.5, toward: Vec3::Z, half: (hi - lo).max_element(), size: 64 };
+/// let picture = draw(&mesh, &TreeLook::of(&species), &view);
+/// assert!(picture.covered() > 100);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn draw(mesh: &Mesh, look: &TreeLook, view: &OrthoView) -> Picture {
+    let n = (view.size * SUPERSAMPLE) as usize;
+    let mut samples: Vec<Option<Sample>> = vec![None; n * n];
+    let (right, up) = OrthoView::axes(view.toward);
+    let scale = n as f32 / (2.0 * view.half.max(1e-6));
+    let project = |p: Vec3| {
+        let d = p - view.centre;
+        Vec3::new(
+            d.dot(right) * scale + n as f32 * 0.5,
+            n as f32 * 0.5 - d.dot(up) * scale,
+            d.dot(view.toward) / view.half.max(1e-6),
+        )
+    };
+    let linear = |c: [f32; 3]| Vec3::from(c);
+    let (bark_colour, leaf_colour) = (linear(look.bark), linear(look.leaf));
+    let texel = |t: &Texture, uv: Vec2, tile: bool| -> [u8; 4] {
+        let (w, h) = (t.width.max(1), t.height.max(1));
+        let (u, v) = if tile {
+            (uv.x.rem_euclid(1.0), uv.y.rem_euclid(1.0))
+        } else {
+            (uv.x.clamp(0.0, 1.0), uv.y.clamp(0.0, 1.0))
+        };
+        let x = ((u * w as f32) as u32).min(w - 1);
+        let y = ((v * h as f32) as u32).min(h - 1);
+        let i = ((y * w + x) * 4) as usize;
+        t.rgba
+            .get(i..i + 4)
+            .and_then(|s| s.try_into().ok())
+            .unwrap_or([255; 4])
+    };
+    let mut triangle = |tri: &[u32], leaf: bool| {
+        let Some(corners) = tri
+            .iter()
+            .map(|&i| mesh.vertices.get(i as usize))
+            .collect::<Option<Vec<_>>>()
+        else {
+            return;
+        };
+        let p: Vec<Vec3> = corners
+            .iter()
+            .map(|v| project(Vec3::from(v.position)))
+            .collect();
+        let area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+        if area.abs() < 1e-12 {
+            return;
+        }
+        let lo = p[0].min(p[1]).min(p[2]);
+        let hi = p[0].max(p[1]).max(p[2]);
+        let (x0, x1) = (
+            lo.x.floor().max(0.0) as usize,
+            (hi.x.ceil().max(0.0) as usize).min(n),
+        );
+        let (y0, y1) = (
+            lo.y.floor().max(0.0) as usize,
+            (hi.y.ceil().max(0.0) as usize).min(n),
+        );
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
+                let edge = |a: Vec3, b: Vec3| (b.x - a.x) * (py - a.y) - (px - a.x) * (b.y - a.y);
+                let w = [edge(p[1], p[2]), edge(p[2], p[0]), edge(p[0], p[1])].map(|e| e / area);
+                if w.iter().any(|&w| w < 0.0) {
+                    continue;
+                }
+                let depth = w[0] * p[0].z + w[1] * p[1].z + w[2] * p[2].z;
+                let slot = &mut samples[y * n + x];
+                if slot.is_some_and(|s| s.depth >= depth) {
+                    continue;
+                }
+                let uv = corners
+                    .iter()
+                    .zip(w)
+                    .fold(Vec2::ZERO, |acc, (v, w)| acc + Vec2::from(v.uv) * w);
+                let (texture, tile) = if leaf {
+                    (&look.leaf_texture, false)
+                } else {
+                    (&look.bark_texture, true)
+                };
+                let t = texel(texture, uv, tile);
+                if leaf && t[3] < 128 {
+                    continue;
+                }
+                let base = if leaf { leaf_colour } else { bark_colour };
+                let colour = base
+                    * Vec3::new(
+                        srgb_to_linear(t[0]),
+                        srgb_to_linear(t[1]),
+                        srgb_to_linear(t[2]),
+                    );
+                let normal = corners
+                    .iter()
+                    .zip(w)
+                    .fold(Vec3::ZERO, |acc, (v, w)| acc + Vec3::from(v.normal) * w)
+                    .normalize_or(view.toward);
+                // Cards are seen from both sides: their normal faces the viewer.
+                let normal = if normal.dot(view.toward) < 0.0 && leaf {
+                    -normal
+                } else {
+                    normal
+                };
+                *slot = Some(Sample {
+                    depth,
+                    colour,
+                    normal,
+                    leaf,
+                });
+            }
+        }
+    };
+    for tri in mesh.bark.chunks_exact(3) {
+        triangle(tri, false);
+    }
+    for tri in mesh.leaves.chunks_exact(3) {
+        triangle(tri, true);
+    }
+    resolve(&samples, view.size)
+}
+
+/// Each pixel from its 2 x 2 samples.
+fn resolve(samples: &[Option<Sample>], size: u32) -> Picture {
+    let (m, n) = (size as usize, (size * SUPERSAMPLE) as usize);
+    let count = m * m;
+    let mut picture = Picture {
+        size,
+        colour: vec![[0.0; 3]; count],
+        coverage: vec![0.0; count],
+        normal: vec![[0.0; 3]; count],
+        depth: vec![-1.0; count],
+        leaf: vec![0.0; count],
+    };
+    let s = SUPERSAMPLE as usize;
+    for y in 0..m {
+        for x in 0..m {
+            let (mut covered, mut leaves) = (0usize, 0usize);
+            let (mut colour, mut normal, mut depth) = (Vec3::ZERO, Vec3::ZERO, -1.0f32);
+            for dy in 0..s {
+                for dx in 0..s {
+                    if let Some(sample) = samples[(y * s + dy) * n + x * s + dx] {
+                        covered += 1;
+                        leaves += usize::from(sample.leaf);
+                        colour += sample.colour;
+                        normal += sample.normal;
+                        depth = depth.max(sample.depth);
+                    }
+                }
+            }
+            if covered == 0 {
+                continue;
+            }
+            let i = y * m + x;
+            picture.colour[i] = (colour / covered as f32).to_array();
+            picture.coverage[i] = covered as f32 / (s * s) as f32;
+            picture.normal[i] = normal.normalize_or_zero().to_array();
+            picture.depth[i] = depth.clamp(-1.0, 1.0);
+            picture.leaf[i] = leaves as f32 / covered as f32;
+        }
+    }
+    picture
+}
