@@ -158,7 +158,7 @@ fn tree_instance(tree: &CompactTree) -> InstanceRaw {
             root.translation.z,
             root.scale,
         ],
-        tint: [tint[0], tint[1], tint[2], 1.0],
+        tint: [tint[0], tint[1], tint[2], 0.0],
         tree: tree_wind(tree),
     }
 }
@@ -214,7 +214,7 @@ impl World {
                             t.translation.z,
                             t.scale,
                         ],
-                        tint: [tint[0], tint[1], tint[2], 1.0],
+                        tint: [tint[0], tint[1], tint[2], 0.0],
                         tree: tree.map_or([0.0; 4], tree_wind),
                     },
                 ));

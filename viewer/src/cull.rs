@@ -6,7 +6,7 @@ use sylva::terrain::glam::{Mat4, Vec3, Vec4};
 
 use crate::cell::Level;
 use crate::scene::Scene;
-use crate::world::{InstanceRaw, world_sphere};
+use crate::world::{InstanceRaw, MESH_LEVELS, world_sphere};
 
 /// A convex view volume as inward-facing planes `n . p + d >= 0`.
 #[derive(Debug, Clone, Copy)]
@@ -39,16 +39,61 @@ impl Volume {
 /// seedlings that fog would hide anyway.
 const MIN_PIXELS: f32 = 2.0;
 
-/// Appends to `visible` the placements of every group in the fine cells drawn, then the
-/// proxies of every variant, whose bounding spheres touch `volume` and, seen from `eye` with
-/// `pixels_per_radian`, span at least [`MIN_PIXELS`]. With `lod` (a point and a distance), a
-/// fine cell's trees farther than that from the point are drawn as proxies too. Returns (first, count) in
-/// `visible` for each group, then for each variant's proxies.
+/// Which level of detail each tree is drawn at: seen from `eye` by a screen of
+/// `pixels_per_radian`, allowing `pixel_error` pixels of error; levels cross-fade (dithered)
+/// over `fade` of each switch distance.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LodView {
+    pub(crate) eye: Vec3,
+    pub(crate) pixels_per_radian: f32,
+    pub(crate) pixel_error: f32,
+    pub(crate) fade: f32,
+}
+
+impl LodView {
+    /// The levels a tree at `base` of a variant with `errors` is drawn at: one, or two
+    /// fading into each other, as (level, fade) with the fade in the shader's encoding (0:
+    /// whole; `f > 0`: fading out, drawn where the dither is at least `f`; `-f`: fading in,
+    /// drawn where it is below `f`). Level `MESH_LEVELS` is the impostor.
+    fn levels(&self, base: Vec3, errors: &[f32; MESH_LEVELS]) -> [Option<(usize, f32)>; 2] {
+        let d = base.distance(self.eye);
+        let scale = self.pixels_per_radian / self.pixel_error.max(1e-3);
+        let mut level = 0;
+        for (k, &e) in errors.iter().enumerate() {
+            let from = e * scale;
+            if d < from {
+                break;
+            }
+            level = k + 1;
+            let band = from * self.fade;
+            if d < from + band && band > 0.0 {
+                let f = ((d - from) / band).clamp(1e-3, 1.0);
+                return [Some((k, f)), Some((k + 1, -f))];
+            }
+        }
+        [Some((level, 0.0)), None]
+    }
+}
+
+/// The same placement with its fade.
+fn faded(i: &InstanceRaw, fade: f32) -> InstanceRaw {
+    let mut out = *i;
+    out.tint[3] = fade;
+    out
+}
+
+/// Appends to `visible` the placements of every group in the fine cells drawn, level by
+/// level, then the impostors of every variant, whose bounding spheres touch `volume` and,
+/// seen from `eye` with `pixels_per_radian`, span at least [`MIN_PIXELS`]. With `lod`, each
+/// tree is drawn at the level its distance asks for, and at the impostor in coarse cells;
+/// without it, every tree of a fine cell at full detail. Returns (first, count) in `visible`
+/// for each group's levels (group `k`, level `l` at `k * MESH_LEVELS + l`), then for each
+/// variant's impostors.
 pub(crate) fn visible_instances(
     scene: &Scene,
     volume: &Volume,
     (eye, pixels_per_radian): (Vec3, f32),
-    lod: Option<(Vec3, f32)>,
+    lod: Option<LodView>,
     visible: &mut Vec<InstanceRaw>,
 ) -> Vec<(u64, u32)> {
     // A sphere of radius r at distance d spans about 2 r / d radians.
@@ -57,11 +102,7 @@ pub(crate) fn visible_instances(
         let (world, r) = world_sphere(i, sphere);
         volume.touches(world, r) && r >= min_ratio * world.distance(eye)
     };
-    let near = |i: &InstanceRaw| {
-        lod.is_none_or(|(from, far)| {
-            Vec3::new(i.tree[0], i.tree[1], i.tree[2]).distance(from) <= far
-        })
-    };
+    let base = |i: &InstanceRaw| Vec3::new(i.tree[0], i.tree[1], i.tree[2]);
     // Whole cells out of view are skipped before their placements are looked at.
     let (mut fine, mut coarse) = (Vec::new(), Vec::new());
     for (key, cell) in scene.cells.drawn() {
@@ -74,21 +115,43 @@ pub(crate) fn visible_instances(
         }
     }
     let world = &scene.world;
-    let mut ranges = Vec::with_capacity(world.groups.len() + world.proxies.len());
+    let mut ranges = Vec::with_capacity(world.groups.len() * MESH_LEVELS + world.proxies.len());
+    let mut by_level: [Vec<InstanceRaw>; MESH_LEVELS] = Default::default();
     for (k, g) in world.groups.iter().enumerate() {
-        let first = visible.len();
+        let errors = &world.lods[g.variant].errors;
         for cell in &fine {
-            let run = cell.placements.run(k).iter();
-            visible.extend(run.filter(|i| near(i) && seen(i, g.sphere)));
+            for i in cell.placements.run(k) {
+                let Some(lod) = lod else {
+                    if seen(i, g.sphere) {
+                        by_level[0].push(*i);
+                    }
+                    continue;
+                };
+                for (level, fade) in lod.levels(base(i), errors).into_iter().flatten() {
+                    if level < MESH_LEVELS && seen(i, g.sphere) {
+                        by_level[level].push(faded(i, fade));
+                    }
+                }
+            }
         }
-        ranges.push((first as u64, (visible.len() - first) as u32));
+        for level in &mut by_level {
+            let first = visible.len();
+            visible.append(level);
+            ranges.push((first as u64, (visible.len() - first) as u32));
+        }
     }
     for (k, p) in world.proxies.iter().enumerate() {
         let first = visible.len();
-        if lod.is_some() {
+        if let Some(lod) = lod {
+            let errors = &world.lods[k].errors;
             for cell in &fine {
-                let run = cell.proxies.run(k).iter();
-                visible.extend(run.filter(|i| !near(i) && seen(i, p.sphere)));
+                for i in cell.proxies.run(k) {
+                    for (level, fade) in lod.levels(base(i), errors).into_iter().flatten() {
+                        if level == MESH_LEVELS && seen(i, p.sphere) {
+                            visible.push(faded(i, fade));
+                        }
+                    }
+                }
             }
         }
         for cell in &coarse {

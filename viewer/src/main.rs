@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES | --trees N] [--budget-mb MB] [--paint MASKS_DIR]
-//!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids]
+//!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--full-detail]
 //!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
 //!     [--wind S] [--time T]]
 //! ```
@@ -32,7 +32,9 @@
 //! cycle; `--frames N` renders N more frames and prints the median frame time, and with
 //! `--walk M` the camera walks M metres along its heading between them, streaming as it
 //! goes. With `--ids` the picture shows flat material colours and the viewer prints what
-//! share of it terrain, bark, leaves and sky cover. `--tour N` renders N frames along a
+//! share of it terrain, bark, leaves and sky cover. Trees are drawn at the level of detail
+//! their distance asks for (two pixels of error), down to impostors; `--full-detail` draws
+//! every branch of every tree instead, to measure against. `--tour N` renders N frames along a
 //! guided walk from the camera's position, `--tour-spacing` metres apart (0.5 by default),
 //! to `PATH_0000.png` and on, and prints what the walk did. `--turntable N` grows one canopy
 //! tree of the first species alone on its ground and renders it from N directions evenly
@@ -109,6 +111,7 @@ struct Args {
     screenshot: Option<String>,
     size: (u32, u32),
     ids: bool,
+    full_detail: bool,
     frames: u32,
     walk: f32,
     wind: f32,
@@ -121,7 +124,7 @@ struct Args {
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
                      [--paint MASKS_DIR] [--camera x,z,yaw,pitch[,height]] \
-                     [--screenshot PATH [--size WxH] [--ids] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]]";
+                     [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -134,6 +137,7 @@ fn parse() -> Result<Args, String> {
     let mut screenshot = None;
     let mut size = (1280u32, 720u32);
     let mut ids = false;
+    let mut full_detail = false;
     let mut frames = 0u32;
     let mut walk = 0.0f32;
     let mut wind = 1.0f32;
@@ -167,6 +171,7 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--ids" => ids = true,
+            "--full-detail" => full_detail = true,
             "--frames" => frames = flags.value("--frames")?,
             "--walk" => walk = flags.value("--walk")?,
             "--wind" => wind = flags.value("--wind")?,
@@ -245,6 +250,7 @@ fn parse() -> Result<Args, String> {
         screenshot,
         size,
         ids,
+        full_detail,
         frames,
         walk,
         wind,
@@ -285,6 +291,7 @@ fn run() -> Result<(), ViewerError> {
             let mut offscreen =
                 pollster::block_on(offscreen::Offscreen::new(&scene, args.size.0, args.size.1))?;
             offscreen.wind = args.wind;
+            offscreen.full_detail = args.full_detail;
             offscreen.time = args.time;
             if args.turntable > 0 {
                 let turntable = turntable::Turntable {

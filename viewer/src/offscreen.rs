@@ -41,6 +41,8 @@ pub(crate) struct Offscreen {
     pub(crate) adapter: String,
     /// Wind strength and the moment of the wind's cycle the frames show (seconds).
     pub(crate) wind: f32,
+    /// Every tree at full detail (no coarser levels or impostors).
+    pub(crate) full_detail: bool,
     pub(crate) time: f32,
 }
 
@@ -81,6 +83,7 @@ impl Offscreen {
             padded_row,
             adapter: format!("{} ({:?})", info.name, info.backend),
             wind: 1.0,
+            full_detail: false,
             time: 0.0,
         })
     }
@@ -110,6 +113,7 @@ impl Offscreen {
                 forward: camera.forward(),
                 mode,
                 pixels_per_radian: height as f32 / FIELD_OF_VIEW_DEGREES.to_radians(),
+                full_detail: self.full_detail,
                 wind: self.wind,
                 time: self.time,
             },

@@ -11,6 +11,9 @@ use crate::materials::Materials;
 pub(crate) struct Pipelines {
     pub(crate) shaded: wgpu::RenderPipeline,
     pub(crate) ids: wgpu::RenderPipeline,
+    /// Impostor cards, shaded and as material ids.
+    pub(crate) impostor: wgpu::RenderPipeline,
+    pub(crate) impostor_ids: wgpu::RenderPipeline,
     pub(crate) shadow: wgpu::RenderPipeline,
     pub(crate) sky: wgpu::RenderPipeline,
     pub(crate) globals_layout: wgpu::BindGroupLayout,
@@ -118,19 +121,21 @@ impl Pipelines {
             multiview_mask: None,
             cache: None,
         });
-        let pipeline = |fragment: &str| {
+        let pipeline = |vertex: &str, fragment: &str| {
             scene_pipeline(
                 device,
                 &shader,
                 &layout,
-                ("vs_main", fragment),
+                (vertex, fragment),
                 Some(format),
                 Default::default(),
             )
         };
         Pipelines {
-            shaded: pipeline("fs_main"),
-            ids: pipeline("fs_id"),
+            shaded: pipeline("vs_main", "fs_main"),
+            ids: pipeline("vs_main", "fs_id"),
+            impostor: pipeline("vs_impostor", "fs_impostor"),
+            impostor_ids: pipeline("vs_impostor", "fs_impostor_id"),
             shadow: shadow_pipeline,
             sky,
             globals_layout,

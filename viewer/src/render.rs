@@ -6,8 +6,8 @@ use bytemuck::{Pod, Zeroable};
 use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::turtle::Vertex;
 
-use crate::cells::{LOD_DISTANCE, Streamed, VIEW_DISTANCE};
-use crate::cull::{Volume, visible_instances};
+use crate::cells::{Streamed, VIEW_DISTANCE};
+use crate::cull::{LodView, Volume, visible_instances};
 use crate::error::ViewerError;
 use crate::gpu::{DEPTH, buffer, index_buffer};
 use crate::materials::Materials;
@@ -15,7 +15,7 @@ use crate::pipelines::Pipelines;
 use crate::scene::Scene;
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::textures;
-use crate::world::InstanceRaw;
+use crate::world::{InstanceRaw, MESH_LEVELS, lod_chain};
 
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
@@ -58,6 +58,8 @@ pub(crate) struct View {
     /// The picture's height in pixels over the vertical field of view in radians: how large
     /// things look, for dropping what is too small to see.
     pub(crate) pixels_per_radian: f32,
+    /// Every tree at full detail, with no coarser level or impostor (to measure against).
+    pub(crate) full_detail: bool,
     /// Wind strength (1: a breeze; 0: still air) and the time in seconds.
     pub(crate) wind: f32,
     pub(crate) time: f32,
@@ -86,12 +88,16 @@ struct Draw {
     group: usize,
     indices: (u32, u32),
     bark: bool,
+    /// An impostor card, drawn with the impostor pipeline.
+    impostor: bool,
 }
 
 pub(crate) struct Renderer {
     texture_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
     ids: wgpu::RenderPipeline,
+    impostor: wgpu::RenderPipeline,
+    impostor_ids: wgpu::RenderPipeline,
     shadow_pipeline: wgpu::RenderPipeline,
     sky: wgpu::RenderPipeline,
     shadow: ShadowMap,
@@ -125,7 +131,7 @@ impl Renderer {
         scene: &Scene,
     ) -> Result<Renderer, ViewerError> {
         let world = &scene.world;
-        let (texture_layout, texture_group) = textures(device, queue);
+        let (texture_layout, texture_group) = textures(device, queue, &world.atlases);
         let materials = Materials::of(world);
         let most = device.limits().max_uniform_buffer_binding_size;
         if materials.bytes.len() as u64 > most {
@@ -202,38 +208,45 @@ impl Renderer {
             .iter()
             .zip(&materials.variants)
             .map(|(v, &m)| variant_buffers(&v.vertices, &v.bark, &v.leaves, m))
-            .chain(
-                world
-                    .proxies
+            .chain(world.proxies.iter().zip(&materials.proxies).map(|(p, &m)| {
+                // An impostor card's vertices name its bark material (for the id mode).
+                let vertices: Vec<Vertex> = p
+                    .vertices
                     .iter()
-                    .zip(&materials.proxies)
-                    .map(|(p, &m)| variant_buffers(&p.vertices, &p.bark, &p.leaves, m)),
-            )
+                    .map(|v| Vertex {
+                        wind: [v.wind[0], v.wind[1], v.wind[2], m.0 as f32],
+                        ..*v
+                    })
+                    .collect();
+                variant_buffers(&vertices, &p.bark, &p.leaves, m)
+            }))
             .collect();
         let mut draws = Vec::new();
-        // Proxies are drawn like groups numbered after the real ones.
-        let (groups, kinds) = (world.groups.len(), world.variants.len());
+        // Impostor cards are drawn like groups numbered after every group's levels.
+        let (groups, kinds) = (world.groups.len() * MESH_LEVELS, world.variants.len());
         for (v, p) in world.proxies.iter().enumerate() {
-            for (bark, count) in [(true, p.bark.len()), (false, p.leaves.len())] {
-                if count > 0 {
-                    draws.push(Draw {
-                        variant: kinds + v,
-                        group: groups + v,
-                        indices: (0, count as u32),
-                        bark,
-                    });
-                }
+            if !p.leaves.is_empty() {
+                draws.push(Draw {
+                    variant: kinds + v,
+                    group: groups + v,
+                    indices: (0, p.leaves.len() as u32),
+                    bark: false,
+                    impostor: true,
+                });
             }
         }
         for (group, g) in world.groups.iter().enumerate() {
-            for (bark, span) in [(true, g.bark), (false, g.leaves)] {
-                if !span.is_empty() {
-                    draws.push(Draw {
-                        variant: g.variant,
-                        group,
-                        indices: (span.start, span.end()),
-                        bark,
-                    });
+            for (level, &(bark, leaves)) in g.levels.iter().enumerate() {
+                for (is_bark, span) in [(true, bark), (false, leaves)] {
+                    if !span.is_empty() {
+                        draws.push(Draw {
+                            variant: g.variant,
+                            group: group * MESH_LEVELS + level,
+                            indices: (span.start, span.end()),
+                            bark: is_bark,
+                            impostor: false,
+                        });
+                    }
                 }
             }
         }
@@ -242,7 +255,8 @@ impl Renderer {
         let identity = InstanceRaw {
             rotation: [0.0, 0.0, 0.0, 1.0],
             translation_scale: [0.0, 0.0, 0.0, 1.0],
-            tint: [1.0; 4],
+            // Tint w is the fade between levels of detail: 0, whole.
+            tint: [1.0, 1.0, 1.0, 0.0],
             tree: [0.0; 4],
         };
         // Terrain vertices in the trees' vertex layout (no wind: the shader leaves the
@@ -261,6 +275,8 @@ impl Renderer {
             texture_group,
             shaded: pipelines.shaded,
             ids: pipelines.ids,
+            impostor: pipelines.impostor,
+            impostor_ids: pipelines.impostor_ids,
             shadow_pipeline: pipelines.shadow,
             sky: pipelines.sky,
             shadow,
@@ -325,9 +341,15 @@ impl Renderer {
         // The placements each pass can see, gathered into the instance buffer: the camera's
         // first, then the sun's.
         let mut visible = Vec::new();
-        // Far trees are drawn whole as proxies when shading (the id mode measures the real
-        // trees, and its cells are all fine).
-        let lod = shaded.then_some((view.eye, LOD_DISTANCE));
+        // Each tree at the level of detail its distance asks for (unless the view asks for
+        // every tree at full detail); the shadow map's levels are the camera's.
+        let chain = lod_chain();
+        let lod = (!view.full_detail).then_some(LodView {
+            eye: view.eye,
+            pixels_per_radian: view.pixels_per_radian,
+            pixel_error: chain.pixel_error,
+            fade: chain.fade,
+        });
         let in_view = visible_instances(
             scene,
             &Volume::of(&view.view_proj),
@@ -366,7 +388,7 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.shadow_pipeline);
-            self.draw_scene(&mut pass, &in_sun, false);
+            self.draw_scene(&mut pass, &in_sun, false, None);
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("forest"),
@@ -401,7 +423,12 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
         pass.set_pipeline(if shaded { &self.shaded } else { &self.ids });
-        self.draw_scene(&mut pass, &in_view, true)
+        let impostor = if shaded {
+            &self.impostor
+        } else {
+            &self.impostor_ids
+        };
+        self.draw_scene(&mut pass, &in_view, true, Some(impostor))
     }
 
     /// The frame's uniforms: the camera's and the sun's transforms, sky, fog and wind.
@@ -455,14 +482,16 @@ impl Renderer {
     }
 
     /// Draws the terrain and every instance group's placements in `ranges` (first and count
-    /// in the instance buffer, per group) with the pipeline already set; `terrain` false
-    /// leaves the terrain out (the shadow pass: the ground casts no shadow that matters, and
-    /// it is the largest single mesh).
+    /// in the instance buffer, per group) with the pipeline already set, then the impostor
+    /// cards with `impostor` (none: not drawn); `terrain` false leaves the terrain out (the
+    /// shadow pass: the ground casts no shadow that matters, and it is the largest single
+    /// mesh).
     fn draw_scene(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         ranges: &[(u64, u32)],
         terrain: bool,
+        impostor: Option<&wgpu::RenderPipeline>,
     ) -> FrameStats {
         pass.set_bind_group(0, &self.globals_group, &[]);
         pass.set_bind_group(1, &self.material_group, &[]);
@@ -482,7 +511,14 @@ impl Renderer {
             return stats;
         };
         let mut bound: Option<(usize, bool)> = None;
+        let mut cards = false;
         for d in &self.draws {
+            // Impostor cards come last (their variants are numbered after the meshes').
+            if d.impostor && !cards {
+                let Some(pipeline) = impostor else { break };
+                pass.set_pipeline(pipeline);
+                cards = true;
+            }
             let Some(&(first_instance, count)) = ranges.get(d.group).filter(|r| r.1 > 0) else {
                 continue;
             };

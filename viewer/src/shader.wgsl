@@ -34,6 +34,9 @@ struct Material {
 // leaf cards do not. FIRST_BARK and BARK_COUNT are replaced when the shader is built.
 @group(2) @binding(0) var textures: texture_2d_array<f32>;
 @group(2) @binding(1) var texture_sampler: sampler;
+// The impostor atlases: each impostor's colour (rgb, coverage in a) then its normals (rgb, the
+// share of leaves in a), in the layers 2k and 2k + 1.
+@group(2) @binding(2) var impostor_atlases: texture_2d_array<f32>;
 @group(3) @binding(0) var shadow_map: texture_depth_2d;
 @group(3) @binding(1) var shadow_sampler: sampler_comparison;
 
@@ -60,11 +63,28 @@ struct VertexOut {
     @location(2) uv: vec2<f32>,
     @location(3) tint: vec3<f32>,
     @location(4) @interpolate(flat) material: u32,
+    // The placement's fade between levels of detail (see faded_out).
+    @location(5) @interpolate(flat) fade: f32,
 };
 
 fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     let t = 2.0 * cross(q.xyz, v);
     return v + q.w * t + cross(q.xyz, t);
+}
+
+// A 4 x 4 ordered dither threshold in (0, 1) at a pixel.
+fn dither(pixel: vec2<f32>) -> f32 {
+    let bayer = array<f32, 16>(0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
+    let p = vec2<u32>(pixel) % vec2<u32>(4u);
+    return (bayer[p.y * 4u + p.x] + 0.5) / 16.0;
+}
+
+// Whether a placement fading between levels of detail leaves this pixel to the other level:
+// 0 draws it whole; f > 0 (fading out) draws where the dither is at least f; -f (fading in)
+// where it is below f, so the two levels of one tree share the pixels between them.
+fn faded_out(pixel: vec2<f32>, fade: f32) -> bool {
+    let d = dither(pixel);
+    return (fade > 0.0 && d < fade) || (fade < 0.0 && d >= -fade);
 }
 
 fn is_terrain(material: Material) -> bool {
@@ -127,6 +147,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     let card = is_card(materials[in.material]);
     out.tint = in.tint.rgb * select(vec3<f32>(1.0), cluster_shade(fract(in.wind.w)), card);
     out.material = in.material;
+    out.fade = in.tint.w;
     return out;
 }
 
@@ -242,7 +263,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let duv_dy = dpdy(in.uv);
     let material = materials[in.material];
     let tex = texel(in.uv, material);
-    if (tex.alpha < 0.5) {
+    if (tex.alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
         discard;
     }
     var albedo = material.colour.rgb * tex.colour * in.tint;
@@ -255,21 +276,27 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         n = -n;
     }
     n = perturb(n, tex.normal, dp_dx, dp_dy, duv_dx, duv_dy);
-    let l = globals.light.xyz;
     // Leaf cards pass some light through: their back faces glow a little.
     let translucent = select(0.0, 0.35, is_card(material));
+    return vec4<f32>(lit(in.world, n, albedo, translucent), 1.0);
+}
+
+// A surface at `world` of normal `n` and colour `albedo` in the sun (`translucent`: how much
+// light comes through from behind), the sky and the fog.
+fn lit(world: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, translucent: f32) -> vec3<f32> {
+    let l = globals.light.xyz;
     let facing = dot(n, l);
     let diffuse = max(facing, 0.0) + translucent * max(-facing, 0.0);
-    let shadow = sunlit(in.world, n);
+    let shadow = sunlit(world, n);
     // Hemispheric ambient: sky light from above, light bounced off the ground from below.
     let bounce = vec3<f32>(0.20, 0.22, 0.12);
     let ambient = mix(bounce, globals.zenith.rgb, n.y * 0.5 + 0.5) * 0.55;
     let sun_colour = vec3<f32>(1.0, 0.95, 0.85);
-    let lit = albedo * (ambient + sun_colour * diffuse * shadow * 0.9);
-    let to_eye = in.world - globals.camera.xyz;
+    let shaded = albedo * (ambient + sun_colour * diffuse * shadow * 0.9);
+    let to_eye = world - globals.camera.xyz;
     let fog = 1.0 - exp(-length(to_eye) * globals.fog.x);
     let haze = sky(normalize(vec3<f32>(to_eye.x, 0.0, to_eye.z) + vec3<f32>(0.0, 0.05, 0.0)));
-    return vec4<f32>(mix(lit, haze, clamp(fog, 0.0, 1.0)), 1.0);
+    return mix(shaded, haze, clamp(fog, 0.0, 1.0));
 }
 
 // Flat material ids, for tests that count what covers the picture.
@@ -277,7 +304,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
 fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
     // Clear parts of leaf cards are no leaf.
     let material = materials[in.material];
-    if (texel(in.uv, material).alpha < 0.5) {
+    if (texel(in.uv, material).alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
         discard;
     }
     return material.id;
@@ -288,6 +315,7 @@ struct ShadowOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) uv: vec2<f32>,
     @location(1) @interpolate(flat) material: u32,
+    @location(2) @interpolate(flat) fade: f32,
 };
 
 @vertex
@@ -296,12 +324,13 @@ fn vs_shadow(in: VertexIn) -> ShadowOut {
     out.clip = globals.light_view_proj * vec4<f32>(to_world(in), 1.0);
     out.uv = in.uv;
     out.material = in.material;
+    out.fade = in.tint.w;
     return out;
 }
 
 @fragment
 fn fs_shadow(in: ShadowOut) {
-    if (texel(in.uv, materials[in.material]).alpha < 0.5) {
+    if (texel(in.uv, materials[in.material]).alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
         discard;
     }
 }
@@ -326,4 +355,132 @@ fn fs_sky(in: SkyOut) -> @location(0) vec4<f32> {
     let far = globals.inverse_view_proj * vec4<f32>(in.ndc, 1.0, 1.0);
     let dir = normalize(far.xyz / far.w - globals.camera.xyz);
     return vec4<f32>(sky(dir), 1.0);
+}
+
+// Impostors: a card per far tree, turned to face the camera, showing the tree's atlas views
+// nearest the direction it is seen from (sylva_export::lod::Impostor: hemi-octahedral views
+// on an N x N lattice, view (i, j) looking from the lattice point (i, j) / (N - 1), in
+// column i, row j of the atlas), blended by their distance on the lattice.
+struct ImpostorOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) @interpolate(flat) centre: vec3<f32>,
+    @location(2) @interpolate(flat) tint: vec3<f32>,
+    @location(3) @interpolate(flat) material: u32,
+    // Atlas number, views per side, the sphere's radius in the world, the bark material.
+    @location(4) @interpolate(flat) atlas: vec4<f32>,
+    @location(5) @interpolate(flat) rotation: vec4<f32>,
+    @location(6) @interpolate(flat) fade: f32,
+};
+
+// A view's picture axes, as sylva_export::lod::OrthoView::axes: right horizontal, up the rest.
+fn view_right(toward: vec3<f32>) -> vec3<f32> {
+    let r = cross(vec3<f32>(0.0, 1.0, 0.0), toward);
+    return select(vec3<f32>(1.0, 0.0, 0.0), normalize(r), dot(r, r) > 1e-8);
+}
+
+fn hemi_octahedral_uv(d: vec3<f32>) -> vec2<f32> {
+    let s = max(abs(d.x) + abs(d.y) + abs(d.z), 1e-12);
+    let p = d.x / s;
+    let q = d.z / s;
+    return vec2<f32>(0.5 * (p + q) + 0.5, 0.5 * (p - q) + 0.5);
+}
+
+fn hemi_octahedral_direction(uv: vec2<f32>) -> vec3<f32> {
+    let a = 2.0 * uv.x - 1.0;
+    let b = 2.0 * uv.y - 1.0;
+    let p = 0.5 * (a + b);
+    let q = 0.5 * (a - b);
+    let y = max(1.0 - abs(p) - abs(q), 0.0);
+    return normalize(vec3<f32>(p, y, q));
+}
+
+@vertex
+fn vs_impostor(in: VertexIn) -> ImpostorOut {
+    var out: ImpostorOut;
+    let s = in.translation_scale.w;
+    // The card's vertices carry the atlas' sphere: its centre in `normal`, its radius in wind.z.
+    let centre = in.translation_scale.xyz + s * rotate(in.rotation, in.normal);
+    let radius = in.wind.z * s;
+    let toward = normalize(globals.camera.xyz - centre);
+    let right = view_right(toward);
+    let up = cross(toward, right);
+    let world = centre + (right * in.position.x + up * in.position.y) * radius;
+    out.clip = globals.view_proj * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.centre = centre;
+    out.tint = in.tint.rgb;
+    out.material = in.material;
+    out.atlas = vec4<f32>(in.wind.x, in.wind.y, radius, in.wind.w);
+    out.rotation = in.rotation;
+    out.fade = in.tint.w;
+    return out;
+}
+
+struct ImpostorTexel {
+    colour: vec3<f32>,
+    alpha: f32,
+    normal: vec3<f32>,
+    leaf: f32,
+};
+
+// What the impostor shows at this fragment: the four lattice views around the direction the
+// tree is seen from, each sampled where the fragment's point falls in its picture.
+fn impostor_texel(in: ImpostorOut) -> ImpostorTexel {
+    let q = in.rotation;
+    let inverse = vec4<f32>(-q.xyz, q.w);
+    let toward = rotate(inverse, normalize(globals.camera.xyz - in.centre));
+    let point = rotate(inverse, in.world - in.centre) / max(in.atlas.z, 1e-6);
+    let n = in.atlas.y;
+    let last = n - 1.0;
+    let g = hemi_octahedral_uv(toward) * last;
+    let base = clamp(floor(g), vec2<f32>(0.0), vec2<f32>(last - 1.0));
+    let f = clamp(g - base, vec2<f32>(0.0), vec2<f32>(1.0));
+    let layer = i32(in.atlas.x + 0.5) * 2;
+    var colour = vec3<f32>(0.0);
+    var alpha = 0.0;
+    var normal = vec3<f32>(0.0);
+    var leaf = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let corner = vec2<f32>(f32(k & 1u), f32(k >> 1u));
+        let weights = mix(vec2<f32>(1.0) - f, f, corner);
+        let w = weights.x * weights.y;
+        let cell = base + corner;
+        let d = hemi_octahedral_direction(cell / last);
+        let right = view_right(d);
+        let up = cross(d, right);
+        let in_view = clamp(vec2<f32>(dot(point, right), -dot(point, up)) * 0.5 + 0.5, vec2<f32>(0.002), vec2<f32>(0.998));
+        let uv = (cell + in_view) / n;
+        let c = textureSampleLevel(impostor_atlases, texture_sampler, uv, layer, 0.0);
+        let m = textureSampleLevel(impostor_atlases, texture_sampler, uv, layer + 1, 0.0);
+        colour += w * c.a * c.rgb;
+        alpha += w * c.a;
+        normal += w * c.a * (m.rgb * 2.0 - 1.0);
+        leaf += w * c.a * m.a;
+    }
+    var out: ImpostorTexel;
+    out.colour = colour / max(alpha, 1e-4);
+    out.alpha = alpha;
+    out.normal = rotate(q, normalize(normal + vec3<f32>(0.0, 1e-4, 0.0)));
+    out.leaf = leaf / max(alpha, 1e-4);
+    return out;
+}
+
+@fragment
+fn fs_impostor(in: ImpostorOut) -> @location(0) vec4<f32> {
+    let t = impostor_texel(in);
+    if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
+        discard;
+    }
+    return vec4<f32>(lit(in.world, t.normal, t.colour * in.tint, 0.35 * t.leaf), 1.0);
+}
+
+@fragment
+fn fs_impostor_id(in: ImpostorOut) -> @location(0) vec4<f32> {
+    let t = impostor_texel(in);
+    if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
+        discard;
+    }
+    let bark = materials[u32(in.atlas.w + 0.5)];
+    return select(bark.id, materials[in.material].id, t.leaf >= 0.5);
 }

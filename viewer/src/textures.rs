@@ -36,39 +36,35 @@ fn srgb_encoded(mut texture: Texture) -> Texture {
     texture
 }
 
-/// The procedural textures as one texture array (every leaf shape, every bark pattern, then
-/// the barks' normal maps, each [`BARK_COUNT`] layers after its colour) with a linear
-/// sampler, and the bind group layout the shader reads them through.
-pub(crate) fn textures(
+/// `images` (all of one size) as one sRGB texture array.
+fn texture_array(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let images: Vec<Texture> = LeafShape::ALL
-        .into_iter()
-        .map(Texture::leaf)
-        .chain(BarkPattern::ALL.into_iter().map(Texture::bark))
-        .chain(
-            BarkPattern::ALL
-                .into_iter()
-                .map(|p| srgb_encoded(Texture::bark_normal(p))),
-        )
-        .collect();
+    label: &str,
+    images: &[Texture],
+) -> wgpu::TextureView {
+    let blank = Texture {
+        width: 1,
+        height: 1,
+        rgba: vec![0; 4],
+    };
+    let first = images.first().unwrap_or(&blank);
     let mut data: Vec<u8> = images.iter().flat_map(|t| t.rgba.iter().copied()).collect();
     let mut layers = images.len() as u32;
     // wgpu's GL backend takes a square texture of a multiple of six layers for a cube map
     // (it cannot know the view's dimension when it creates the texture) and then samples it
-    // as black; a clear spare layer keeps the array an array.
+    // as black; a clear spare layer keeps the array an array (and an empty one has a layer).
     if layers.is_multiple_of(6) {
-        data.resize(data.len() + images[0].rgba.len(), 0);
+        data.resize(data.len() + first.rgba.len(), 0);
         layers += 1;
     }
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
-            label: Some("textures"),
+            label: Some(label),
             size: wgpu::Extent3d {
-                width: images[0].width,
-                height: images[0].height,
+                width: first.width,
+                height: first.height,
                 depth_or_array_layers: layers,
             },
             mip_level_count: 1,
@@ -81,27 +77,93 @@ pub(crate) fn textures(
         wgpu::util::TextureDataOrder::LayerMajor,
         &data,
     );
-    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+    texture.create_view(&wgpu::TextureViewDescriptor {
         dimension: Some(wgpu::TextureViewDimension::D2Array),
         ..Default::default()
-    });
+    })
+}
+
+/// The procedural textures as one texture array (every leaf shape, every bark pattern, then
+/// the barks' normal maps, each [`BARK_COUNT`] layers after its colour), a linear sampler,
+/// and the impostor atlases (`atlases`: each variant's colour, then its normals) as a second
+/// array, with the bind group layout the shader reads them through.
+pub(crate) fn textures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    atlases: &[Texture],
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
+    let images: Vec<Texture> = LeafShape::ALL
+        .into_iter()
+        .map(Texture::leaf)
+        .chain(BarkPattern::ALL.into_iter().map(Texture::bark))
+        .chain(
+            BarkPattern::ALL
+                .into_iter()
+                .map(|p| srgb_encoded(Texture::bark_normal(p))),
+        )
+        .collect();
+    let view = texture_array(device, queue, "textures", &images);
+    // Normal atlases hold plain values, like the barks' normal maps.
+    let atlases: Vec<Texture> = atlases
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            if k % 2 == 1 {
+                srgb_encoded(t.clone())
+            } else {
+                t.clone()
+            }
+        })
+        .collect();
+    let atlas_view = texture_array(device, queue, "impostor atlases", &atlases);
     let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("texture sampler"),
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
     });
-    sampled_texture(
-        device,
-        "textures",
-        &view,
-        &sampler,
-        (
-            wgpu::TextureSampleType::Float { filterable: true },
-            wgpu::TextureViewDimension::D2Array,
-            wgpu::SamplerBindingType::Filtering,
-        ),
-    )
+    let array = |binding: u32| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+            multisampled: false,
+        },
+        count: None,
+    };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("textures"),
+        entries: &[
+            array(0),
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+            array(2),
+        ],
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("textures"),
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&atlas_view),
+            },
+        ],
+    });
+    (layout, group)
 }
 
 /// A bind group of a texture view (binding 0) and its sampler (binding 1), read by the

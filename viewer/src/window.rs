@@ -232,6 +232,7 @@ impl App {
                 forward: self.camera.forward(),
                 mode: Mode::Shaded,
                 pixels_per_radian: gpu.config.height as f32 / FIELD_OF_VIEW_DEGREES.to_radians(),
+                full_detail: false,
                 wind: 1.0,
                 time: self.started.elapsed().as_secs_f32(),
             },

@@ -4,9 +4,11 @@
 use bytemuck::{Pod, Zeroable};
 use std::sync::{Arc, PoisonError, RwLock};
 
+use rayon::prelude::*;
+use sylva::export::Texture;
+use sylva::export::lod::{CacheLods, Impostor, LodChain, TreeLook, calibrate_leaves, variant_tree};
 use sylva::forest::{
-    BarkPattern, Composition, Extent, ForestBuilder, ForestConfig, ForestError, LeafShape, Species,
-    tree_proxy,
+    BarkPattern, Composition, ForestBuilder, ForestConfig, ForestError, LeafShape, Species,
 };
 use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
@@ -28,7 +30,8 @@ pub(crate) struct InstanceRaw {
     pub(crate) tree: [f32; 4],
 }
 
-/// One species variant's shared buffers.
+/// One species variant's shared buffers: the cache's vertices (and its coarser levels' grown
+/// leaf cards), and every level's bark and leaf triangles one after another.
 pub(crate) struct VariantGeometry {
     pub(crate) vertices: Vec<Vertex>,
     pub(crate) bark: Vec<u32>,
@@ -39,25 +42,47 @@ pub(crate) struct VariantGeometry {
     pub(crate) bark_pattern: BarkPattern,
 }
 
-/// One cached instance drawn with its placements: one instanced draw per non-empty index
-/// range. Its placements live in the streamed cells.
+/// Levels of detail drawn from meshes: the full cache and its two coarser levels.
+pub(crate) const MESH_LEVELS: usize = 3;
+
+/// One cached instance drawn with its placements: one instanced draw per level and non-empty
+/// index range. Its placements live in the streamed cells.
 pub(crate) struct Group {
     pub(crate) variant: usize,
-    pub(crate) bark: Span,
-    pub(crate) leaves: Span,
+    /// Per level of detail, its bark and leaf triangles in the variant's buffers.
+    pub(crate) levels: [(Span, Span); MESH_LEVELS],
     /// A sphere around the instance's triangles in its own space (centre, radius), with room
     /// for the wind's sway.
     pub(crate) sphere: (Vec3, f32),
 }
 
-/// A variant's whole-tree proxy (`sylva_forest::tree_proxy`), drawn for trees far from the
-/// camera: trunk in `bark`, crown in `leaves`.
+/// A variant's impostor card, drawn for trees far from the camera: a quad of corners
+/// `(±1, ±1)` that the impostor shader turns to face the camera, whose vertices carry the
+/// atlas (normal: the centre of the sphere the views frame; wind: atlas number, views per
+/// side, the sphere's radius and the variant's bark material). Empty for variants without an
+/// impostor (seedlings, which are not drawn that far).
 pub(crate) struct Proxy {
     pub(crate) vertices: Vec<Vertex>,
     pub(crate) bark: Vec<u32>,
     pub(crate) leaves: Vec<u32>,
     /// A sphere around it in the tree's own space (centre, radius).
     pub(crate) sphere: (Vec3, f32),
+}
+
+/// When a variant's coarser levels are drawn: each level's error in metres (level 1, level 2,
+/// the impostor; infinite for a variant without one), turned into distances by the view's
+/// pixels per radian.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct VariantLod {
+    pub(crate) errors: [f32; MESH_LEVELS],
+}
+
+/// The levels of detail the viewer draws: `LodChain`'s defaults, with impostors of 8 x 8 views
+/// of 96 pixels (the viewer's 720p needs less than 1080p's 128).
+pub(crate) fn lod_chain() -> LodChain {
+    let mut chain = LodChain::default();
+    chain.impostor = chain.impostor.with_view_size(96);
+    chain
 }
 
 /// The forest as it is painted: its builder, how many times it has been repainted (cells
@@ -83,6 +108,10 @@ pub(crate) struct World {
     pub(crate) group_of: Vec<Vec<Option<u32>>>,
     /// Per variant.
     pub(crate) proxies: Vec<Proxy>,
+    /// Per variant: when each coarser level takes over.
+    pub(crate) lods: Vec<VariantLod>,
+    /// The impostor atlases, colour then normals of each (the variants' `atlas` number).
+    pub(crate) atlases: Vec<Texture>,
     /// Per variant: whether it is a seedling form (left out of coarse cells, as coarse tiles
     /// leave it out).
     pub(crate) seedling: Vec<bool>,
@@ -159,12 +188,69 @@ impl World {
             layer = Some(loaded);
         }
         let species = &builder.config().species;
+        let chain = lod_chain();
+        // Each variant's levels (cards grown to its whole tree's coverage) and, for canopy
+        // variants, its impostor: worked out on every core.
+        let built: Vec<Result<(CacheLods, VariantLod, Option<Impostor>), ViewerError>> = builder
+            .variants()
+            .par_iter()
+            .map(|v| {
+                let s = &species[v.species];
+                let look = TreeLook::of(s);
+                let tree = variant_tree(v, 1).map_err(ForestError::from)?;
+                let levels: Vec<_> = chain
+                    .levels
+                    .iter()
+                    .map(|l| calibrate_leaves(&tree, &look, l))
+                    .collect();
+                let card = s.turtle.leaf_size[0].max(s.turtle.leaf_size[1]);
+                let mut tuned = chain.clone();
+                tuned.levels.clone_from(&levels);
+                let error = |k: usize| {
+                    (0..=k)
+                        .map(|j| tuned.level_error(j, card))
+                        .fold(0.0f32, f32::max)
+                };
+                let impostor =
+                    (!v.seedling).then(|| Impostor::render(&tree, &look, &chain.impostor));
+                let errors = [
+                    error(0),
+                    error(1),
+                    impostor
+                        .as_ref()
+                        .map_or(f32::INFINITY, |i| tuned.impostor_error(i).max(error(1))),
+                ];
+                Ok((
+                    CacheLods::of(&v.cache, &levels),
+                    VariantLod { errors },
+                    impostor,
+                ))
+            })
+            .collect();
+        let mut lods = Vec::new();
+        let mut caches = Vec::new();
+        let mut impostors = Vec::new();
+        for b in built {
+            let (cache, lod, impostor) = b?;
+            caches.push(cache);
+            lods.push(lod);
+            impostors.push(impostor);
+        }
         let mut groups = Vec::new();
         let mut group_of = Vec::new();
-        for (variant, v) in builder.variants().iter().enumerate() {
+        let mut variants = Vec::new();
+        for (variant, (v, lod)) in builder.variants().iter().zip(&caches).enumerate() {
             let cache = &v.cache;
+            // Every level's triangles one after another in one buffer per material.
+            let (mut bark, mut leaves) = (Vec::new(), Vec::new());
+            let mut offsets = Vec::new();
+            for level in &lod.levels {
+                offsets.push((bark.len() as u32, leaves.len() as u32));
+                bark.extend_from_slice(&level.bark);
+                leaves.extend_from_slice(&level.leaves);
+            }
             let mut of = Vec::with_capacity(cache.instances.len());
-            for inst in &cache.instances {
+            for (k, inst) in cache.instances.iter().enumerate() {
                 if inst.bark.is_empty() && inst.leaves.is_empty() {
                     of.push(None);
                     continue;
@@ -175,45 +261,52 @@ impl World {
                     .filter_map(|&i| cache.vertices.get(i as usize))
                     .map(|v| Vec3::from(v.position));
                 let (centre, radius) = bounding_sphere(corners);
+                let level = |l: usize| {
+                    let (b, f) = lod
+                        .levels
+                        .get(l)
+                        .and_then(|x| x.spans.get(k))
+                        .copied()
+                        .unwrap_or_default();
+                    let (ob, of) = offsets.get(l).copied().unwrap_or_default();
+                    (b.offset(ob), f.offset(of))
+                };
                 of.push(Some(groups.len() as u32));
                 groups.push(Group {
                     variant,
-                    bark: inst.bark,
-                    leaves: inst.leaves,
-                    sphere: (centre, radius * 1.1 + 0.5),
+                    levels: [level(0), level(1), level(2)],
+                    // Grown cards reach a little beyond the full tree's.
+                    sphere: (centre, radius * 1.15 + 0.5),
                 });
             }
             group_of.push(of);
+            let s = &species[v.species];
+            variants.push(VariantGeometry {
+                vertices: lod.vertices.clone(),
+                bark,
+                leaves,
+                bark_colour: s.bark,
+                leaf_colour: s.leaf,
+                leaf_shape: s.leaf_shape,
+                bark_pattern: s.bark_pattern,
+            });
         }
-        let proxies = builder
-            .variants()
-            .iter()
-            .map(|v| {
-                let mesh = tree_proxy(Extent::of(v));
-                let (centre, radius) =
-                    bounding_sphere(mesh.vertices.iter().map(|v| Vec3::from(v.position)));
-                Proxy {
-                    vertices: mesh.vertices,
-                    bark: mesh.bark,
-                    leaves: mesh.leaves,
-                    sphere: (centre, radius * 1.1 + 0.5),
+        let mut atlases = Vec::new();
+        let proxies = impostors
+            .into_iter()
+            .map(|impostor| match impostor {
+                Some(i) => {
+                    let number = (atlases.len() / 2) as f32;
+                    atlases.push(i.colour.clone());
+                    atlases.push(i.normal.clone());
+                    Proxy::card(&i, number)
                 }
-            })
-            .collect();
-        let variants = builder
-            .variants()
-            .iter()
-            .map(|v| {
-                let s = &species[v.species];
-                VariantGeometry {
-                    vertices: v.cache.vertices.clone(),
-                    bark: v.cache.bark.clone(),
-                    leaves: v.cache.leaves.clone(),
-                    bark_colour: s.bark,
-                    leaf_colour: s.leaf,
-                    leaf_shape: s.leaf_shape,
-                    bark_pattern: s.bark_pattern,
-                }
+                None => Proxy {
+                    vertices: Vec::new(),
+                    bark: Vec::new(),
+                    leaves: Vec::new(),
+                    sphere: (Vec3::ZERO, -1.0),
+                },
             })
             .collect();
         let seedling = builder.variants().iter().map(|v| v.seedling).collect();
@@ -229,8 +322,34 @@ impl World {
             groups,
             group_of,
             proxies,
+            lods,
+            atlases,
             seedling,
         })
+    }
+}
+
+impl Proxy {
+    /// The card of `impostor`, atlas number `number`; its bark material is filled in by the
+    /// renderer, which knows the materials.
+    fn card(impostor: &Impostor, number: f32) -> Proxy {
+        let vertex = |x: f32, y: f32| Vertex {
+            position: [x, y, 0.0],
+            normal: impostor.centre,
+            uv: [0.5 * x + 0.5, 0.5 - 0.5 * y],
+            wind: [number, impostor.grid as f32, impostor.radius, 0.0],
+        };
+        Proxy {
+            vertices: vec![
+                vertex(-1.0, -1.0),
+                vertex(1.0, -1.0),
+                vertex(1.0, 1.0),
+                vertex(-1.0, 1.0),
+            ],
+            bark: Vec::new(),
+            leaves: vec![0, 1, 2, 0, 2, 3],
+            sphere: (Vec3::from(impostor.centre), impostor.radius),
+        }
     }
 }
 
