@@ -85,9 +85,22 @@ fn default_scene_renders_terrain_and_trees() {
     let Some(mut offscreen) = offscreen(&scene, SIZE) else {
         return;
     };
-    let (ids, all) = offscreen
+    // Every branch of every tree, then the levels of detail the distances ask for: they cover
+    // the picture within three points of each other (issue 24's measure).
+    offscreen.full_detail = true;
+    let (full, all) = offscreen
         .frame(&mut scene, &camera, Mode::Ids)
         .expect("id render");
+    offscreen.full_detail = false;
+    let (ids, levels) = offscreen
+        .frame(&mut scene, &camera, Mode::Ids)
+        .expect("id render");
+    let (a, b) = (Coverage::of_ids(&full), Coverage::of_ids(&ids));
+    eprintln!("coverage at full detail: {a}; with levels of detail: {b}");
+    for (x, y) in [(a.leaves, b.leaves), (a.terrain, b.terrain), (a.sky, b.sky)] {
+        assert!((x - y).abs() < 0.03, "full detail {a}, with levels {b}");
+    }
+    assert!(levels.triangles * 4 < all.triangles, "{levels:?} against {all:?}");
     let Coverage {
         terrain,
         bark,
@@ -112,9 +125,10 @@ fn default_scene_renders_terrain_and_trees() {
         .expect("shaded render");
     let adapter = &offscreen.adapter;
     assert!(stats.draws > 100 && stats.instances > 1000, "{stats:?}");
-    // Shaded frames draw far trees as proxies; the id frame measures every real branch.
+    // Shaded frames draw each tree at its level of detail; the first id frame drew every
+    // branch.
     eprintln!(
-        "triangles: {} shaded with proxies beyond the level-of-detail distance, {} without",
+        "triangles: {} shaded at the levels of detail, {} at full detail",
         stats.triangles, all.triangles
     );
     assert!(
