@@ -37,7 +37,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let s = &species[variant.species];
         let full = variant_tree(variant, 1)?;
         let look = TreeLook::of(s);
+        let start = std::time::Instant::now();
         let impostor = Impostor::render(&full, &look, &chain.impostor);
+        let drawn = start.elapsed();
         let card = s.turtle.leaf_size[0].max(s.turtle.leaf_size[1]);
         let (lo, hi) = full.bounds().ok_or("an empty tree")?;
         let side = OrthoView {
@@ -49,20 +51,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut row = vec![draw(&full, &look, &side)];
         println!("{}: {} triangles", s.name, full.triangle_count());
         for (k, level) in chain.levels.iter().enumerate() {
+            let start = std::time::Instant::now();
             let level = calibrate_leaves(&full, &look, level);
+            let tuned = start.elapsed();
             let coarse = simplify_mesh(&full, &level);
             let matches = compare_silhouettes(&full, &coarse, &look, &directions, 256);
             let worst = matches.iter().map(|m| m.overlap).fold(1.0f32, f32::min);
             let ratio: f32 =
                 matches.iter().map(|m| m.coverage_ratio).sum::<f32>() / matches.len() as f32;
             println!(
-                "  LOD{}: {} triangles ({:.0}%), coverage {:.2} of the full tree's, overlap at worst {:.2}; from {:.0} m",
+                "  LOD{}: {} triangles ({:.0}%), coverage {:.2} of the full tree's, overlap at worst {:.2}; from {:.0} m (cards tuned in {:.0} ms)",
                 k + 1,
                 coarse.triangle_count(),
                 100.0 * coarse.triangle_count() as f32 / full.triangle_count() as f32,
                 ratio,
                 worst,
                 chain.distance_for(level.bark_error.max(level.leaf_error(card))),
+                tuned.as_secs_f64() * 1e3,
             );
             // What the example shows: each level is cheaper and keeps the silhouette.
             assert!(coarse.triangle_count() < full.triangle_count());
@@ -70,12 +75,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             row.push(draw(&coarse, &look, &side));
         }
         println!(
-            "  impostor: {} x {} views of {} px, a texel of {:.2} m; from {:.0} m",
+            "  impostor: {} x {} views of {} px, a texel of {:.2} m; from {:.0} m (drawn in {:.0} ms)",
             impostor.grid,
             impostor.grid,
             impostor.view_size,
             impostor.texel(),
             chain.impostor_distance(&impostor),
+            drawn.as_secs_f64() * 1e3,
         );
         row.push(impostor_view(&impostor, SIZE));
         rows.push(row);

@@ -6,7 +6,7 @@ use std::sync::{Arc, PoisonError, RwLock};
 
 use rayon::prelude::*;
 use sylva::export::Texture;
-use sylva::export::lod::{CacheLods, Impostor, LodChain, TreeLook, calibrate_leaves, variant_tree};
+use sylva::export::lod::{CacheLods, Impostor, LodChain, VariantLods};
 use sylva::forest::{
     BarkPattern, Composition, ForestBuilder, ForestConfig, ForestError, LeafShape, Species,
 };
@@ -191,51 +191,20 @@ impl World {
         let chain = lod_chain();
         // Each variant's levels (cards grown to its whole tree's coverage) and, for canopy
         // variants, its impostor: worked out on every core.
-        let built: Vec<Result<(CacheLods, VariantLod, Option<Impostor>), ViewerError>> = builder
+        let built: Vec<VariantLods> = builder
             .variants()
             .par_iter()
-            .map(|v| {
-                let s = &species[v.species];
-                let look = TreeLook::of(s);
-                let tree = variant_tree(v, 1).map_err(ForestError::from)?;
-                let levels: Vec<_> = chain
-                    .levels
-                    .iter()
-                    .map(|l| calibrate_leaves(&tree, &look, l))
-                    .collect();
-                let card = s.turtle.leaf_size[0].max(s.turtle.leaf_size[1]);
-                let mut tuned = chain.clone();
-                tuned.levels.clone_from(&levels);
-                let error = |k: usize| {
-                    (0..=k)
-                        .map(|j| tuned.level_error(j, card))
-                        .fold(0.0f32, f32::max)
-                };
-                let impostor =
-                    (!v.seedling).then(|| Impostor::render(&tree, &look, &chain.impostor));
-                let errors = [
-                    error(0),
-                    error(1),
-                    impostor
-                        .as_ref()
-                        .map_or(f32::INFINITY, |i| tuned.impostor_error(i).max(error(1))),
-                ];
-                Ok((
-                    CacheLods::of(&v.cache, &levels),
-                    VariantLod { errors },
-                    impostor,
-                ))
+            .map(|v| VariantLods::build(v, &species[v.species], &chain))
+            .collect::<Result<_, _>>()
+            .map_err(ForestError::from)?;
+        let lods: Vec<VariantLod> = built
+            .iter()
+            .map(|b| VariantLod {
+                errors: [0, 1, 2].map(|k| b.errors.get(k).copied().unwrap_or(f32::INFINITY)),
             })
             .collect();
-        let mut lods = Vec::new();
-        let mut caches = Vec::new();
-        let mut impostors = Vec::new();
-        for b in built {
-            let (cache, lod, impostor) = b?;
-            caches.push(cache);
-            lods.push(lod);
-            impostors.push(impostor);
-        }
+        let (caches, impostors): (Vec<CacheLods>, Vec<Option<Impostor>>) =
+            built.into_iter().map(|b| (b.cache, b.impostor)).unzip();
         let mut groups = Vec::new();
         let mut group_of = Vec::new();
         let mut variants = Vec::new();

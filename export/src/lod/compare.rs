@@ -81,15 +81,28 @@ pub fn compare_silhouettes(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn calibrate_leaves(full: &Mesh, look: &TreeLook, level: &LodLevel) -> LodLevel {
-    let directions = [Vec3::X, Vec3::Z, Vec3::Y];
+    let Some((lo, hi)) = full.bounds() else {
+        return *level;
+    };
+    let views: Vec<OrthoView> = [Vec3::X, Vec3::Z, Vec3::Y]
+        .into_iter()
+        .map(|toward| OrthoView {
+            centre: (lo + hi) * 0.5,
+            toward,
+            half: 0.5 * (hi - lo).length(),
+            size: 96,
+        })
+        .collect();
+    // The full tree is drawn once; each trial growth draws the coarse one.
+    let covered: usize = views.iter().map(|v| draw(full, look, v).covered()).sum();
     let ratio = |growth: f32| {
         let tuned = LodLevel {
             leaf_growth: Some(growth),
             ..*level
         };
         let coarse = super::simplify::simplify_mesh(full, &tuned);
-        let m = compare_silhouettes(full, &coarse, look, &directions, 128);
-        m.iter().map(|m| m.coverage_ratio).sum::<f32>() / m.len().max(1) as f32
+        let trial: usize = views.iter().map(|v| draw(&coarse, look, v).covered()).sum();
+        trial as f32 / covered.max(1) as f32
     };
     let area = LodLevel {
         leaf_growth: None,

@@ -9,6 +9,7 @@ mod impostor;
 mod raster;
 mod simplify;
 mod tree;
+mod variant;
 
 pub use cache::{CacheLods, LevelSpans};
 pub use chain::{LodChain, PIXELS_PER_RADIAN_1080P};
@@ -17,3 +18,4 @@ pub use impostor::{Impostor, ImpostorOptions, hemi_octahedral_direction, hemi_oc
 pub use raster::{OrthoView, Picture, TreeLook, draw};
 pub use simplify::{LodLevel, simplify_mesh};
 pub use tree::variant_tree;
+pub use variant::VariantLods;

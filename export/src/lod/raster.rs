@@ -157,38 +157,47 @@ pub fn draw(mesh: &Mesh, look: &TreeLook, view: &OrthoView) -> Picture {
             .and_then(|s| s.try_into().ok())
             .unwrap_or([255; 4])
     };
+    // sRGB bytes to linear, looked up rather than worked out per texel.
+    let linear: [f32; 256] = std::array::from_fn(|i| srgb_to_linear(i as u8));
     let mut triangle = |tri: &[u32], leaf: bool| {
-        let Some(corners) = tri
-            .iter()
-            .map(|&i| mesh.vertices.get(i as usize))
-            .collect::<Option<Vec<_>>>()
-        else {
+        let vertex = |k: usize| mesh.vertices.get(tri[k] as usize);
+        let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2)) else {
             return;
         };
-        let p: Vec<Vec3> = corners
-            .iter()
-            .map(|v| project(Vec3::from(v.position)))
-            .collect();
+        let corners = [a, b, c];
+        let p = corners.map(|v| project(Vec3::from(v.position)));
         let area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
         if area.abs() < 1e-12 {
             return;
         }
         let lo = p[0].min(p[1]).min(p[2]);
         let hi = p[0].max(p[1]).max(p[2]);
-        let (x0, x1) = (
-            lo.x.floor().max(0.0) as usize,
-            (hi.x.ceil().max(0.0) as usize).min(n),
-        );
-        let (y0, y1) = (
-            lo.y.floor().max(0.0) as usize,
-            (hi.y.ceil().max(0.0) as usize).min(n),
-        );
+        let (x0, x1) = (lo.x.floor().max(0.0) as usize, (hi.x.ceil().max(0.0) as usize).min(n));
+        let (y0, y1) = (lo.y.floor().max(0.0) as usize, (hi.y.ceil().max(0.0) as usize).min(n));
+        if x0 >= x1 || y0 >= y1 {
+            return;
+        }
+        // Each barycentric weight is linear in the pixel: w = ex * x + ey * y + e0, the edge
+        // function of the opposite edge over the area.
+        let edge = |a: Vec3, b: Vec3| {
+            let (ex, ey) = (-(b.y - a.y) / area, (b.x - a.x) / area);
+            (ex, ey, -(ex * a.x + ey * a.y))
+        };
+        let edges = [edge(p[1], p[2]), edge(p[2], p[0]), edge(p[0], p[1])];
+        let (texture, tile) = if leaf {
+            (&look.leaf_texture, false)
+        } else {
+            (&look.bark_texture, true)
+        };
+        let base = if leaf { leaf_colour } else { bark_colour };
+        let uvs = corners.map(|v| Vec2::from(v.uv));
+        let normals = corners.map(|v| Vec3::from(v.normal));
         for y in y0..y1 {
+            let py = y as f32 + 0.5;
             for x in x0..x1 {
-                let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
-                let edge = |a: Vec3, b: Vec3| (b.x - a.x) * (py - a.y) - (px - a.x) * (b.y - a.y);
-                let w = [edge(p[1], p[2]), edge(p[2], p[0]), edge(p[0], p[1])].map(|e| e / area);
-                if w.iter().any(|&w| w < 0.0) {
+                let px = x as f32 + 0.5;
+                let w = edges.map(|(ex, ey, e0)| ex * px + ey * py + e0);
+                if w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0 {
                     continue;
                 }
                 let depth = w[0] * p[0].z + w[1] * p[1].z + w[2] * p[2].z;
@@ -196,30 +205,13 @@ pub fn draw(mesh: &Mesh, look: &TreeLook, view: &OrthoView) -> Picture {
                 if slot.is_some_and(|s| s.depth >= depth) {
                     continue;
                 }
-                let uv = corners
-                    .iter()
-                    .zip(w)
-                    .fold(Vec2::ZERO, |acc, (v, w)| acc + Vec2::from(v.uv) * w);
-                let (texture, tile) = if leaf {
-                    (&look.leaf_texture, false)
-                } else {
-                    (&look.bark_texture, true)
-                };
+                let uv = uvs[0] * w[0] + uvs[1] * w[1] + uvs[2] * w[2];
                 let t = texel(texture, uv, tile);
                 if leaf && t[3] < 128 {
                     continue;
                 }
-                let base = if leaf { leaf_colour } else { bark_colour };
-                let colour = base
-                    * Vec3::new(
-                        srgb_to_linear(t[0]),
-                        srgb_to_linear(t[1]),
-                        srgb_to_linear(t[2]),
-                    );
-                let normal = corners
-                    .iter()
-                    .zip(w)
-                    .fold(Vec3::ZERO, |acc, (v, w)| acc + Vec3::from(v.normal) * w)
+                let colour = base * Vec3::new(linear[t[0] as usize], linear[t[1] as usize], linear[t[2] as usize]);
+                let normal = (normals[0] * w[0] + normals[1] * w[1] + normals[2] * w[2])
                     .normalize_or(view.toward);
                 // Cards are seen from both sides: their normal faces the viewer.
                 let normal = if normal.dot(view.toward) < 0.0 && leaf {

@@ -1,7 +1,7 @@
 //! A whole tree of a forest's variant as one mesh: a compact tree assembled from the
 //! variant's instance cache, every placed instance's triangles moved to where it stands.
 
-use glam::{Quat, Vec3};
+use glam::Vec3;
 use sylva_forest::Variant;
 use sylva_instancing::{Assembler, CompactTree, InstancingError};
 use sylva_turtle::{Mesh, Vertex};
@@ -31,7 +31,7 @@ pub fn variant_tree(variant: &Variant, seed: u32) -> Result<Mesh, InstancingErro
         let Some(instance) = cache.instances.get(k as usize) else {
             return;
         };
-        let rotation = Quat::from(t.rotation);
+        let rotation = t.rotation;
         let place = |p: [f32; 3]| (t.translation + rotation * (Vec3::from(p) * t.scale)).to_array();
         // The instance's vertices as one run, in the cache's order (coarser levels find the
         // turtle's rings by their layout).
