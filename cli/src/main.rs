@@ -4,6 +4,7 @@
 //! sylva forest                 # the default forest: forest.glb and forest_height.png
 //! sylva tiles --out world      # the same world as a 3D Tiles 1.1 tileset
 //! sylva grow                   # 25 oaks grown together around a boulder: stand.glb
+//! sylva pack --out pack        # levels of detail, impostors and placements for engines
 //! sylva paint                  # a scripted painting session: paint_masks/
 //! sylva derive --preset abop-honda --generations 6
 //! sylva tree --preset abop-ternary --out tree.obj
@@ -21,6 +22,7 @@ mod failure;
 mod forest;
 mod grammar;
 mod grow;
+mod pack;
 mod paint;
 mod progress;
 mod terrain;
@@ -51,6 +53,9 @@ enum Command {
     Tiles(tiles::TilesArgs),
     /// Grows a stand of trees together with light and collision and writes it as glTF.
     Grow(grow::GrowArgs),
+    /// Writes the species as an asset pack for engines: levels of detail, impostors and the
+    /// world's placements.
+    Pack(pack::PackArgs),
     /// Runs a timed, scripted painting session and saves its masks.
     Paint(paint::PaintArgs),
     /// Derives an L-system and prints the word.
@@ -70,6 +75,7 @@ fn main() -> ExitCode {
         Command::Forest(a) => forest::run(a),
         Command::Tiles(a) => tiles::run(a),
         Command::Grow(a) => grow::run(a),
+        Command::Pack(a) => pack::run(a),
         Command::Paint(a) => paint::run(a),
         Command::Derive(a) => derive::run(a),
         Command::Tree(a) => tree::run(a),

@@ -97,6 +97,15 @@ pub enum ExportError {
         /// The first entry that is not the tileset's.
         entry: String,
     },
+    /// An asset pack replaces its folder whole; this one holds something that is not a
+    /// pack's.
+    #[error("{}: holds {entry}, which is not an asset pack's (.glb, .png, .csv, .json); write the pack to a new or empty folder", folder.display())]
+    NotPackFolder {
+        /// The folder.
+        folder: std::path::PathBuf,
+        /// The first entry that is not the pack's.
+        entry: String,
+    },
 }
 
 /// What would have made a file invalid (a bug upstream if it ever happens with a built

@@ -130,3 +130,134 @@ proptest::proptest! {
         }
     }
 }
+
+/// The JSON chunk of a GLB file.
+fn glb_json(bytes: &[u8]) -> serde_json::Value {
+    let len = u32::from_le_bytes(bytes[12..16].try_into().expect("chunk length")) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).expect("the JSON chunk parses")
+}
+
+fn small_chain() -> sylva_export::lod::LodChain {
+    let mut chain = sylva_export::lod::LodChain::default();
+    chain.impostor = chain.impostor.with_view_size(24);
+    chain
+}
+
+/// A pack holds a GLB per variant whose scene is one node with a child per level, named
+/// NAME_LOD0 .. NAME_LODn (the canopy variants' last level the impostor's cards, over the
+/// atlas), the atlases, and every tree of the region in its placements.
+#[test]
+fn a_pack_holds_every_variants_levels_and_every_tree() {
+    use sylva_export::lod::write_asset_pack;
+    let (builder, map, region) = sylva_testkit::export_case();
+    let dir = sylva_testkit::scratch("pack").with_file_name("pack");
+    let stats = write_asset_pack(&builder, &map, region, &small_chain(), &dir).expect("pack");
+    let trees = builder.trees(&map, region).len();
+    assert_eq!(stats.trees, trees);
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("pack.json")).expect("manifest"))
+            .expect("json");
+    let variants = manifest["variants"].as_array().expect("variants");
+    assert_eq!(variants.len(), builder.variants().len());
+    for (v, entry) in builder.variants().iter().zip(variants) {
+        let name = entry["name"].as_str().expect("name");
+        let doc =
+            glb_json(&std::fs::read(dir.join(entry["file"].as_str().expect("file"))).expect("glb"));
+        let nodes = doc["nodes"].as_array().expect("nodes");
+        let scene: Vec<usize> = doc["scenes"][0]["nodes"]
+            .as_array()
+            .expect("scene")
+            .iter()
+            .map(|n| n.as_u64().expect("index") as usize)
+            .collect();
+        assert_eq!(scene.len(), 1, "{name}: one root");
+        let root = &nodes[scene[0]];
+        assert_eq!(root["name"], name);
+        let children: Vec<String> = root["children"]
+            .as_array()
+            .expect("children")
+            .iter()
+            .map(|c| {
+                nodes[c.as_u64().expect("index") as usize]["name"]
+                    .as_str()
+                    .expect("name")
+                    .to_owned()
+            })
+            .collect();
+        let levels = if v.seedling { 3 } else { 4 };
+        let expected: Vec<String> = (0..levels).map(|k| format!("{name}_LOD{k}")).collect();
+        assert_eq!(children, expected);
+        // Each level is drawn from farther than the one before.
+        let from: Vec<f64> = root["children"]
+            .as_array()
+            .expect("children")
+            .iter()
+            .map(|c| {
+                nodes[c.as_u64().expect("index") as usize]["extras"]["from_distance_1080p"]
+                    .as_f64()
+                    .expect("distance")
+            })
+            .collect();
+        assert!(from.windows(2).all(|w| w[0] <= w[1]), "{name}: {from:?}");
+        if !v.seedling {
+            for kind in ["colour", "normal", "depth"] {
+                assert!(dir.join(format!("{name}_impostor_{kind}.png")).exists());
+            }
+        }
+    }
+    let csv = std::fs::read_to_string(dir.join("placements.csv")).expect("csv");
+    assert_eq!(csv.lines().count(), trees + 1);
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("placements.json")).expect("json"))
+            .expect("json");
+    assert_eq!(json["trees"].as_array().expect("trees").len(), trees);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A folder with somebody else's files is refused, and nothing in it changes.
+#[test]
+fn a_pack_is_not_written_over_a_foreign_folder() {
+    use sylva_export::ExportError;
+    use sylva_export::lod::write_asset_pack;
+    let (builder, map, region) = sylva_testkit::export_case();
+    let dir = sylva_testkit::scratch("foreign").with_file_name("mine");
+    std::fs::create_dir_all(&dir).expect("folder");
+    std::fs::write(dir.join("notes.txt"), "keep me").expect("file");
+    let refused = write_asset_pack(&builder, &map, region, &small_chain(), &dir);
+    assert!(
+        matches!(refused, Err(ExportError::NotPackFolder { .. })),
+        "{refused:?}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("notes.txt")).expect("kept"),
+        "keep me"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The same inputs make the same pack, byte for byte.
+#[test]
+fn a_pack_is_a_pure_function_of_its_inputs() {
+    use sylva_export::lod::write_asset_pack;
+    let (builder, map, region) = sylva_testkit::export_case();
+    let a = sylva_testkit::scratch("pure-a").with_file_name("pack");
+    let b = sylva_testkit::scratch("pure-b").with_file_name("pack");
+    write_asset_pack(&builder, &map, region, &small_chain(), &a).expect("pack");
+    write_asset_pack(&builder, &map, region, &small_chain(), &b).expect("pack");
+    let mut names: Vec<_> = std::fs::read_dir(&a)
+        .expect("dir")
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    names.sort();
+    assert!(names.len() > 5);
+    for name in names {
+        assert_eq!(
+            std::fs::read(a.join(&name)).expect("a"),
+            std::fs::read(b.join(&name)).expect("b"),
+            "{name:?}"
+        );
+    }
+    std::fs::remove_dir_all(&a).ok();
+    std::fs::remove_dir_all(&b).ok();
+}

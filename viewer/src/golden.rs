@@ -100,7 +100,10 @@ fn default_scene_renders_terrain_and_trees() {
     for (x, y) in [(a.leaves, b.leaves), (a.terrain, b.terrain), (a.sky, b.sky)] {
         assert!((x - y).abs() < 0.03, "full detail {a}, with levels {b}");
     }
-    assert!(levels.triangles * 4 < all.triangles, "{levels:?} against {all:?}");
+    assert!(
+        levels.triangles * 4 < all.triangles,
+        "{levels:?} against {all:?}"
+    );
     let Coverage {
         terrain,
         bark,

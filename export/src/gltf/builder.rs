@@ -305,8 +305,16 @@ impl DocumentBuilder {
     /// mesh at the origin; required, it refuses the file and the user reaches for
     /// `--no-instancing`), padded with spaces to a whole number of words.
     pub(super) fn into_json(mut self) -> Result<String, ExportError> {
+        let children: std::collections::BTreeSet<usize> = self
+            .root
+            .nodes
+            .iter()
+            .flat_map(|n| n.children.iter().copied())
+            .collect();
         self.root.scenes = vec![Scene {
-            nodes: (0..self.root.nodes.len()).collect(),
+            nodes: (0..self.root.nodes.len())
+                .filter(|k| !children.contains(k))
+                .collect(),
         }];
         if self.root.nodes.iter().any(|n| n.extensions.is_some()) {
             self.root.extensions_used.push(GPU_INSTANCING.into());

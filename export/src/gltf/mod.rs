@@ -17,6 +17,7 @@ mod document;
 mod extras;
 mod file;
 mod in_memory;
+mod lod;
 mod schema;
 mod shared;
 mod stand;
@@ -24,6 +25,7 @@ mod subset;
 mod tangent;
 
 pub(crate) use coarse::write_coarse_glb;
+pub(crate) use lod::{LodCards, LodMesh, write_lod_glb};
 pub use shared::write_shared_geometry;
 pub use stand::{write_stand_glb, write_tree_glb};
 

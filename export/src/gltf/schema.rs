@@ -80,6 +80,12 @@ pub(super) struct Node {
     pub(super) scale: Option<[f32; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) extensions: Option<NodeExtensions>,
+    /// Child nodes: a scene lists only the nodes that are nobody's child.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub(super) children: Vec<usize>,
+    /// Application data (engines' importers keep it as custom properties).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) extras: Option<Value>,
 }
 
 impl Node {

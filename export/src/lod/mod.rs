@@ -3,18 +3,22 @@
 //! distances at which each takes over.
 
 mod cache;
+mod cards;
 mod chain;
 mod compare;
 mod impostor;
+mod pack;
 mod raster;
 mod simplify;
 mod tree;
 mod variant;
 
 pub use cache::{CacheLods, LevelSpans};
+pub use cards::impostor_cards;
 pub use chain::{LodChain, PIXELS_PER_RADIAN_1080P};
 pub use compare::{SilhouetteMatch, calibrate_leaves, compare_silhouettes};
 pub use impostor::{Impostor, ImpostorOptions, hemi_octahedral_direction, hemi_octahedral_uv};
+pub use pack::{PackStats, write_asset_pack};
 pub use raster::{OrthoView, Picture, TreeLook, draw};
 pub use simplify::{LodLevel, simplify_mesh};
 pub use tree::variant_tree;

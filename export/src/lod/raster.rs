@@ -172,8 +172,14 @@ pub fn draw(mesh: &Mesh, look: &TreeLook, view: &OrthoView) -> Picture {
         }
         let lo = p[0].min(p[1]).min(p[2]);
         let hi = p[0].max(p[1]).max(p[2]);
-        let (x0, x1) = (lo.x.floor().max(0.0) as usize, (hi.x.ceil().max(0.0) as usize).min(n));
-        let (y0, y1) = (lo.y.floor().max(0.0) as usize, (hi.y.ceil().max(0.0) as usize).min(n));
+        let (x0, x1) = (
+            lo.x.floor().max(0.0) as usize,
+            (hi.x.ceil().max(0.0) as usize).min(n),
+        );
+        let (y0, y1) = (
+            lo.y.floor().max(0.0) as usize,
+            (hi.y.ceil().max(0.0) as usize).min(n),
+        );
         if x0 >= x1 || y0 >= y1 {
             return;
         }
@@ -210,7 +216,12 @@ pub fn draw(mesh: &Mesh, look: &TreeLook, view: &OrthoView) -> Picture {
                 if leaf && t[3] < 128 {
                     continue;
                 }
-                let colour = base * Vec3::new(linear[t[0] as usize], linear[t[1] as usize], linear[t[2] as usize]);
+                let colour = base
+                    * Vec3::new(
+                        linear[t[0] as usize],
+                        linear[t[1] as usize],
+                        linear[t[2] as usize],
+                    );
                 let normal = (normals[0] * w[0] + normals[1] * w[1] + normals[2] * w[2])
                     .normalize_or(view.toward);
                 // Cards are seen from both sides: their normal faces the viewer.
