@@ -276,8 +276,9 @@ impl DocumentBuilder {
     pub(super) fn images(&mut self, views: impl IntoIterator<Item = (usize, bool)>) {
         for (buffer_view, tiled) in views {
             self.root.images.push(Image {
-                buffer_view,
-                mime_type: "image/png",
+                buffer_view: Some(buffer_view),
+                mime_type: Some("image/png"),
+                uri: None,
             });
             self.root.textures.push(Texture {
                 sampler: usize::from(tiled),
@@ -287,6 +288,22 @@ impl DocumentBuilder {
         if !self.root.images.is_empty() {
             self.root.samplers = Sampler::clamped_and_repeated();
         }
+    }
+
+    /// A PNG image in a file of its own at `uri` (relative to the GLB), clamped at its
+    /// edges; returns its texture's index.
+    pub(super) fn image_file(&mut self, uri: String) -> usize {
+        self.root.images.push(Image {
+            buffer_view: None,
+            mime_type: None,
+            uri: Some(uri),
+        });
+        self.root.textures.push(Texture {
+            sampler: 0,
+            source: self.root.images.len() - 1,
+        });
+        self.root.samplers = Sampler::clamped_and_repeated();
+        self.root.textures.len() - 1
     }
 
     /// Adds buffer 0 when anything was laid out in it (at least `min` bytes long, so that a

@@ -1,4 +1,5 @@
-//! Coarse tiles as GLB: whole-tree proxies placed once per tree through
+//! Coarse tiles as GLB: each canopy tree as its variant's impostor cards (three upright and
+//! one level, over the variant's atlas, a PNG beside the tileset) placed once per tree through
 //! EXT_mesh_gpu_instancing, over a coarse terrain.
 
 use std::path::Path;
@@ -15,11 +16,20 @@ use crate::error::ExportError;
 /// Roughness of the coarse tiles' materials.
 const ROUGHNESS: f32 = 0.9;
 
-/// Writes `trees` as instances of `proxies` (one mesh per variant; a tree's variant picks
-/// it), coloured by their species (bark, leaves) and tinted per tree, over `terrain`.
+/// A variant's impostor in a coarse tile: its cards, its species, and the URI (relative to
+/// the tile) of the atlas their texture coordinates address.
+#[derive(Debug, Clone)]
+pub(crate) struct CoarseImpostor {
+    pub(crate) cards: Mesh,
+    pub(crate) species: usize,
+    pub(crate) atlas: String,
+}
+
+/// Writes `trees` as instances of `impostors` (one per variant, none for variants not drawn
+/// at this distance; a tree's variant picks it), tinted per tree, over `terrain`.
 pub(crate) fn write_coarse_glb(
     trees: &[CompactTree],
-    proxies: &[(Mesh, usize)],
+    impostors: &[Option<CoarseImpostor>],
     species: &[Species],
     terrain: &TerrainMesh,
     path: &Path,
@@ -31,22 +41,30 @@ pub(crate) fn write_coarse_glb(
             .material("terrain".into(), [1.0; 3], ROUGHNESS, (None, None), None);
         glb.terrain(terrain, material);
     }
-    for (variant, (mesh, s)) in proxies.iter().enumerate() {
+    for (variant, impostor) in impostors.iter().enumerate() {
+        let Some(impostor) = impostor else { continue };
         let placed: Vec<&CompactTree> = trees
             .iter()
             .filter(|t| usize::from(t.variant) == variant)
             .collect();
-        let Some(sp) = species.get(*s) else { continue };
-        if placed.is_empty() || mesh.vertices.is_empty() {
+        let Some(sp) = species.get(impostor.species) else {
+            continue;
+        };
+        if placed.is_empty() || impostor.cards.vertices.is_empty() {
             continue;
         }
-        let [trunk, crown] = [("trunk", sp.bark), ("crown", sp.leaf)].map(|(part, colour)| {
-            let name = format!("{} proxy {part}", sp.name);
-            glb.doc
-                .material(name, colour, ROUGHNESS, (None, None), None)
-        });
-        let primitives = glb.tree(mesh, trunk, crown);
-        let mesh = glb.doc.mesh(format!("{} proxy", sp.name), primitives);
+        let texture = glb.doc.image_file(impostor.atlas.clone());
+        let material = glb.doc.material(
+            format!("{} impostor {variant}", sp.name),
+            [1.0; 3],
+            ROUGHNESS,
+            (Some(texture), None),
+            Some(0.5),
+        );
+        let primitives = glb.tree(&impostor.cards, material, material);
+        let mesh = glb
+            .doc
+            .mesh(format!("{} impostor {variant}", sp.name), primitives);
         let (mut t, mut r, mut sc, mut c) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for tree in &placed {
             let root = tree.root();
@@ -61,8 +79,12 @@ pub(crate) fn write_coarse_glb(
                 let view = glb.view(bytemuck::cast_slice(data), None, None);
                 glb.doc.accessor(view, 0, FLOAT, n, kind)
             });
-        glb.doc
-            .instanced_node(format!("{} proxies", sp.name), mesh, accessors, None);
+        glb.doc.instanced_node(
+            format!("{} impostors {variant}", sp.name),
+            mesh,
+            accessors,
+            None,
+        );
     }
     glb.write(path)
 }

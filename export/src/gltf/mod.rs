@@ -24,7 +24,7 @@ mod stand;
 mod subset;
 mod tangent;
 
-pub(crate) use coarse::write_coarse_glb;
+pub(crate) use coarse::{CoarseImpostor, write_coarse_glb};
 pub(crate) use lod::{LodCards, LodMesh, write_lod_glb};
 pub use shared::write_shared_geometry;
 pub use stand::{write_stand_glb, write_tree_glb};

@@ -244,8 +244,14 @@ pub(super) struct Buffer {
 #[derive(Debug, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub(super) struct Image {
-    pub(super) buffer_view: usize,
-    pub(super) mime_type: &'static str,
+    /// The image's bytes in a buffer view, or none for an image in a file of its own.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) buffer_view: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) mime_type: Option<&'static str>,
+    /// The file of an image outside the GLB, relative to it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) uri: Option<String>,
 }
 
 /// An image with the sampler that reads it.

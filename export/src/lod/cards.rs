@@ -52,9 +52,14 @@ fn card_views(grid: u32) -> Vec<(u32, u32)> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn impostor_cards(impostor: &Impostor) -> Mesh {
-    let grid = impostor.grid;
-    let centre = Vec3::from(impostor.centre);
-    let r = impostor.radius;
+    cards(impostor.grid, Vec3::from(impostor.centre), impostor.radius)
+}
+
+/// The cards of an impostor of `grid` views framing the sphere (`centre`, `r`): all they
+/// need of the impostor, so a writer that refers to an atlas drawn elsewhere places them
+/// without drawing it ([`Impostor::frame`] gives the sphere of a tree).
+pub fn cards(grid: u32, centre: Vec3, r: f32) -> Mesh {
+    let grid = grid.clamp(2, 32);
     let mut mesh = Mesh::default();
     for (i, j) in card_views(grid) {
         let toward = Impostor::view_direction(grid, i, j);

@@ -120,7 +120,7 @@ impl Impostor {
     pub fn render(mesh: &Mesh, look: &TreeLook, options: &ImpostorOptions) -> Impostor {
         let grid = options.grid.clamp(2, 32);
         let size = options.view_size.clamp(8, 1024);
-        let (centre, radius) = bounding_sphere(mesh);
+        let (centre, radius) = Impostor::frame(mesh);
         let views: Vec<(u32, u32)> = (0..grid)
             .flat_map(|j| (0..grid).map(move |i| (i, j)))
             .collect();
@@ -189,7 +189,14 @@ impl Impostor {
     }
 }
 
-/// The sphere every view frames: about the middle of the mesh's bounds, holding every vertex.
+impl Impostor {
+    /// The sphere every view of `mesh`'s impostor frames: about the middle of its bounds,
+    /// holding every vertex.
+    pub fn frame(mesh: &Mesh) -> (Vec3, f32) {
+        bounding_sphere(mesh)
+    }
+}
+
 fn bounding_sphere(mesh: &Mesh) -> (Vec3, f32) {
     let Some((lo, hi)) = mesh.bounds() else {
         return (Vec3::ZERO, 1.0);

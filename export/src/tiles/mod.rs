@@ -3,10 +3,11 @@
 //! by separate processes or machines, and joined by a last step that writes the root.
 //!
 //! Layout of a tile folder: `tileset.json`, `shared.bin` (every variant's branch geometry and
-//! the textures, written once and referenced by every fine tile as an external glTF buffer)
-//! and `tiles/c_X_Y.glb` (coarse: whole-tree proxies of the canopy trees over a coarse
-//! terrain) and `tiles/f_X_Y.glb` (fine: every tree's branch instances over the full
-//! terrain).
+//! the textures, written once and referenced by every fine tile as an external glTF buffer),
+//! `impostors/variant_K.png` (each canopy variant's impostor atlas, written once and referenced
+//! by every coarse tile), `tiles/c_X_Y.glb` (coarse: each canopy tree as its impostor's cards
+//! over a coarse terrain) and `tiles/f_X_Y.glb` (fine: every tree's branch instances over the
+//! full terrain).
 
 mod ground;
 mod tileset;
@@ -17,10 +18,14 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use glam::Vec2;
+use rayon::prelude::*;
 use serde_json::json;
 use sylva_base::file::{FileError, foreign_entry};
 use sylva_base::range::check;
-use sylva_forest::{Extent, ForestBuilder, Rect, tree_proxy};
+use sylva_forest::{Extent, ForestBuilder, ForestError, Rect};
+
+use crate::gltf::CoarseImpostor;
+use crate::lod::{Impostor, LodChain, TreeLook, cards, variant_tree};
 use sylva_terrain::HeightField;
 
 use crate::error::{ExportError, Invalid};
@@ -46,7 +51,7 @@ pub struct TileScheme {
 /// Which of the two levels a tile is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Level {
-    /// Whole-tree proxies of the canopy trees.
+    /// The canopy trees as impostor cards.
     Coarse,
     /// Every tree's branch instances.
     Fine,
@@ -205,11 +210,12 @@ impl TileScheme {
 }
 
 /// An error unless `dir` is missing, empty or holds only a tileset's own files
-/// (`tileset.json`, `shared.bin`, `tiles/` and hidden files): a folder with anything else is
+/// (`tileset.json`, `shared.bin`, `tiles/`, `impostors/` and hidden files): a folder with anything else is
 /// somebody else's, and writing a world into it would mix the two.
 pub fn check_tileset_folder(dir: &Path) -> Result<(), ExportError> {
     let ours = |name: &str| {
-        matches!(name, "tileset.json" | "shared.bin" | "tiles") || name.starts_with('.')
+        matches!(name, "tileset.json" | "shared.bin" | "tiles" | "impostors")
+            || name.starts_with('.')
     };
     match foreign_entry(dir, ours) {
         Some(entry) => Err(ExportError::NotTilesetFolder {
@@ -273,15 +279,14 @@ pub fn write_tile(
                 .into_iter()
                 .filter(|t| !variants[usize::from(t.variant)].seedling)
                 .collect();
-            let proxies: Vec<_> = variants
-                .iter()
-                .map(|v| (tree_proxy(Extent::of(v)), v.species))
-                .collect();
+            let impostors = coarse_impostors(builder)?;
             let bytes =
-                write_coarse_glb(&trees, &proxies, &builder.config().species, &mesh, &path)?;
-            let per_tree: u64 = proxies
-                .first()
-                .map_or(0, |(m, _)| m.triangle_count() as u64);
+                write_coarse_glb(&trees, &impostors, &builder.config().species, &mesh, &path)?;
+            let per_tree: u64 = impostors
+                .iter()
+                .flatten()
+                .next()
+                .map_or(0, |i| i.cards.triangle_count() as u64);
             let mut stats = TileStats {
                 tiles: 1,
                 trees: trees.len(),
@@ -294,6 +299,64 @@ pub fn write_tile(
             Ok(stats)
         }
     }
+}
+
+/// The file of variant `k`'s impostor atlas in a tileset's folder.
+fn atlas_name(k: usize) -> String {
+    format!("impostors/variant_{k}.png")
+}
+
+/// Each variant's impostor in coarse tiles: the cards of its tree (the one its atlas is drawn
+/// from, seed 1), referring to the atlas [`write_tileset`] writes; none for seedlings.
+fn coarse_impostors(builder: &ForestBuilder) -> Result<Vec<Option<CoarseImpostor>>, ExportError> {
+    let grid = LodChain::default().impostor.grid;
+    builder
+        .variants()
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            if v.seedling {
+                return Ok(None);
+            }
+            let tree = variant_tree(v, 1).map_err(ForestError::from)?;
+            let (centre, radius) = Impostor::frame(&tree);
+            Ok(Some(CoarseImpostor {
+                cards: cards(grid, centre, radius),
+                species: v.species,
+                atlas: format!("../{}", atlas_name(k)),
+            }))
+        })
+        .collect()
+}
+
+/// Draws every canopy variant's impostor atlas into `dir/impostors/`. Returns their bytes.
+fn write_atlases(builder: &ForestBuilder, dir: &Path) -> Result<usize, ExportError> {
+    let folder = dir.join("impostors");
+    std::fs::create_dir_all(&folder).map_err(FileError::at(&folder))?;
+    let species = &builder.config().species;
+    let chain = LodChain::default();
+    let pngs: Vec<Option<Vec<u8>>> = builder
+        .variants()
+        .par_iter()
+        .map(|v| {
+            if v.seedling {
+                return Ok(None);
+            }
+            let tree = variant_tree(v, 1).map_err(ForestError::from)?;
+            let look = TreeLook::of(&species[v.species]);
+            Ok(Some(
+                Impostor::render(&tree, &look, &chain.impostor).colour.png(),
+            ))
+        })
+        .collect::<Result<_, ExportError>>()?;
+    let mut bytes = 0;
+    for (k, png) in pngs.iter().enumerate() {
+        if let Some(png) = png {
+            sylva_base::file::write(dir.join(atlas_name(k)), |w| w.write_all(png))?;
+            bytes += png.len();
+        }
+    }
+    Ok(bytes)
 }
 
 /// Where the world sits on the globe and how its levels switch.
@@ -320,10 +383,11 @@ impl TilesetOptions {
     }
 }
 
-/// The last step: writes `dir/shared.bin` (the geometry every fine tile references) and
-/// `dir/tileset.json` (3D Tiles 1.1) for the scheme's tiles, which may be written before or
-/// after, by any process. Geometric errors: a coarse tile's is the widest crown diameter (the
-/// detail its proxies leave out), so standard clients (maximum screen-space error 16)
+/// The last step: writes `dir/shared.bin` (the geometry every fine tile references), the
+/// impostor atlases every coarse tile refers to, and `dir/tileset.json` (3D Tiles 1.1) for the
+/// scheme's tiles, which may be written before or after, by any process. Geometric errors: a
+/// coarse tile's is the widest crown diameter (what flat cards leave out of a crown seen off
+/// their planes), so standard clients (maximum screen-space error 16)
 /// switch to fine tiles within about 60 crown diameters; the root's is the coarse tile side.
 pub fn write_tileset(
     builder: &ForestBuilder,
@@ -333,7 +397,8 @@ pub fn write_tileset(
     options: &TilesetOptions,
 ) -> Result<usize, ExportError> {
     std::fs::create_dir_all(dir).map_err(FileError::at(dir))?;
-    let shared = write_shared_geometry(builder, &dir.join("shared.bin"))?;
+    let shared =
+        write_shared_geometry(builder, &dir.join("shared.bin"))? + write_atlases(builder, dir)?;
     let (tallest, widest) = builder
         .variants()
         .iter()

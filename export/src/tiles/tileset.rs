@@ -1,5 +1,5 @@
 //! The 3D Tiles 1.1 tileset: a root over the world, placed on the globe by an east-north-up
-//! frame, coarse tiles of whole-tree proxies, each refined by its fine tiles of branch
+//! frame, coarse tiles of impostor cards, each refined by its fine tiles of branch
 //! instances.
 
 use serde_json::{Value, json};
