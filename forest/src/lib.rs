@@ -1,5 +1,5 @@
 //! Forests: species, patch-based density management, placement on any terrain, forests
-//! streamed block by block on every core, whole-tree proxies, stands grown in their
+//! streamed block by block on every core, variant extents, stands grown in their
 //! environment and the guided walk. Files are written by `sylva-export`, painting is
 //! `sylva-paint`.
 //!
@@ -42,9 +42,9 @@ mod census;
 mod composition;
 mod density;
 mod error;
+mod extent;
 mod forest;
 mod patch;
-mod proxy;
 mod species;
 mod stand;
 mod stream;
@@ -56,11 +56,11 @@ pub use census::InstanceCounts;
 pub use composition::ComposedDensity;
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
+pub use extent::Extent;
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
 pub use patch::{Composition, PatchDensity, PatchSpecies};
-pub use proxy::{Extent, tree_proxy};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
 pub use stream::{KeepTrees, Placement, PlacementBlock, PlacementSink, StreamStats, TreesOf};

@@ -24,6 +24,11 @@ fn unshaded(leaf: [f32; 3]) -> [f32; 3] {
     leaf.map(|c| (c / CLUSTER_SHADE_MEAN).min(1.0))
 }
 
+/// What a crown shades itself that a flat card cannot: the cards' colour factor, so that
+/// a card lit as facing the sky looks as dark as the crown it stands for. Chosen by eye
+/// against branch instances beside impostors in three.js.
+const CARD_SHADE: f32 = 0.7;
+
 /// A glTF document being assembled.
 #[derive(Debug, Default)]
 pub(super) struct DocumentBuilder {
@@ -210,6 +215,18 @@ impl DocumentBuilder {
             double_sided: leaf_card,
         });
         self.root.materials.len() - 1
+    }
+
+    /// An impostor's cards' material: `texture`'s colour darkened by [`CARD_SHADE`], its alpha
+    /// cut at `cutoff`, one-sided (the cards are drawn both ways, so neither side's normal is
+    /// flipped).
+    pub(super) fn card_material(&mut self, name: String, texture: usize, cutoff: f32) -> usize {
+        let shade = [CARD_SHADE; 3];
+        let index = self.material(name, shade, 0.9, (Some(texture), None), Some(cutoff));
+        if let Some(m) = self.root.materials.get_mut(index) {
+            m.double_sided = false;
+        }
+        index
     }
 
     /// A species' bark material, over its colour and normal textures when given, and its

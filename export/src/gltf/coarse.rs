@@ -54,12 +54,10 @@ pub(crate) fn write_coarse_glb(
             continue;
         }
         let texture = glb.doc.image_file(impostor.atlas.clone());
-        let material = glb.doc.material(
+        let material = glb.doc.card_material(
             format!("{} impostor {variant}", sp.name),
-            [1.0; 3],
-            ROUGHNESS,
-            (Some(texture), None),
-            Some(0.5),
+            texture,
+            crate::lod::CARD_ALPHA_CUTOFF,
         );
         let primitives = glb.tree(&impostor.cards, material, material);
         let mesh = glb

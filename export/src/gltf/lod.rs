@@ -48,15 +48,13 @@ pub(crate) fn write_lod_glb(
     let (bark, leaves) =
         glb.doc
             .species_materials(species, ROUGHNESS, textures.of_species(species));
-    // The atlas is the last texture; its material exists only with the cards.
+    // The cards' texture is the last; its material exists only with the cards.
     let atlas_texture = textures.images().len();
     let impostor = cards.map(|_| {
-        glb.doc.material(
+        glb.doc.card_material(
             format!("{name} impostor"),
-            [1.0; 3],
-            ROUGHNESS,
-            (Some(atlas_texture), None),
-            Some(0.5),
+            atlas_texture,
+            crate::lod::CARD_ALPHA_CUTOFF,
         )
     });
     let mut children = Vec::new();

@@ -14,7 +14,7 @@ mod tree;
 mod variant;
 
 pub use cache::{CacheLods, LevelSpans};
-pub use cards::{cards, impostor_cards};
+pub use cards::{CARD_ALPHA_CUTOFF, cards, impostor_cards};
 pub use chain::{LodChain, PIXELS_PER_RADIAN_1080P};
 pub use compare::{SilhouetteMatch, calibrate_leaves, compare_silhouettes};
 pub use impostor::{Impostor, ImpostorOptions, hemi_octahedral_direction, hemi_octahedral_uv};

@@ -185,7 +185,7 @@ fn fill(
             })
             .collect();
         let card_mesh = lod.impostor.as_ref().map(impostor_cards);
-        let atlas = lod.impostor.as_ref().map(|i| i.colour.png());
+        let atlas = lod.impostor.as_ref().map(|i| i.cards_texture().png());
         let cards = card_mesh
             .as_ref()
             .zip(atlas.as_deref())

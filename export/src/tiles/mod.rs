@@ -309,7 +309,7 @@ fn atlas_name(k: usize) -> String {
 /// Each variant's impostor in coarse tiles: the cards of its tree (the one its atlas is drawn
 /// from, seed 1), referring to the atlas [`write_tileset`] writes; none for seedlings.
 fn coarse_impostors(builder: &ForestBuilder) -> Result<Vec<Option<CoarseImpostor>>, ExportError> {
-    let grid = LodChain::default().impostor.grid;
+    let options = LodChain::default().impostor;
     builder
         .variants()
         .iter()
@@ -321,7 +321,7 @@ fn coarse_impostors(builder: &ForestBuilder) -> Result<Vec<Option<CoarseImpostor
             let tree = variant_tree(v, 1).map_err(ForestError::from)?;
             let (centre, radius) = Impostor::frame(&tree);
             Ok(Some(CoarseImpostor {
-                cards: cards(grid, centre, radius),
+                cards: cards((options.grid, options.view_size), centre, radius),
                 species: v.species,
                 atlas: format!("../{}", atlas_name(k)),
             }))
@@ -329,7 +329,8 @@ fn coarse_impostors(builder: &ForestBuilder) -> Result<Vec<Option<CoarseImpostor
         .collect()
 }
 
-/// Draws every canopy variant's impostor atlas into `dir/impostors/`. Returns their bytes.
+/// Draws every canopy variant's impostor cards' texture into `dir/impostors/`. Returns their
+/// bytes.
 fn write_atlases(builder: &ForestBuilder, dir: &Path) -> Result<usize, ExportError> {
     let folder = dir.join("impostors");
     std::fs::create_dir_all(&folder).map_err(FileError::at(&folder))?;
@@ -345,7 +346,9 @@ fn write_atlases(builder: &ForestBuilder, dir: &Path) -> Result<usize, ExportErr
             let tree = variant_tree(v, 1).map_err(ForestError::from)?;
             let look = TreeLook::of(&species[v.species]);
             Ok(Some(
-                Impostor::render(&tree, &look, &chain.impostor).colour.png(),
+                Impostor::render(&tree, &look, &chain.impostor)
+                    .cards_texture()
+                    .png(),
             ))
         })
         .collect::<Result<_, ExportError>>()?;
