@@ -74,6 +74,17 @@ pub enum ForestError {
     /// Growing trees in their environment failed.
     #[error("growth: {0}")]
     Growth(#[from] sylva_growth::GrowthError),
+    /// A forest floor asked of a region of more cells than the limit: ask for smaller
+    /// regions (the floor joins without seams) or larger cells.
+    #[error(
+        "the floor of {cells} cells is more than the limit of {limit}: ask for smaller regions or larger cells"
+    )]
+    FloorTooLarge {
+        /// Cells the region has.
+        cells: u64,
+        /// The limit ([`MAX_FLOOR_CELLS`](crate::MAX_FLOOR_CELLS)).
+        limit: u64,
+    },
     /// No species has a positive weight: give at least one species a weight above 0.
     #[error("a forest needs at least one species with a positive weight")]
     NoSpecies,

@@ -43,6 +43,7 @@ mod composition;
 mod density;
 mod error;
 mod extent;
+mod floor;
 mod forest;
 mod patch;
 mod species;
@@ -57,6 +58,9 @@ pub use composition::ComposedDensity;
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
 pub use extent::Extent;
+pub use floor::{
+    FloorItem, FloorOptions, ForestFloor, GroundCover, GroundKind, GroundLook, MAX_FLOOR_CELLS,
+};
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };

@@ -8,6 +8,7 @@ use sylva_turtle::{Mesh, MeshBuilder, Skeleton, Tropism, TurtleOptions, interpre
 
 use crate::appearance::{BarkPattern, LeafShape};
 use crate::error::ForestError;
+use crate::floor::{GroundCover, GroundKind};
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
@@ -36,6 +37,8 @@ pub struct Species {
     pub bark_pattern: BarkPattern,
     /// Relative frequency among the forest's species.
     pub weight: f32,
+    /// The ground cover near its canopy trees (empty: the forest floor's default mix).
+    pub ground_cover: Vec<GroundCover>,
 }
 
 /// Canopy size of a species, as the thesis bounds it and as measured.
@@ -75,6 +78,7 @@ impl Species {
             leaf_shape: LeafShape::Broadleaf,
             bark_pattern: BarkPattern::Furrowed,
             weight: 1.0,
+            ground_cover: Vec::new(),
         }
     }
 
@@ -177,7 +181,9 @@ impl Species {
     /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
     /// (length and width), `leaf_facing` (0 to 1: how far cards turn to face the sky, see
     /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf`, `lobed`, `serrated`, `needles` or `needle-tuft`: the card's texture),
-    /// `bark_texture` (`furrowed`, `smooth` or `scaly`), `root_flare` (0 to 3: how much wider
+    /// `bark_texture` (`furrowed`, `smooth` or `scaly`), `ground_cover` (what grows on the
+    /// floor near its canopy trees: kinds and items per square metre in full light, such as
+    /// `grass 1.5, fern 0.4, rock 0.02`; see [`GroundKind`]), `root_flare` (0 to 3: how much wider
     /// than the trunk its base flares, see [`TurtleOptions::root_flare`]), `branch_collar` (0
     /// to 1: how much a branch swells where it leaves its parent, see
     /// [`TurtleOptions::branch_collar`]), `curve_steps` (1 to 8: pieces a thick stem is drawn
@@ -373,8 +379,12 @@ impl Species {
                 )
             })?;
         }
+        if let Some((l, c, _, v)) = find("ground_cover") {
+            s.ground_cover = parse_ground_cover(v).map_err(|m| err(*l, *c, m))?;
+        }
         for (l, c, k, _) in &fields {
             const KNOWN: &[&str] = &[
+                "ground_cover",
                 "name",
                 "grammar",
                 "generations",
@@ -425,4 +435,31 @@ fn numbers(value: &str) -> Vec<f32> {
         .split_whitespace()
         .filter_map(|word| word.parse().ok())
         .collect()
+}
+
+/// A `ground_cover` value: comma-separated `KIND DENSITY` pairs.
+fn parse_ground_cover(value: &str) -> Result<Vec<GroundCover>, String> {
+    let mut out = Vec::new();
+    for part in value.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let mut words = part.split_whitespace();
+        let (Some(name), Some(density), None) = (words.next(), words.next(), words.next()) else {
+            return Err(format!(
+                "ground_cover must be comma-separated 'KIND DENSITY' pairs (such as 'grass 1.5, fern 0.4'), not '{part}'"
+            ));
+        };
+        let kind = GroundKind::from_name(name).ok_or_else(|| {
+            format!(
+                "ground_cover: '{name}' is not a kind of cover (grass, fern, shrub, branch or rock)"
+            )
+        })?;
+        let density = density
+            .parse::<f32>()
+            .ok()
+            .filter(|d| d.is_finite() && (0.0..=20.0).contains(d))
+            .ok_or_else(|| {
+                format!("ground_cover: the density of {name} must be items per square metre from 0 to 20, not '{density}'")
+            })?;
+        out.push(GroundCover { kind, density });
+    }
+    Ok(out)
 }

@@ -1,0 +1,338 @@
+//! What grows on the forest floor: grass, ferns, low shrubs, fallen branches and rocks, each
+//! a mesh made once, its look and how its density follows the light.
+
+use glam::{Quat, Vec3};
+use sylva_base::hash::{mix, unit_f32};
+use sylva_turtle::{Mesh, TurtleOptions, Vertex};
+
+use crate::appearance::{BarkPattern, LeafShape};
+use crate::error::ForestError;
+use crate::species::Species;
+
+/// A kind of ground cover.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum GroundKind {
+    /// Tufts of grass blades: most in full light, few under a closed canopy.
+    Grass,
+    /// Ferns: most in half shade, some in the open and under closed canopy.
+    Fern,
+    /// Low leafy shrubs: in light gaps.
+    Shrub,
+    /// Fallen branches: under the trees they fell from.
+    Branch,
+    /// Rocks: wherever the ground has them, light or not.
+    Rock,
+}
+
+impl GroundKind {
+    /// Every kind, in order.
+    pub const ALL: [GroundKind; 5] = [
+        GroundKind::Grass,
+        GroundKind::Fern,
+        GroundKind::Shrub,
+        GroundKind::Branch,
+        GroundKind::Rock,
+    ];
+
+    /// The kind's name in species files: `grass`, `fern`, `shrub`, `branch` or `rock`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GroundKind::Grass => "grass",
+            GroundKind::Fern => "fern",
+            GroundKind::Shrub => "shrub",
+            GroundKind::Branch => "branch",
+            GroundKind::Rock => "rock",
+        }
+    }
+
+    /// The kind named `name` (as [`GroundKind::name`] spells it), if any.
+    ///
+    /// ```
+    /// use sylva_forest::GroundKind;
+    /// assert_eq!(GroundKind::from_name("fern"), Some(GroundKind::Fern));
+    /// assert_eq!(GroundKind::from_name("moss"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<GroundKind> {
+        GroundKind::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// The share of its full density the kind reaches under canopy `cover` (0: open sky, 1:
+    /// closed canopy).
+    ///
+    /// ```
+    /// use sylva_forest::GroundKind;
+    /// // Grass thins out under the trees; fallen branches gather there.
+    /// assert!(GroundKind::Grass.light_response(0.0) > 4.0 * GroundKind::Grass.light_response(0.9));
+    /// assert!(GroundKind::Branch.light_response(0.9) > GroundKind::Branch.light_response(0.1));
+    /// ```
+    pub fn light_response(self, cover: f32) -> f32 {
+        let c = cover.clamp(0.0, 1.0);
+        match self {
+            GroundKind::Grass => 0.04 + 0.96 * (1.0 - c) * (1.0 - c),
+            GroundKind::Fern => 0.3 + 0.7 * (1.0 - (2.0 * c - 1.0).abs()),
+            GroundKind::Shrub => 0.1 + 0.9 * (1.0 - c),
+            GroundKind::Branch => 0.15 + 0.85 * c,
+            GroundKind::Rock => 1.0,
+        }
+    }
+
+    /// Items per square metre in full response when no species names its own cover.
+    pub fn default_density(self) -> f32 {
+        match self {
+            GroundKind::Grass => 1.2,
+            GroundKind::Fern => 0.2,
+            GroundKind::Shrub => 0.015,
+            GroundKind::Branch => 0.03,
+            GroundKind::Rock => 0.012,
+        }
+    }
+
+    /// How the kind looks: bark colour and pattern (stems, wood, stone), leaf colour and
+    /// card shape, and whether its leaves are textured cards (grass blades are plain).
+    pub fn look(self) -> GroundLook {
+        let look = |bark: [f32; 3], pattern, leaf: [f32; 3], shape, cards| GroundLook {
+            bark,
+            bark_pattern: pattern,
+            leaf,
+            leaf_shape: shape,
+            cards,
+        };
+        match self {
+            GroundKind::Grass => look(
+                [0.1, 0.16, 0.05],
+                BarkPattern::Smooth,
+                [0.17, 0.30, 0.07],
+                LeafShape::Needles,
+                false,
+            ),
+            GroundKind::Fern => look(
+                [0.08, 0.14, 0.04],
+                BarkPattern::Smooth,
+                [0.10, 0.26, 0.05],
+                LeafShape::Serrated,
+                true,
+            ),
+            GroundKind::Shrub => look(
+                [0.16, 0.13, 0.10],
+                BarkPattern::Smooth,
+                [0.13, 0.28, 0.06],
+                LeafShape::Serrated,
+                true,
+            ),
+            GroundKind::Branch => look(
+                [0.17, 0.14, 0.11],
+                BarkPattern::Furrowed,
+                [0.2, 0.3, 0.1],
+                LeafShape::Broadleaf,
+                true,
+            ),
+            GroundKind::Rock => look(
+                [0.33, 0.32, 0.30],
+                BarkPattern::Scaly,
+                [0.3, 0.3, 0.3],
+                LeafShape::Broadleaf,
+                true,
+            ),
+        }
+    }
+
+    /// The kind's mesh, in metres, standing on its origin: the same for every item (items
+    /// differ by yaw and scale).
+    pub fn mesh(self) -> Result<Mesh, ForestError> {
+        match self {
+            GroundKind::Grass => Ok(grass_tuft()),
+            GroundKind::Fern => turtle_mesh("fern", FERN, fern_options()),
+            GroundKind::Shrub => {
+                let mut hazel = Species::from_preset("sylva-hazel", 3)?;
+                hazel.turtle.step *= 0.45;
+                hazel.turtle.width *= 0.45;
+                hazel.turtle.leaf_size = [0.16, 0.14];
+                hazel.mesh(3, 7)
+            }
+            GroundKind::Branch => {
+                let mut mesh = turtle_mesh("fallen branch", BRANCH, branch_options())?;
+                // The turtle grows up +Y: laid down along +X, resting on the ground.
+                let lay = Quat::from_rotation_z(-std::f32::consts::FRAC_PI_2);
+                for v in &mut mesh.vertices {
+                    let p = lay * Vec3::from(v.position) + Vec3::new(-0.8, 0.07, 0.0);
+                    v.position = p.to_array();
+                    v.normal = (lay * Vec3::from(v.normal)).to_array();
+                    let w = lay * Vec3::new(v.wind[0], v.wind[1], v.wind[2]);
+                    // Lying on the ground, a branch does not sway.
+                    v.wind = [w.x, w.y + 0.07, w.z, 0.0];
+                }
+                Ok(mesh)
+            }
+            GroundKind::Rock => Ok(rock()),
+        }
+    }
+
+    /// About how tall (or, lying, how wide) an item is, in metres: how far away it is still
+    /// worth drawing.
+    pub fn size(self) -> f32 {
+        match self {
+            GroundKind::Grass => 0.4,
+            GroundKind::Fern => 0.6,
+            GroundKind::Shrub => 1.4,
+            GroundKind::Branch => 0.5,
+            GroundKind::Rock => 0.7,
+        }
+    }
+}
+
+/// How a kind of ground cover looks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GroundLook {
+    /// Colour of stems, wood or stone (linear RGB), over `bark_pattern`'s texture.
+    pub bark: [f32; 3],
+    /// The bark texture.
+    pub bark_pattern: BarkPattern,
+    /// Leaf colour (linear RGB).
+    pub leaf: [f32; 3],
+    /// The leaf cards' texture, when `cards`.
+    pub leaf_shape: LeafShape,
+    /// Whether the leaves are textured cards; plain triangles otherwise.
+    pub cards: bool,
+}
+
+/// A fern: five to six fronds arching out from the crown, each a stalk with paired leaflet
+/// cards that shorten towards its tip.
+const FERN: &str = "
+axiom: /(10)[&(52)A(11)]/(67)[&(60)A(10)]/(75)[&(48)A(12)]/(70)[&(64)A(9)]/(68)[&(56)A(11)]
+A(n) : n > 0 -> F(0.055)[+(72)J][-(72)J]&(7)A(n-1)
+";
+
+fn fern_options() -> TurtleOptions {
+    let mut o = TurtleOptions::default();
+    o.width = 0.006;
+    o.radial_segments = 3;
+    o.leaf_size = [0.13, 0.06];
+    o.leaf_facing = 0.6;
+    o
+}
+
+/// A fallen branch: a limb with a few side branches, broken at both ends.
+const BRANCH: &str = "
+axiom: !(0.11)F(0.5)+(12)F(0.45)[-(40)!(0.05)F(0.45)+(15)F(0.3)]-(14)!(0.09)F(0.5)[+(55)!(0.04)F(0.4)]F(0.35)
+";
+
+fn branch_options() -> TurtleOptions {
+    let mut o = TurtleOptions::default();
+    o.radial_segments = 6;
+    o
+}
+
+/// The mesh the turtle draws of `grammar` (derived 14 generations, seed 1) with `options`.
+fn turtle_mesh(name: &str, grammar: &str, options: TurtleOptions) -> Result<Mesh, ForestError> {
+    let mut plant = Species::new(name, grammar.parse()?, 14);
+    plant.turtle = options;
+    plant.mesh(14, 1)
+}
+
+/// A tuft of grass: 16 blades leaning out from one spot, each three triangles narrowing to
+/// its tip, swaying as leaves do.
+fn grass_tuft() -> Mesh {
+    let mut mesh = Mesh::default();
+    for k in 0..16u32 {
+        let h = |salt: u64| unit_f32(mix(u64::from(k) * 31 + salt));
+        let yaw = std::f32::consts::TAU * (k as f32 + h(1)) / 16.0;
+        let lean = 0.15 + 0.5 * h(2);
+        let height = 0.22 + 0.22 * h(3);
+        let half = 0.006 + 0.004 * h(4);
+        let out = Vec3::new(yaw.cos(), 0.0, yaw.sin());
+        let across = Vec3::new(-out.z, 0.0, out.x);
+        let base = out * (0.04 * h(5));
+        // Up the blade, bending further out as it rises.
+        let at = |t: f32| base + out * (lean * height * t * t) + Vec3::Y * (height * t);
+        let normal = (Vec3::Y * 0.3 - out).normalize();
+        let first = mesh.vertices.len() as u32;
+        let wind = [base.x, 0.0, base.z, 4.0 + h(6).min(0.999)];
+        for (t, width) in [(0.0, 1.0), (0.5, 0.75)] {
+            for side in [-1.0f32, 1.0] {
+                mesh.vertices.push(Vertex {
+                    position: (at(t) + across * (side * half * width)).to_array(),
+                    normal: normal.to_array(),
+                    uv: [0.5 + 0.5 * side, t],
+                    wind,
+                });
+            }
+        }
+        mesh.vertices.push(Vertex {
+            position: at(1.0).to_array(),
+            normal: normal.to_array(),
+            uv: [0.5, 1.0],
+            wind,
+        });
+        let [a, b, c, d, e] = [0, 1, 2, 3, 4].map(|i| first + i);
+        mesh.leaves.extend_from_slice(&[a, b, d, a, d, c, c, d, e]);
+    }
+    mesh
+}
+
+/// A rock: a subdivided octahedron pushed in and out by noise, flattened and half sunk.
+fn rock() -> Mesh {
+    let mut positions: Vec<Vec3> = vec![
+        Vec3::X,
+        Vec3::NEG_X,
+        Vec3::Y,
+        Vec3::NEG_Y,
+        Vec3::Z,
+        Vec3::NEG_Z,
+    ];
+    let mut faces: Vec<[u32; 3]> = vec![
+        [0, 2, 4],
+        [4, 2, 1],
+        [1, 2, 5],
+        [5, 2, 0],
+        [4, 3, 0],
+        [1, 3, 4],
+        [5, 3, 1],
+        [0, 3, 5],
+    ];
+    for _ in 0..3 {
+        let mut midpoints = std::collections::HashMap::new();
+        let mut next = Vec::with_capacity(faces.len() * 4);
+        for f in &faces {
+            let mut mid = |a: u32, b: u32| -> u32 {
+                *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    positions.push((positions[a as usize] + positions[b as usize]).normalize());
+                    (positions.len() - 1) as u32
+                })
+            };
+            let (ab, bc, ca) = (mid(f[0], f[1]), mid(f[1], f[2]), mid(f[2], f[0]));
+            next.extend_from_slice(&[[f[0], ab, ca], [ab, f[1], bc], [ca, bc, f[2]], [ab, bc, ca]]);
+        }
+        faces = next;
+    }
+    let bump = |p: Vec3| {
+        let cell = (p * 2.0).floor();
+        let h = mix((cell.x as i64 as u64).wrapping_mul(0x9e37)
+            ^ (cell.y as i64 as u64).wrapping_mul(0x85eb) << 16
+            ^ (cell.z as i64 as u64).wrapping_mul(0xc2b2) << 32);
+        0.85 + 0.3 * unit_f32(h)
+    };
+    let shaped: Vec<Vec3> = positions
+        .iter()
+        .map(|&p| {
+            let r = bump(p) * (0.9 + 0.1 * (3.0 * p.x + 2.0 * p.z).sin());
+            Vec3::new(p.x * 0.5, p.y * 0.28 + 0.06, p.z * 0.4) * r
+        })
+        .collect();
+    let mut mesh = Mesh::default();
+    // Flat shading: each face its own vertices, so the facets read as broken stone.
+    for f in &faces {
+        let [a, b, c] = f.map(|i| shaped[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or(Vec3::Y);
+        let first = mesh.vertices.len() as u32;
+        for (p, uv) in [(a, [0.0, 0.0]), (b, [1.0, 0.0]), (c, [0.5, 1.0])] {
+            mesh.vertices.push(Vertex {
+                position: p.to_array(),
+                normal: n.to_array(),
+                uv,
+                wind: [0.0; 4],
+            });
+        }
+        mesh.bark.extend_from_slice(&[first, first + 1, first + 2]);
+    }
+    mesh
+}
