@@ -222,6 +222,9 @@ impl World {
             trees.extend_from_slice(&block.trees);
             Ok(())
         })?;
+        if let Some(floor) = &self.floor {
+            tagged.extend(self.floor_instances(floor, rect)?);
+        }
         let placements = Runs::gather(tagged, self.groups.len());
         Ok(Cell::new(
             self,

@@ -42,6 +42,7 @@ fn default_scene() -> Scene {
         budget: 32 << 20,
         paint: None,
         specimen: false,
+        floor: true,
     })
     .expect("default scene builds")
 }
@@ -180,6 +181,7 @@ fn wind_sways_trees_and_still_air_does_not() {
         budget: 4 << 20,
         paint: None,
         specimen: false,
+        floor: true,
     })
     .expect("birch stand builds");
     let size = (160, 90);
@@ -228,6 +230,7 @@ fn a_view_streamed_again_is_the_same_picture() {
         budget: 12 << 20,
         paint: None,
         specimen: false,
+        floor: true,
     })
     .expect("world builds");
     let size = (160, 90);
@@ -274,6 +277,7 @@ fn a_turntable_frames_its_tree_from_every_side() {
         budget: 8 << 20,
         paint: None,
         specimen: true,
+        floor: false,
     })
     .expect("a turntable's world builds");
     let (builder, _) = scene.world.forest();

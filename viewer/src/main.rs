@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
-//!     [--area METRES | --trees N] [--budget-mb MB] [--paint MASKS_DIR]
+//!     [--area METRES | --trees N] [--budget-mb MB] [--paint MASKS_DIR] [--no-floor]
 //!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--full-detail]
 //!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
 //!     [--wind S] [--time T]]
@@ -34,7 +34,9 @@
 //! goes. With `--ids` the picture shows flat material colours and the viewer prints what
 //! share of it terrain, bark, leaves and sky cover. Trees are drawn at the level of detail
 //! their distance asks for (two pixels of error), down to impostors; `--full-detail` draws
-//! every branch of every tree instead, to measure against. `--tour N` renders N frames along a
+//! every branch of every tree instead, to measure against. The forest floor (grass, ferns,
+//! shrubs, fallen branches and rocks, thickest in the light gaps) grows around the camera;
+//! `--no-floor` leaves the ground bare. `--tour N` renders N frames along a
 //! guided walk from the camera's position, `--tour-spacing` metres apart (0.5 by default),
 //! to `PATH_0000.png` and on, and prints what the walk did. `--turntable N` grows one canopy
 //! tree of the first species alone on its ground and renders it from N directions evenly
@@ -48,6 +50,7 @@ mod cli;
 mod coverage;
 mod cull;
 mod error;
+mod floor;
 #[cfg(test)]
 mod golden;
 mod gpu;
@@ -123,7 +126,7 @@ struct Args {
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
-                     [--paint MASKS_DIR] [--camera x,z,yaw,pitch[,height]] \
+                     [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
                      [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]]";
 
 fn parse() -> Result<Args, String> {
@@ -138,6 +141,7 @@ fn parse() -> Result<Args, String> {
     let mut size = (1280u32, 720u32);
     let mut ids = false;
     let mut full_detail = false;
+    let mut no_floor = false;
     let mut frames = 0u32;
     let mut walk = 0.0f32;
     let mut wind = 1.0f32;
@@ -172,6 +176,7 @@ fn parse() -> Result<Args, String> {
             }
             "--ids" => ids = true,
             "--full-detail" => full_detail = true,
+            "--no-floor" => no_floor = true,
             "--frames" => frames = flags.value("--frames")?,
             "--walk" => walk = flags.value("--walk")?,
             "--wind" => wind = flags.value("--wind")?,
@@ -244,6 +249,7 @@ fn parse() -> Result<Args, String> {
             budget: budget_mb.max(1) << 20,
             paint: paint.clone(),
             specimen: turntable > 0,
+            floor: !no_floor,
         },
         species,
         camera,

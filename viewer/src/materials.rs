@@ -66,7 +66,11 @@ impl Materials {
                     intern((
                         v.leaf_colour,
                         ID_LEAF,
-                        1.0 + leaf_layer(v.leaf_shape) as f32,
+                        if v.textured_leaves {
+                            1.0 + leaf_layer(v.leaf_shape) as f32
+                        } else {
+                            0.0
+                        },
                     )),
                 )
             })

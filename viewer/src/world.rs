@@ -8,7 +8,8 @@ use rayon::prelude::*;
 use sylva::export::Texture;
 use sylva::export::lod::{CacheLods, Impostor, LodChain, VariantLods};
 use sylva::forest::{
-    BarkPattern, Composition, ForestBuilder, ForestConfig, ForestError, LeafShape, Species,
+    BarkPattern, Composition, FloorOptions, ForestBuilder, ForestConfig, ForestError, ForestFloor,
+    GroundKind, LeafShape, Species,
 };
 use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
@@ -40,6 +41,8 @@ pub(crate) struct VariantGeometry {
     pub(crate) leaf_colour: [f32; 3],
     pub(crate) leaf_shape: LeafShape,
     pub(crate) bark_pattern: BarkPattern,
+    /// Whether its leaves are textured cards (grass blades are plain triangles).
+    pub(crate) textured_leaves: bool,
 }
 
 /// Levels of detail drawn from meshes: the full cache and its two coarser levels.
@@ -112,6 +115,10 @@ pub(crate) struct World {
     pub(crate) lods: Vec<VariantLod>,
     /// The impostor atlases, colour then normals of each (the variants' `atlas` number).
     pub(crate) atlases: Vec<Texture>,
+    /// The forest floor (none around a specimen), and the group of its first kind (its
+    /// kinds' groups follow the trees', in `GroundKind::ALL`'s order).
+    pub(crate) floor: Option<ForestFloor>,
+    pub(crate) first_floor_group: Option<u32>,
     /// Per variant: whether it is a seedling form (left out of coarse cells, as coarse tiles
     /// leave it out).
     pub(crate) seedling: Vec<bool>,
@@ -132,6 +139,8 @@ pub(crate) struct SceneOptions {
     /// A turntable's world instead: one canopy tree of the first species in the middle of a
     /// world of at least 80 m, no seedlings (`side` and `trees` are not used).
     pub(crate) specimen: bool,
+    /// Whether the forest floor grows (never around a specimen).
+    pub(crate) floor: bool,
 }
 
 #[cfg(test)]
@@ -147,6 +156,7 @@ impl SceneOptions {
             budget: 8 << 20,
             paint: None,
             specimen: false,
+            floor: true,
         }
     }
 }
@@ -258,6 +268,7 @@ impl World {
                 leaf_colour: s.leaf,
                 leaf_shape: s.leaf_shape,
                 bark_pattern: s.bark_pattern,
+                textured_leaves: true,
             });
         }
         let mut atlases = Vec::new();
@@ -270,15 +281,30 @@ impl World {
                     atlases.push(i.normal.clone());
                     Proxy::card(&i, number)
                 }
-                None => Proxy {
-                    vertices: Vec::new(),
-                    bark: Vec::new(),
-                    leaves: Vec::new(),
-                    sphere: (Vec3::ZERO, -1.0),
-                },
+                None => Proxy::none(),
             })
             .collect();
-        let seedling = builder.variants().iter().map(|v| v.seedling).collect();
+        let mut proxies: Vec<Proxy> = proxies;
+        let mut seedling: Vec<bool> = builder.variants().iter().map(|v| v.seedling).collect();
+        let mut lods = lods;
+        // The forest floor: its kinds drawn as variants after the trees' (none around a
+        // specimen, which stands alone on its ground).
+        let (floor, first_floor_group) = if options.specimen || !options.floor {
+            (None, None)
+        } else {
+            let parts = crate::floor::floor_parts(&chain, variants.len())?;
+            let first = groups.len() as u32;
+            variants.extend(parts.variants);
+            groups.extend(parts.groups);
+            lods.extend(parts.lods);
+            proxies.extend(parts.proxies);
+            seedling.extend(std::iter::repeat_n(false, GroundKind::ALL.len()));
+            let floor = ForestFloor::of(
+                &builder,
+                FloorOptions::default().with_seed(options.seed ^ 0xf100_5eed),
+            );
+            (Some(floor), Some(first))
+        };
         Ok(World {
             forest: RwLock::new(Recipe {
                 builder: Arc::new(builder),
@@ -294,11 +320,23 @@ impl World {
             lods,
             atlases,
             seedling,
+            floor,
+            first_floor_group,
         })
     }
 }
 
 impl Proxy {
+    /// Nothing: a variant with no impostor.
+    pub(crate) fn none() -> Proxy {
+        Proxy {
+            vertices: Vec::new(),
+            bark: Vec::new(),
+            leaves: Vec::new(),
+            sphere: (Vec3::ZERO, -1.0),
+        }
+    }
+
     /// The card of `impostor`, atlas number `number`; its bark material is filled in by the
     /// renderer, which knows the materials.
     fn card(impostor: &Impostor, number: f32) -> Proxy {

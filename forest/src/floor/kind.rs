@@ -79,8 +79,8 @@ impl GroundKind {
     /// Items per square metre in full response when no species names its own cover.
     pub fn default_density(self) -> f32 {
         match self {
-            GroundKind::Grass => 1.2,
-            GroundKind::Fern => 0.2,
+            GroundKind::Grass => 3.0,
+            GroundKind::Fern => 0.35,
             GroundKind::Shrub => 0.015,
             GroundKind::Branch => 0.03,
             GroundKind::Rock => 0.012,
@@ -143,11 +143,15 @@ impl GroundKind {
             GroundKind::Grass => Ok(grass_tuft()),
             GroundKind::Fern => turtle_mesh("fern", FERN, fern_options()),
             GroundKind::Shrub => {
-                let mut hazel = Species::from_preset("sylva-hazel", 3)?;
-                hazel.turtle.step *= 0.45;
-                hazel.turtle.width *= 0.45;
-                hazel.turtle.leaf_size = [0.16, 0.14];
-                hazel.mesh(3, 7)
+                // A young hazel at a third of its size, its apices drawn as leaf clusters.
+                let mut hazel = Species::from_preset("sylva-hazel", 4)?;
+                hazel.turtle.symbols.set("L", sylva_turtle::Command::Leaf);
+                hazel.turtle.step *= 0.35;
+                hazel.turtle.width *= 0.4;
+                hazel.turtle.leaf_size = [0.2, 0.18];
+                hazel.turtle.leaf_facing = 0.85;
+                hazel.turtle.radial_segments = 4;
+                hazel.mesh(4, 7)
             }
             GroundKind::Branch => {
                 let mut mesh = turtle_mesh("fallen branch", BRANCH, branch_options())?;
@@ -211,9 +215,10 @@ fn fern_options() -> TurtleOptions {
     o
 }
 
-/// A fallen branch: a limb with a few side branches, broken at both ends.
+/// A fallen branch: a limb with a few side branches, broken at both ends, rolled so that its
+/// side branches lie along the ground once it is laid down.
 const BRANCH: &str = "
-axiom: !(0.11)F(0.5)+(12)F(0.45)[-(40)!(0.05)F(0.45)+(15)F(0.3)]-(14)!(0.09)F(0.5)[+(55)!(0.04)F(0.4)]F(0.35)
+axiom: /(90)!(0.11)F(0.5)+(12)F(0.45)[-(40)!(0.05)F(0.45)+(15)F(0.3)]-(14)!(0.09)F(0.5)[+(55)!(0.04)F(0.4)]F(0.35)
 ";
 
 fn branch_options() -> TurtleOptions {

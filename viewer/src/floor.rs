@@ -1,0 +1,124 @@
+//! The forest floor in the viewer: each kind of ground cover as a variant of its own with one
+//! group (its whole mesh at three levels of detail), and each fine cell's items as that
+//! group's placements. Items are drawn while they span a few pixels, then fade out.
+
+use sylva::export::lod::{LodChain, simplify_mesh};
+use sylva::forest::{FloorItem, ForestError, ForestFloor, GroundKind, Rect};
+use sylva::instancing::Span;
+use sylva::terrain::glam::{Quat, Vec3};
+use sylva::turtle::Mesh;
+
+use crate::world::{
+    Group, InstanceRaw, MESH_LEVELS, Proxy, VariantGeometry, VariantLod, World, bounding_sphere,
+};
+
+/// Floor items smaller on screen than this many pixels are faded out: the error of their
+/// last level is their size over this many pixels' worth of the allowed error.
+const MIN_FLOOR_PIXELS: f32 = 5.0;
+
+/// The floor's kinds as the viewer draws them: a variant, a group, levels and an empty proxy
+/// (no impostor) each.
+pub(crate) struct FloorParts {
+    pub(crate) variants: Vec<VariantGeometry>,
+    pub(crate) groups: Vec<Group>,
+    pub(crate) lods: Vec<VariantLod>,
+    pub(crate) proxies: Vec<Proxy>,
+}
+
+/// Every kind of ground cover at full detail and at `chain`'s levels, numbered after
+/// `first_variant` variants.
+pub(crate) fn floor_parts(
+    chain: &LodChain,
+    first_variant: usize,
+) -> Result<FloorParts, ForestError> {
+    let mut parts = FloorParts {
+        variants: Vec::new(),
+        groups: Vec::new(),
+        lods: Vec::new(),
+        proxies: Vec::new(),
+    };
+    for (k, kind) in GroundKind::ALL.into_iter().enumerate() {
+        let full = kind.mesh()?;
+        let meshes: Vec<Mesh> = std::iter::once(full.clone())
+            .chain(chain.levels.iter().map(|l| simplify_mesh(&full, l)))
+            .collect();
+        // The levels one after another in one vertex and one index buffer per material.
+        let (mut vertices, mut bark, mut leaves) = (Vec::new(), Vec::new(), Vec::new());
+        let mut levels = [(Span::default(), Span::default()); MESH_LEVELS];
+        for (level, mesh) in meshes.iter().enumerate().take(MESH_LEVELS) {
+            let base = vertices.len() as u32;
+            vertices.extend_from_slice(&mesh.vertices);
+            let b = Span::new(bark.len() as u32, mesh.bark.len() as u32);
+            let l = Span::new(leaves.len() as u32, mesh.leaves.len() as u32);
+            bark.extend(mesh.bark.iter().map(|i| i + base));
+            leaves.extend(mesh.leaves.iter().map(|i| i + base));
+            levels[level] = (b, l);
+        }
+        let look = kind.look();
+        let (centre, radius) =
+            bounding_sphere(full.vertices.iter().map(|v| Vec3::from(v.position)));
+        let card = if look.cards { 0.15 } else { 0.0 };
+        let error = |l: usize| {
+            chain
+                .levels
+                .get(l)
+                .map_or(0.0, |x| x.bark_error.max(x.leaf_error(card)))
+        };
+        let fade = kind.size() * chain.pixel_error / MIN_FLOOR_PIXELS;
+        parts.lods.push(VariantLod {
+            errors: [error(0), error(1).max(error(0)), fade.max(error(1))],
+        });
+        parts.groups.push(Group {
+            variant: first_variant + k,
+            levels,
+            // Room for the sway and the items' scale.
+            sphere: (centre, radius * 1.3 + 0.2),
+        });
+        parts.variants.push(VariantGeometry {
+            vertices,
+            bark,
+            leaves,
+            bark_colour: look.bark,
+            leaf_colour: look.leaf,
+            leaf_shape: look.leaf_shape,
+            bark_pattern: look.bark_pattern,
+            textured_leaves: look.cards,
+        });
+        parts.proxies.push(Proxy::none());
+    }
+    Ok(parts)
+}
+
+impl World {
+    /// The floor items of the cell over `rect`, as placements tagged with their groups:
+    /// shaded by the canopy trees of the forest as it stands.
+    pub(crate) fn floor_instances(
+        &self,
+        floor: &ForestFloor,
+        rect: Rect,
+    ) -> Result<Vec<(u32, InstanceRaw)>, ForestError> {
+        let (forest, _) = self.forest();
+        let trees = forest.trees(&self.heightmap, rect.expanded(floor.reach()));
+        let items = floor.items(&self.heightmap, rect, &trees)?;
+        Ok(items
+            .iter()
+            .filter_map(|item| {
+                let k = GroundKind::ALL.iter().position(|&g| g == item.kind)?;
+                Some((self.first_floor_group? + k as u32, instance(item)))
+            })
+            .collect())
+    }
+}
+
+/// An item as the vertex shader reads a placement: its own base and phase for the wind, a
+/// shade of its own.
+fn instance(item: &FloorItem) -> InstanceRaw {
+    let [x, y, z] = item.position;
+    let shade = 0.85 + 0.3 * item.phase;
+    InstanceRaw {
+        rotation: Quat::from_rotation_y(item.yaw).to_array(),
+        translation_scale: [x, y, z, item.scale],
+        tint: [shade, shade, 0.9 + 0.2 * item.phase, 0.0],
+        tree: [x, y, z, item.phase],
+    }
+}
