@@ -276,7 +276,13 @@ mod tests {
                     })
                     .expect("cell");
                 trees += cell.trees;
-                instances += cell.placements.len();
+                // The trees' groups come first; the floor's items follow.
+                let tree_groups = world
+                    .first_floor_group
+                    .map_or(world.groups.len(), |g| g as usize);
+                instances += (0..tree_groups)
+                    .map(|k| cell.placements.run(k).len())
+                    .sum::<usize>();
             }
         }
         assert!(whole > 100, "{whole}");

@@ -122,3 +122,39 @@ fn instance(item: &FloorItem) -> InstanceRaw {
         tree: [x, y, z, item.phase],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::cell::{CellKey, Level};
+    use crate::world::{SceneOptions, World};
+
+    /// A fine cell carries floor items in the floor's groups, every one standing in the
+    /// cell; without the floor there are none.
+    #[test]
+    fn fine_cells_carry_the_floor() {
+        let world = World::build(SceneOptions::small(5, 200.0)).expect("world");
+        let first = world.first_floor_group.expect("a floor") as usize;
+        let key = CellKey {
+            x: 0,
+            z: 0,
+            level: Level::Fine,
+        };
+        let cell = world.cell(key).expect("cell");
+        let rect = key.rect(world.side);
+        let items: Vec<_> = (first..world.groups.len())
+            .flat_map(|k| cell.placements.run(k).iter())
+            .collect();
+        assert!(items.len() > 1000, "{}", items.len());
+        for i in &items {
+            let [x, _, z, _] = i.translation_scale;
+            assert!(rect.contains(sylva::terrain::glam::Vec2::new(x, z)));
+        }
+        let bare = World::build(SceneOptions {
+            floor: false,
+            ..SceneOptions::small(5, 200.0)
+        })
+        .expect("world");
+        assert!(bare.first_floor_group.is_none());
+        assert_eq!(bare.groups.len(), first);
+    }
+}

@@ -116,7 +116,11 @@ mod tests {
     /// terrain is material 0 and the proxies are untextured.
     #[test]
     fn each_distinct_material_is_stored_once() {
-        let world = World::build(SceneOptions::small(5, 150.0)).expect("world builds");
+        let options = SceneOptions {
+            floor: false,
+            ..SceneOptions::small(5, 150.0)
+        };
+        let world = World::build(options).expect("world builds");
         let materials = Materials::of(&world);
         assert!(world.variants.len() > 2, "several variants per species");
         assert_eq!(materials.variants.len(), world.variants.len());
@@ -140,5 +144,20 @@ mod tests {
             assert_eq!(records[proxy_bark as usize][3], 0.0);
             assert_eq!(records[proxy_leaves as usize][3], 0.0);
         }
+    }
+
+    /// The floor's kinds are variants after the trees': grass blades untextured, ferns on
+    /// their cards' texture.
+    #[test]
+    fn the_floor_has_its_own_materials() {
+        let world = World::build(SceneOptions::small(5, 150.0)).expect("world builds");
+        let materials = Materials::of(&world);
+        let floats: &[f32] = bytemuck::cast_slice(&materials.bytes);
+        let records: Vec<&[f32]> = floats.chunks(8).collect();
+        let first = world.variants.len() - sylva::forest::GroundKind::ALL.len();
+        let (_, grass) = materials.variants[first];
+        let (_, fern) = materials.variants[first + 1];
+        assert_eq!(records[grass as usize][3], 0.0, "grass blades are plain");
+        assert!(records[fern as usize][3] >= 1.0, "fern leaflets are cards");
     }
 }
