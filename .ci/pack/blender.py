@@ -16,6 +16,9 @@ import time
 import bpy
 import mathutils
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from blender_render import render  # noqa: E402
+
 
 def arguments():
     args = sys.argv[1:]
@@ -102,27 +105,7 @@ def main():
     camera.rotation_euler = (math.radians(90), 0, 0)
     camera.data.clip_end = 100 * step
     scene.camera = camera
-    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.data.energy = 4.0
-    sun.rotation_euler = (math.radians(50), 0, math.radians(-30))
-    scene.collection.objects.link(sun)
-    world = bpy.data.worlds.new("sky")
-    if world.node_tree is None:
-        world.use_nodes = True
-    background = world.node_tree.nodes["Background"]
-    background.inputs[0].default_value = (0.55, 0.7, 0.9, 1)
-    background.inputs[1].default_value = 0.8
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    scene.cycles.use_denoising = False
-    scene.render.resolution_x, scene.render.resolution_y = width, height
-    scene.render.resolution_percentage = 100
-    scene.render.filepath = out
-    start = time.time()
-    bpy.ops.render.render(write_still=True)
-    figures["render_s"] = round(time.time() - start, 1)
+    figures["render_s"] = render(scene, out, (width, height), samples, (50, 0, -30), 0.8)
     print(json.dumps(figures))
     if figures["problems"]:
         sys.exit(f"{figures['problems']} trees whose levels are not what pack.json says")

@@ -8,11 +8,15 @@ Prints one line of figures; exits 1 when the instance count is not PLACEMENTS or
 instanced.
 """
 import math
+import os
 import sys
 import time
 
 import bpy
 import mathutils
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from blender_render import render  # noqa: E402
 
 
 def arguments():
@@ -83,27 +87,7 @@ def main():
     camera.data.lens = 28
     camera.data.clip_end = 10 * span
     scene.camera = camera
-    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.data.energy = 4.0
-    sun.rotation_euler = (math.radians(40), 0, math.radians(30))
-    scene.collection.objects.link(sun)
-    world = bpy.data.worlds.new("sky")
-    if world.node_tree is None:
-        world.use_nodes = True  # Blender before 5.0 made worlds without nodes
-    background = world.node_tree.nodes["Background"]
-    background.inputs[0].default_value = (0.55, 0.7, 0.9, 1)
-    background.inputs[1].default_value = 0.6
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    scene.cycles.use_denoising = False
-    scene.render.resolution_x, scene.render.resolution_y = width, height
-    scene.render.resolution_percentage = 100
-    scene.render.filepath = out
-    start = time.time()
-    bpy.ops.render.render(write_still=True)
-    figures["render_s"] = round(time.time() - start, 1)
+    figures["render_s"] = render(scene, out, (width, height), samples)
     print(" ".join(f"{k}={v}" for k, v in figures.items()))
     if instances == 0:
         sys.exit("the forest imported with no instances")
