@@ -45,6 +45,7 @@ mod error;
 mod extent;
 mod floor;
 mod forest;
+mod ground;
 mod patch;
 mod species;
 mod stand;
@@ -58,12 +59,11 @@ pub use composition::ComposedDensity;
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
 pub use extent::Extent;
-pub use floor::{
-    FloorItem, FloorOptions, ForestFloor, GroundCover, GroundKind, GroundLook, MAX_FLOOR_CELLS,
-};
+pub use floor::{FloorItem, FloorOptions, ForestFloor, MAX_FLOOR_CELLS};
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
+pub use ground::{GroundCover, GroundKind, GroundLook};
 pub use patch::{Composition, PatchDensity, PatchSpecies};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};

@@ -8,7 +8,7 @@ use sylva_turtle::{Mesh, MeshBuilder, Skeleton, Tropism, TurtleOptions, interpre
 
 use crate::appearance::{BarkPattern, LeafShape};
 use crate::error::ForestError;
-use crate::floor::{GroundCover, GroundKind};
+use crate::ground::{GroundCover, GroundKind};
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;

@@ -16,13 +16,15 @@ use crate::error::ExportError;
 /// Roughness of the coarse tiles' materials.
 const ROUGHNESS: f32 = 0.9;
 
-/// A variant's impostor in a coarse tile: its cards, its species, and the URI (relative to
-/// the tile) of the atlas their texture coordinates address.
+/// A variant's impostor in a coarse tile: its cards, its species, the URI (relative to the
+/// tile) of the texture their coordinates address, and its alpha cutoff.
 #[derive(Debug, Clone)]
 pub(crate) struct CoarseImpostor {
     pub(crate) cards: Mesh,
     pub(crate) species: usize,
     pub(crate) atlas: String,
+    /// The cards' alpha cutoff.
+    pub(crate) cutoff: f32,
 }
 
 /// Writes `trees` as instances of `impostors` (one per variant, none for variants not drawn
@@ -57,7 +59,7 @@ pub(crate) fn write_coarse_glb(
         let material = glb.doc.card_material(
             format!("{} impostor {variant}", sp.name),
             texture,
-            crate::lod::CARD_ALPHA_CUTOFF,
+            impostor.cutoff,
         );
         let primitives = glb.tree(&impostor.cards, material, material);
         let mesh = glb

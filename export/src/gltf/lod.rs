@@ -25,13 +25,14 @@ pub(crate) struct LodMesh<'a> {
     pub(crate) from: f32,
 }
 
-/// An impostor as cards: their mesh, the distance they are drawn from, and the atlas (PNG)
-/// their texture coordinates address.
+/// An impostor as cards: their mesh, the distance they are drawn from, the texture (PNG)
+/// their coordinates address and its alpha cutoff.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LodCards<'a> {
     pub(crate) mesh: &'a Mesh,
     pub(crate) from: f32,
     pub(crate) atlas: &'a [u8],
+    pub(crate) cutoff: f32,
 }
 
 /// Writes `levels` (meshes drawn with `species`' materials) and the impostor's `cards`, if
@@ -50,12 +51,9 @@ pub(crate) fn write_lod_glb(
             .species_materials(species, ROUGHNESS, textures.of_species(species));
     // The cards' texture is the last; its material exists only with the cards.
     let atlas_texture = textures.images().len();
-    let impostor = cards.map(|_| {
-        glb.doc.card_material(
-            format!("{name} impostor"),
-            atlas_texture,
-            crate::lod::CARD_ALPHA_CUTOFF,
-        )
+    let impostor = cards.map(|c| {
+        glb.doc
+            .card_material(format!("{name} impostor"), atlas_texture, c.cutoff)
     });
     let mut children = Vec::new();
     let all = levels.iter().map(|l| (l.mesh, l.from, bark, leaves)).chain(

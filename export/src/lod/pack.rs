@@ -193,6 +193,7 @@ fn fill(
                 mesh,
                 from: from(meshes.len()),
                 atlas,
+                cutoff: super::cards::CARD_ALPHA_CUTOFF,
             });
         let glb = format!("{name}.glb");
         let bytes = write_lod_glb(name, s, &levels, cards, &staging.join(&glb))?;

@@ -25,7 +25,7 @@ use sylva_base::range::check;
 use sylva_forest::{Extent, ForestBuilder, ForestError, Rect};
 
 use crate::gltf::CoarseImpostor;
-use crate::lod::{Impostor, LodChain, TreeLook, cards, variant_tree};
+use crate::lod::{CARD_ALPHA_CUTOFF, Impostor, LodChain, TreeLook, cards, variant_tree};
 use sylva_terrain::HeightField;
 
 use crate::error::{ExportError, Invalid};
@@ -324,6 +324,7 @@ fn coarse_impostors(builder: &ForestBuilder) -> Result<Vec<Option<CoarseImpostor
                 cards: cards((options.grid, options.view_size), centre, radius),
                 species: v.species,
                 atlas: format!("../{}", atlas_name(k)),
+                cutoff: CARD_ALPHA_CUTOFF,
             }))
         })
         .collect()

@@ -9,7 +9,7 @@
 //! of [`FloorOptions::cell`] metres, each drawing its items from a hash of its coordinates,
 //! so regions generated apart join without seams.
 
-mod kind;
+mod mesh;
 
 use glam::Vec2;
 use sylva_base::hash::{mix, unit_f32};
@@ -20,17 +20,7 @@ use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
 
-pub use kind::{GroundKind, GroundLook};
-
-/// One kind of cover and how dense it grows, in items per square metre where its light
-/// response is full.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GroundCover {
-    /// The kind.
-    pub kind: GroundKind,
-    /// Items per square metre at full response.
-    pub density: f32,
-}
+use crate::ground::{GroundCover, GroundKind};
 
 /// Most floor cells one call generates: a region of 8 km by 8 km at the default 2 m cells.
 pub const MAX_FLOOR_CELLS: u64 = 16_000_000;
