@@ -74,15 +74,15 @@ pub enum ForestError {
     /// Growing trees in their environment failed.
     #[error("growth: {0}")]
     Growth(#[from] sylva_growth::GrowthError),
-    /// A forest floor asked of a region of more cells than the limit: ask for smaller
-    /// regions (the floor joins without seams) or larger cells.
+    /// A forest floor asked of a region whose cells could hold more items than the limit: ask
+    /// for smaller regions (the floor joins without seams).
     #[error(
-        "the floor of {cells} cells is more than the limit of {limit}: ask for smaller regions or larger cells"
+        "the floor of this region could hold {items} items, more than the limit of {limit}: ask for smaller regions"
     )]
     FloorTooLarge {
-        /// Cells the region has.
-        cells: u64,
-        /// The limit ([`MAX_FLOOR_CELLS`](crate::MAX_FLOOR_CELLS)).
+        /// The most items the region's cells could hold.
+        items: u64,
+        /// The limit ([`MAX_FLOOR_ITEMS`](crate::MAX_FLOOR_ITEMS)).
         limit: u64,
     },
     /// No species has a positive weight: give at least one species a weight above 0.

@@ -59,7 +59,7 @@ pub use composition::ComposedDensity;
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
 pub use extent::Extent;
-pub use floor::{FloorItem, FloorOptions, ForestFloor, MAX_FLOOR_CELLS};
+pub use floor::{FloorItem, FloorOptions, ForestFloor, MAX_FLOOR_ITEMS};
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };

@@ -6,7 +6,7 @@
 use glam::{Vec2, Vec3};
 use sylva_turtle::{Mesh, Vertex};
 
-use super::impostor::Impostor;
+use super::impostor::{Impostor, layout};
 use super::raster::OrthoView;
 use crate::texture::Texture;
 
@@ -118,8 +118,7 @@ pub fn impostor_cards(impostor: &Impostor) -> Mesh {
 /// (`centre`, `r`): all they need of the impostor, so a writer that refers to a texture drawn
 /// elsewhere places them without drawing it ([`Impostor::frame`] gives the sphere of a tree).
 pub fn cards((grid, view_size): (u32, u32), centre: Vec3, r: f32) -> Mesh {
-    let grid = grid.clamp(2, 32);
-    let size = view_size.clamp(8, 1024);
+    let (grid, size) = layout(grid, view_size);
     let (pad, tile) = strip_layout(size);
     let mut mesh = Mesh::default();
     let views = card_views(grid);

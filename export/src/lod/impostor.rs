@@ -17,13 +17,17 @@ use sylva_turtle::Mesh;
 use super::raster::{OrthoView, Picture, TreeLook, draw};
 use crate::texture::{Texture, linear_to_srgb};
 
+/// The widest atlas drawn, in pixels: views shrink so that `grid * view_size` stays within it
+/// (three 8192-pixel RGBA images are 768 MiB).
+pub const MAX_ATLAS_SIDE: u32 = 8192;
+
 /// How an impostor is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct ImpostorOptions {
     /// Views along each side of the hemi-octahedral grid (2 to 32).
     pub grid: u32,
-    /// Pixels across each view (8 to 1024).
+    /// Pixels across each view (8 to 1024, and at most [`MAX_ATLAS_SIDE`] over `grid`).
     pub view_size: u32,
 }
 
@@ -118,8 +122,7 @@ impl Impostor {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn render(mesh: &Mesh, look: &TreeLook, options: &ImpostorOptions) -> Impostor {
-        let grid = options.grid.clamp(2, 32);
-        let size = options.view_size.clamp(8, 1024);
+        let (grid, size) = layout(options.grid, options.view_size);
         let (centre, radius) = Impostor::frame(mesh);
         let views: Vec<(u32, u32)> = (0..grid)
             .flat_map(|j| (0..grid).map(move |i| (i, j)))
@@ -187,6 +190,13 @@ impl Impostor {
     pub fn texel(&self) -> f32 {
         2.0 * self.radius / self.view_size as f32
     }
+}
+
+/// The grid and view size an impostor is drawn with for the ones asked: each within its
+/// range, the atlas within [`MAX_ATLAS_SIDE`].
+pub(crate) fn layout(grid: u32, view_size: u32) -> (u32, u32) {
+    let grid = grid.clamp(2, 32);
+    (grid, view_size.clamp(8, 1024).min(MAX_ATLAS_SIDE / grid))
 }
 
 impl Impostor {

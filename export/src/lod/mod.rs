@@ -17,7 +17,9 @@ pub use cache::{CacheLods, LevelSpans};
 pub use cards::{CARD_ALPHA_CUTOFF, cards, impostor_cards};
 pub use chain::{LodChain, PIXELS_PER_RADIAN_1080P};
 pub use compare::{SilhouetteMatch, calibrate_leaves, compare_silhouettes};
-pub use impostor::{Impostor, ImpostorOptions, hemi_octahedral_direction, hemi_octahedral_uv};
+pub use impostor::{
+    Impostor, ImpostorOptions, MAX_ATLAS_SIDE, hemi_octahedral_direction, hemi_octahedral_uv,
+};
 pub use pack::{PackStats, write_asset_pack};
 pub use raster::{OrthoView, Picture, TreeLook, draw};
 pub use simplify::{LodLevel, simplify_mesh};

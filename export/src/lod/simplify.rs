@@ -328,6 +328,7 @@ fn remap(indices: &[u32], map: &[u32]) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
 fn card_at(indices: &[u32], t: usize) -> Option<u32> {
     let q = indices.get(t * 3..t * 3 + 6)?;
     let a = q[0];
+    a.checked_add(3)?;
     (q == [a, a + 1, a + 2, a, a + 2, a + 3]).then_some(a)
 }
 

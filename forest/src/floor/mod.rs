@@ -22,8 +22,9 @@ use crate::forest::ForestBuilder;
 
 use crate::ground::{GroundCover, GroundKind};
 
-/// Most floor cells one call generates: a region of 8 km by 8 km at the default 2 m cells.
-pub const MAX_FLOOR_CELLS: u64 = 16_000_000;
+/// Most floor items one call may generate, counted before generating as the most its cells
+/// could hold (an item is 36 bytes): ask for smaller regions, which join without seams.
+pub const MAX_FLOOR_ITEMS: u64 = 20_000_000;
 
 /// Most items one cell may hold, whatever the densities say.
 const MAX_ITEMS_PER_CELL: u32 = 64;
@@ -207,8 +208,8 @@ impl ForestFloor {
 
     /// The items of `region` on `terrain`, under `trees` (the forest's trees of the region
     /// grown by [`ForestFloor::reach`]; trees elsewhere are passed over): a pure function of
-    /// the options, the trees and where each cell is. An error when the region has more than
-    /// [`MAX_FLOOR_CELLS`] cells.
+    /// the options, the trees and where each cell is. An error when the region's cells could
+    /// hold more than [`MAX_FLOOR_ITEMS`] items.
     pub fn items(
         &self,
         terrain: &dyn HeightField,
@@ -228,10 +229,23 @@ impl ForestFloor {
             (region.max.y / cell).ceil() as i64,
         );
         let cells = (x1 - x0).max(0) as u64 * (z1 - z0).max(0) as u64;
-        if cells > MAX_FLOOR_CELLS {
+        // The most a cell can hold: each kind at its densest mix and full response, capped.
+        let per_cell: u64 = (0..GroundKind::ALL.len())
+            .map(|k| {
+                let densest = self
+                    .species_mix
+                    .iter()
+                    .chain(std::iter::once(&self.default_mix))
+                    .map(|m| m[k])
+                    .fold(0.0f32, f32::max);
+                ((densest * cell * cell).ceil() as u64).min(u64::from(MAX_ITEMS_PER_CELL))
+            })
+            .sum();
+        let most = cells.saturating_mul(per_cell);
+        if most > MAX_FLOOR_ITEMS {
             return Err(ForestError::FloorTooLarge {
-                cells,
-                limit: MAX_FLOOR_CELLS,
+                items: most,
+                limit: MAX_FLOOR_ITEMS,
             });
         }
         let grid = TreeGrid::new(trees, self.reach.max(1.0));
