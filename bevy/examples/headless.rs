@@ -1,10 +1,12 @@
 //! A forest streamed by the plugin and rendered headless to a PNG (no window, no GPU needed:
 //! Mesa's lavapipe will do), with what the trees cover measured: the frame is rendered again
-//! with the forest hidden, and every pixel that changed is forest.
+//! without shadows, and once more with the forest hidden too, and every pixel that changed
+//! between those two is forest.
 //!
 //! ```text
 //! cargo run --release --example headless -- [OUT.png] [--size WxH] [--area METRES] [--camera x,y,z,tx,ty,tz]
 //! ```
+//! The camera's and its target's heights are above the ground below them.
 
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -46,6 +48,9 @@ enum Step {
     /// Frames left before capturing the forest (pipelines compile, meshes upload).
     Settling(u32),
     WithForest,
+    /// Frames left before capturing without shadows (hiding the forest would move them).
+    Unshadowing(u32),
+    Unshadowed,
     Hiding(u32),
     WithoutForest,
     Done,
@@ -54,7 +59,7 @@ enum Step {
 fn main() -> AppExit {
     let mut args = std::env::args().skip(1);
     let (mut out, mut size, mut area) = ("bevy.png".to_string(), (960u32, 540u32), 300.0f32);
-    let mut camera = [20.0f32, 28.0, 20.0, 150.0, 5.0, 150.0];
+    let mut camera = [20.0f32, 20.0, 20.0, 150.0, 0.0, 150.0];
     while let Some(a) = args.next() {
         let mut value = || args.next().unwrap_or_else(|| panic!("{a} needs a value"));
         match a.as_str() {
@@ -75,6 +80,11 @@ fn main() -> AppExit {
         }
     }
     let terrain = sylva::presets::terrain(1, area).expect("terrain");
+    {
+        use sylva::terrain::HeightField;
+        camera[1] += terrain.height(camera[0], camera[2]);
+        camera[4] += terrain.height(camera[3], camera[5]);
+    }
     let mut config = ForestConfig::new(sylva::presets::species().expect("species"));
     config.budget = 16 << 20;
     let builder = ForestBuilder::new(config).expect("forest");
@@ -169,6 +179,7 @@ fn capture(
     captures: Res<Captures>,
     job: Res<Job>,
     mut forest: Query<&mut Visibility, With<ForestPart>>,
+    mut lights: Query<&mut DirectionalLight>,
     mut exit: MessageWriter<AppExit>,
 ) {
     let Some(target) = target else { return };
@@ -210,6 +221,17 @@ fn capture(
         }
         Step::Settling(n) => Step::Settling(n - 1),
         Step::WithForest if taken >= 1 => {
+            for mut light in &mut lights {
+                light.shadow_maps_enabled = false;
+            }
+            Step::Unshadowing(3)
+        }
+        Step::Unshadowing(0) => {
+            shoot(&mut commands);
+            Step::Unshadowed
+        }
+        Step::Unshadowing(n) => Step::Unshadowing(n - 1),
+        Step::Unshadowed if taken >= 2 => {
             for mut v in &mut forest {
                 *v = Visibility::Hidden;
             }
@@ -220,9 +242,9 @@ fn capture(
             Step::WithoutForest
         }
         Step::Hiding(n) => Step::Hiding(n - 1),
-        Step::WithoutForest if taken >= 2 => {
+        Step::WithoutForest if taken >= 3 => {
             let list = captures.0.lock().map(|l| l.clone()).unwrap_or_default();
-            match measure(&list[0], &list[1], &job.out) {
+            match measure(&list[0], (&list[1], &list[2]), &job.out) {
                 Ok(share) => {
                     println!(
                         "wrote {} ({}x{}): the forest covers {:.1}% of the picture",
@@ -249,27 +271,28 @@ fn capture(
     };
 }
 
-/// Writes `with` as a PNG at `out` and returns the share of its pixels that differ from
-/// `without` (the same view with the forest hidden).
-fn measure(with: &Image, without: &Image, out: &str) -> Result<f64, String> {
+/// Writes `picture` as a PNG at `out` and returns the share of the pixels of `with` (the view
+/// without shadows) that differ from `without` (the same with the forest hidden).
+fn measure(picture: &Image, (with, without): (&Image, &Image), out: &str) -> Result<f64, String> {
     let (a, b) = (
         with.data.as_ref().ok_or("the capture has no pixels")?,
         without.data.as_ref().ok_or("the capture has no pixels")?,
     );
+    let shown = picture.data.as_ref().ok_or("the capture has no pixels")?;
     let (w, h) = (with.width(), with.height());
     let changed = a
         .chunks_exact(4)
         .zip(b.chunks_exact(4))
         .filter(|(p, q)| p[..3].iter().zip(&q[..3]).any(|(x, y)| x.abs_diff(*y) > 8))
         .count();
-    let picture = sylva::export::Texture {
+    let png = sylva::export::Texture {
         width: w,
         height: h,
-        rgba: a
+        rgba: shown
             .chunks_exact(4)
             .flat_map(|p| [p[0], p[1], p[2], 255])
             .collect(),
     };
-    std::fs::write(out, picture.png()).map_err(|e| format!("{out}: {e}"))?;
+    std::fs::write(out, png.png()).map_err(|e| format!("{out}: {e}"))?;
     Ok(changed as f64 / f64::from(w * h).max(1.0))
 }

@@ -193,7 +193,8 @@ impl ForestAssets {
                     double_sided: true,
                     cull_mode: None,
                     perceptual_roughness: 0.8,
-                    diffuse_transmission: 0.1,
+                    // Leaves are matt: Bevy's default reflectance glazes backlit cards.
+                    reflectance: 0.15,
                     ..default()
                 },
                 extension: wind,
@@ -206,6 +207,7 @@ impl ForestAssets {
                     base_color_texture: Some(cards),
                     alpha_mode: AlphaMode::Mask(CARD_ALPHA_CUTOFF),
                     perceptual_roughness: 0.9,
+                    reflectance: 0.15,
                     ..default()
                 });
                 let cards = impostor_cards(i);
