@@ -24,11 +24,13 @@ pub struct SilhouetteMatch {
 /// ```
 /// use sylva_export::lod::{LodLevel, TreeLook, compare_silhouettes, simplify_mesh};
 /// use glam::Vec3;
-/// let species = sylva_forest::Species::from_preset("sylva-birch", 5)?;
+/// let mut species = sylva_forest::Species::from_preset("sylva-birch", 5)?;
+/// // The species file's leaves: the apices drawn as leaf cards.
+/// species.turtle.symbols.set("L", sylva_turtle::Command::Leaf);
 /// let full = species.mesh(5, 1)?;
 /// let coarse = simplify_mesh(&full, &LodLevel { bark_error: 0.03, leaf_keep: 0.5, leaf_growth: None });
 /// for m in compare_silhouettes(&full, &coarse, &TreeLook::of(&species), &[Vec3::X, Vec3::Y], 128) {
-///     assert!(m.overlap > 0.6, "{m:?}");
+///     assert!(m.overlap > 0.5 && m.coverage_ratio > 0.7, "{m:?}");
 /// }
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
@@ -73,7 +75,8 @@ pub fn compare_silhouettes(
 ///
 /// ```
 /// use sylva_export::lod::{LodLevel, TreeLook, calibrate_leaves};
-/// let species = sylva_forest::Species::from_preset("sylva-birch", 5)?;
+/// let mut species = sylva_forest::Species::from_preset("sylva-birch", 5)?;
+/// species.turtle.symbols.set("L", sylva_turtle::Command::Leaf);
 /// let full = species.mesh(5, 1)?;
 /// let level = LodLevel { bark_error: 0.03, leaf_keep: 0.5, leaf_growth: None };
 /// let tuned = calibrate_leaves(&full, &TreeLook::of(&species), &level);

@@ -119,7 +119,8 @@ const SUPERSAMPLE: u32 = 2;
 /// ```
 /// use sylva_export::lod::{OrthoView, TreeLook, draw};
 /// use glam::Vec3;
-/// let species = sylva_forest::Species::from_preset("sylva-hazel", 3)?;
+/// let mut species = sylva_forest::Species::from_preset("sylva-hazel", 3)?;
+/// species.turtle.symbols.set("L", sylva_turtle::Command::Leaf);
 /// let mesh = species.mesh(3, 1)?;
 /// let (lo, hi) = mesh.bounds().unwrap();
 /// let view = OrthoView { centre: (lo + hi) * 0.5, toward: Vec3::Z, half: (hi - lo).max_element(), size: 64 };
