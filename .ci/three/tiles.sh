@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders a sylva 3D Tiles world with three.js and 3d-tiles-renderer in headless Chromium and
-# checks that fine tiles (branches) were drawn near the camera and coarse ones (whole-tree
-# proxies) beyond. usage: .ci/three/tiles.sh TILESET_DIR OUT.png [EYE [QUERY]]
+# checks that fine tiles (branches) were drawn near the camera and coarse ones (impostor
+# cards) beyond. usage: .ci/three/tiles.sh TILESET_DIR OUT.png [EYE [QUERY]]
 # EYE is x,y,z,tx,ty,tz in the world's metres (y up); QUERY more page parameters (sse=N).
 # Needs Debian's chromium and npm's three and 3d-tiles-renderer in .ci/three/node_modules.
 set -euo pipefail
