@@ -7,6 +7,7 @@ mod cards;
 mod chain;
 mod compare;
 mod impostor;
+mod leaves;
 mod pack;
 mod raster;
 mod simplify;
