@@ -4,8 +4,6 @@
 use glam::Vec3;
 use sylva_turtle::Vertex;
 
-use super::simplify::LodLevel;
-
 /// Whether triangles `t` and `t + 1` of `indices` are one leaf card as the turtle draws it:
 /// four consecutive vertices, `[a, a+1, a+2, a, a+2, a+3]`.
 fn card_at(indices: &[u32], t: usize) -> Option<u32> {
@@ -15,18 +13,18 @@ fn card_at(indices: &[u32], t: usize) -> Option<u32> {
     (q == [a, a + 1, a + 2, a, a + 2, a + 3]).then_some(a)
 }
 
-/// The leaf triangles at `keep`: every card's place in the sequence decides whether it stays
-/// (an even spread along each twig), and the cards kept grow about their centres into
+/// The leaf triangles with a share `keep` of the cards, grown by `grow`: every card's place
+/// in the sequence decides whether it stays (an even spread along each twig), and the cards
+/// kept grow about their centres into
 /// `extra`, numbered from `base`.
 pub(crate) fn thin_leaves(
     vertices: &[Vertex],
     leaves: &[u32],
-    level: &LodLevel,
+    (keep, grow): (f32, f32),
     base: u32,
     extra: &mut Vec<Vertex>,
 ) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
-    let keep = level.leaf_keep.clamp(1e-3, 1.0);
-    let grow = level.growth();
+    let keep = keep.clamp(1e-3, 1.0);
     let triangles = leaves.len() / 3;
     let mut out = Vec::with_capacity(leaves.len());
     let mut before = Vec::with_capacity(triangles + 1);

@@ -335,8 +335,13 @@ pub(crate) fn simplify(
     let map = bark_map(vertices, bark, level.bark_error.max(0.0));
     let (bark, bark_before, bark_source) = remap(bark, &map);
     let mut extra = Vec::new();
-    let (leaves, leaves_before, leaf_source) =
-        thin_leaves(vertices, leaves, level, vertices.len() as u32, &mut extra);
+    let (leaves, leaves_before, leaf_source) = thin_leaves(
+        vertices,
+        leaves,
+        (level.leaf_keep, level.growth()),
+        vertices.len() as u32,
+        &mut extra,
+    );
     Simplified {
         extra,
         bark,
