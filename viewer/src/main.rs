@@ -49,6 +49,7 @@ mod cells;
 mod cli;
 mod coverage;
 mod cull;
+mod draw;
 mod error;
 mod floor;
 #[cfg(test)]

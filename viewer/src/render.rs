@@ -8,6 +8,7 @@ use sylva::turtle::Vertex;
 
 use crate::cells::{Streamed, VIEW_DISTANCE};
 use crate::cull::{LodView, Volume, visible_instances};
+use crate::draw::Draw;
 use crate::error::ViewerError;
 use crate::gpu::{DEPTH, buffer, index_buffer};
 use crate::materials::Materials;
@@ -15,7 +16,7 @@ use crate::pipelines::Pipelines;
 use crate::scene::Scene;
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::textures;
-use crate::world::{InstanceRaw, MESH_LEVELS, lod_chain};
+use crate::world::{InstanceRaw, lod_chain};
 
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
@@ -79,17 +80,6 @@ struct VariantBuffers {
     materials: wgpu::Buffer,
     bark: Option<wgpu::Buffer>,
     leaves: Option<wgpu::Buffer>,
-}
-
-/// One instanced draw: a group's bark or leaf triangles, over the group's placements that
-/// survive culling this frame.
-struct Draw {
-    variant: usize,
-    group: usize,
-    indices: (u32, u32),
-    bark: bool,
-    /// An impostor card, drawn with the impostor pipeline.
-    impostor: bool,
 }
 
 pub(crate) struct Renderer {
@@ -221,37 +211,7 @@ impl Renderer {
                 variant_buffers(&vertices, &p.bark, &p.leaves, m)
             }))
             .collect();
-        let mut draws = Vec::new();
-        // Impostor cards are drawn like groups numbered after every group's levels.
-        let (groups, kinds) = (world.groups.len() * MESH_LEVELS, world.variants.len());
-        for (v, p) in world.proxies.iter().enumerate() {
-            if !p.leaves.is_empty() {
-                draws.push(Draw {
-                    variant: kinds + v,
-                    group: groups + v,
-                    indices: (0, p.leaves.len() as u32),
-                    bark: false,
-                    impostor: true,
-                });
-            }
-        }
-        for (group, g) in world.groups.iter().enumerate() {
-            for (level, &(bark, leaves)) in g.levels.iter().enumerate() {
-                for (is_bark, span) in [(true, bark), (false, leaves)] {
-                    if !span.is_empty() {
-                        draws.push(Draw {
-                            variant: g.variant,
-                            group: group * MESH_LEVELS + level,
-                            indices: (span.start, span.end()),
-                            bark: is_bark,
-                            impostor: false,
-                        });
-                    }
-                }
-            }
-        }
-        // By variant, so a pass binds each variant's buffers once.
-        draws.sort_by_key(|d| (d.variant, d.bark));
+        let draws = Draw::all(world);
         let identity = InstanceRaw {
             rotation: [0.0, 0.0, 0.0, 1.0],
             translation_scale: [0.0, 0.0, 0.0, 1.0],

@@ -207,7 +207,7 @@ impl World {
             .map(|v| VariantLods::build(v, &species[v.species], &chain))
             .collect::<Result<_, _>>()
             .map_err(ForestError::from)?;
-        let lods: Vec<VariantLod> = built
+        let mut lods: Vec<VariantLod> = built
             .iter()
             .map(|b| VariantLod {
                 errors: [0, 1, 2].map(|k| b.errors.get(k).copied().unwrap_or(f32::INFINITY)),
@@ -272,7 +272,7 @@ impl World {
             });
         }
         let mut atlases = Vec::new();
-        let proxies = impostors
+        let mut proxies: Vec<Proxy> = impostors
             .into_iter()
             .map(|impostor| match impostor {
                 Some(i) => {
@@ -284,9 +284,7 @@ impl World {
                 None => Proxy::none(),
             })
             .collect();
-        let mut proxies: Vec<Proxy> = proxies;
         let mut seedling: Vec<bool> = builder.variants().iter().map(|v| v.seedling).collect();
-        let mut lods = lods;
         // The forest floor: its kinds drawn as variants after the trees' (none around a
         // specimen, which stands alone on its ground).
         let (floor, first_floor_group) = if options.specimen || !options.floor {
