@@ -83,6 +83,15 @@ pub struct TurtleOptions {
     pub curve_steps: u32,
     /// Deepest `[` / `{` nesting accepted.
     pub max_depth: usize,
+    /// A stem broken by a storm or lightning: where the tree's first axis (the trunk, at
+    /// bracket depth 0) first rises above this height, it ends, and nothing it would have
+    /// carried from there on is drawn; branches that left it below stay. `None` draws the
+    /// whole tree. A forest's damaged trees are drawn with it (`sylva-forest`'s forms).
+    pub stem_break: Option<f32>,
+    /// Share of leaf cards drawn, 0 to 1: 1 draws every leaf, 0 none (a dead tree), 0.3 a
+    /// crown thinned by dieback. Which leaves go is a pure function of their order in the
+    /// word, so a tree thins the same way every time.
+    pub leaf_keep: f32,
 }
 
 impl Default for TurtleOptions {
@@ -108,6 +117,8 @@ impl Default for TurtleOptions {
             branch_collar: 0.0,
             curve_steps: 1,
             max_depth: 1 << 20,
+            stem_break: None,
+            leaf_keep: 1.0,
         }
     }
 }
@@ -158,6 +169,18 @@ impl TurtleOptions {
     /// Sets [`TurtleOptions::leaf_facing`].
     pub fn with_leaf_facing(mut self, leaf_facing: f32) -> Self {
         self.leaf_facing = leaf_facing;
+        self
+    }
+
+    /// Sets [`TurtleOptions::stem_break`].
+    pub fn with_stem_break(mut self, height: Option<f32>) -> Self {
+        self.stem_break = height;
+        self
+    }
+
+    /// Sets [`TurtleOptions::leaf_keep`].
+    pub fn with_leaf_keep(mut self, share: f32) -> Self {
+        self.leaf_keep = share;
         self
     }
 

@@ -1,6 +1,7 @@
 //! The turtle itself: walks a word and drives a `GeometrySink`.
 
 use glam::Vec3;
+use sylva_base::hash::{mix, unit_f32};
 use sylva_lsys::Word;
 
 mod stem;
@@ -47,6 +48,10 @@ struct State {
     tropism: Option<Tropism>,
     /// The colour index (cpfg's and L-Py's `;` and `,`).
     colour: u32,
+    /// Whether this path lies above a broken stem ([`TurtleOptions::stem_break`]): the
+    /// turtle moves on but draws nothing. Kept per branch, so branches that left the trunk
+    /// below the break, and restored by their `]`, draw.
+    broken: bool,
 }
 
 /// Interprets `word` with the turtle described by `options`, sending geometry to `sink`.
@@ -160,6 +165,8 @@ struct Turtle<'o, 's, S: GeometrySink + ?Sized> {
     /// The radius of the first segment drawn: stems of at least `stem::CURVE_MIN_SHARE` of
     /// it are drawn curved ([`TurtleOptions::curve_steps`]).
     base_radius: Option<f32>,
+    /// Leaves met so far, drawn or not: [`TurtleOptions::leaf_keep`] draws by this count.
+    leaves_seen: u32,
     stats: InterpretStats,
 }
 
@@ -179,6 +186,7 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
                 depth: 0,
                 tropism: options.tropism,
                 colour: 0,
+                broken: false,
             },
             stack: Vec::new(),
             polygons: Vec::new(),
@@ -187,6 +195,7 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
             scale: 1.0,
             next_id: 0,
             base_radius: None,
+            leaves_seen: 0,
             stats: InterpretStats::default(),
         }
     }
@@ -304,7 +313,7 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
                     {
                         poly.pop();
                     }
-                    if poly.len() >= 3 {
+                    if poly.len() >= 3 && !self.state.broken {
                         self.sink.polygon(&poly);
                         self.stats.polygons += 1;
                     }
@@ -319,7 +328,17 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
     /// units) at the turtle.
     fn organ(&mut self, command: Command, args: Args) -> Result<(), TurtleError> {
         let (options, frame) = (self.options, self.state.frame);
+        if self.state.broken {
+            return Ok(());
+        }
         if command == Command::Leaf {
+            self.leaves_seen = self.leaves_seen.wrapping_add(1);
+            if options.leaf_keep < 1.0
+                && unit_f32(mix(u64::from(self.leaves_seen) ^ LEAF_KEEP_SALT))
+                    >= options.leaf_keep.max(0.0)
+            {
+                return Ok(());
+            }
             let scale = args.get(0)?.unwrap_or(1.0).abs();
             self.sink.leaf(
                 &frame.facing_sky(options.leaf_facing),
@@ -444,6 +463,9 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
         Ok(())
     }
 }
+
+/// Separates the leaf-thinning draws from other uses of the leaf count.
+const LEAF_KEEP_SALT: u64 = 0x1eaf_0000_d1eb_ac4b;
 
 /// Most control points one generalized cylinder keeps: the rest are dropped.
 const MAX_CURVE_POINTS: usize = 1 << 16;

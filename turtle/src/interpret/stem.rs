@@ -13,6 +13,9 @@ const CURVE_MIN_SHARE: f32 = 0.15;
 const MIN_CURVE_BEND: f32 = 0.02;
 /// The most pieces a curved stem is drawn in.
 const MAX_CURVE_STEPS: u32 = 8;
+/// How much narrower a broken trunk ends than it would have been there: torn wood, not a
+/// saw cut.
+const BREAK_TAPER: f32 = 0.7;
 
 impl<S: GeometrySink + ?Sized> Turtle<'_, '_, S> {
     /// `F` and `f`: a step forward (parameter: its length), drawing a segment when `draw`,
@@ -117,6 +120,28 @@ impl<S: GeometrySink + ?Sized> Turtle<'_, '_, S> {
 
     /// One straight segment of `length` from `start` with the radii at its ends.
     fn draw_piece(&mut self, start: Frame, length: f32, (start_radius, radius): (f32, f32)) {
+        if self.state.broken {
+            return;
+        }
+        let (mut length, mut radius) = (length, radius);
+        let mut breaks = false;
+        if let Some(height) = self.options.stem_break.filter(|_| self.state.depth == 0) {
+            let rise = start.heading().y * length;
+            let from = start.position.y;
+            if from >= height {
+                self.state.broken = true;
+                end_axis(&mut self.state, self.sink);
+                return;
+            }
+            if from + rise > height {
+                // The trunk snaps here: the piece ends at the break, a little splintered
+                // (narrower) where it tore.
+                let share = (height - from) / rise;
+                length *= share;
+                radius = (start_radius + (radius - start_radius) * share) * BREAK_TAPER;
+                breaks = true;
+            }
+        }
         let continues = self.state.same_axis && self.state.last.is_some();
         self.base_radius.get_or_insert(start_radius);
         self.sink.segment(&Segment {
@@ -134,5 +159,9 @@ impl<S: GeometrySink + ?Sized> Turtle<'_, '_, S> {
         self.state.last_radius = radius;
         self.next_id = self.next_id.saturating_add(1);
         self.stats.segments += 1;
+        if breaks {
+            end_axis(&mut self.state, self.sink);
+            self.state.broken = true;
+        }
     }
 }
