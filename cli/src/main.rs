@@ -10,6 +10,7 @@
 //! sylva tree --preset abop-ternary --out tree.obj
 //! sylva terrain --size 1025 --out height.png
 //! sylva corpus path/to/vlab/oofs
+//! sylva succession --years 300  # a forest over time: succession/ with statistics and plots
 //! ```
 //!
 //! Every subcommand has `--help`. Exit status: 0 on success, 1 when the job failed (bad input
@@ -24,7 +25,9 @@ mod grammar;
 mod grow;
 mod pack;
 mod paint;
+mod plots;
 mod progress;
+mod succession;
 mod terrain;
 mod tiles;
 mod tree;
@@ -67,6 +70,9 @@ enum Command {
     Terrain(terrain::TerrainArgs),
     /// Loads, derives and meshes every cpfg and L-Py model under a folder; prints a table.
     Corpus(corpus::CorpusArgs),
+    /// Grows a forest over time from bare ground, year by year (seeding, light, suppression,
+    /// age, storms, lightning, disease); writes its statistics per year, plots and snapshots.
+    Succession(succession::SuccessionArgs),
 }
 
 fn main() -> ExitCode {
@@ -81,6 +87,7 @@ fn main() -> ExitCode {
         Command::Tree(a) => tree::run(a),
         Command::Terrain(a) => terrain::run(a),
         Command::Corpus(a) => corpus::run(a),
+        Command::Succession(a) => succession::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

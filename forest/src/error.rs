@@ -143,4 +143,29 @@ pub enum ForestError {
         /// The margin asked for.
         margin: f32,
     },
+    /// A snapshot of a forest over time was given to a builder without every age.
+    #[error(
+        "a snapshot of a forest over time needs a builder with every age (ForestConfig::all_ages)"
+    )]
+    NotAllAges,
+    /// A forest over time would simulate more area than it may.
+    #[error("a forest over time of {}x{} m with a halo of {halo} m is beyond the {limit} m^2 it may simulate (or empty): simulate it as tiles", size.x, size.y)]
+    SuccessionArea {
+        /// The region's size.
+        size: Vec2,
+        /// The halo around it.
+        halo: f32,
+        /// The most area, square metres.
+        limit: f64,
+    },
+    /// A year of a forest over time would hold more trees than its bound.
+    #[error(
+        "a forest over time would hold {stems} trees, more than its bound of {limit} (SuccessionOptions::max_stems)"
+    )]
+    TooManyStems {
+        /// Trees it would hold.
+        stems: usize,
+        /// The bound.
+        limit: usize,
+    },
 }

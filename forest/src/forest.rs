@@ -4,12 +4,13 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use glam::Vec2;
-use sylva_instancing::{
-    Assembler, CompactTree, HeroOptions, InstanceCache, Placements, build_cache,
-};
+use sylva_instancing::{Assembler, CompactTree, InstanceCache, Placements};
 use sylva_terrain::HeightField;
 
 use sylva_base::hash::{mix, unit_f32 as unit};
+
+use crate::form::TreeForm;
+use crate::succession::Snapshot;
 use sylva_base::range::check;
 
 use crate::density::{Candidate, DensityModel, Rect};
@@ -76,6 +77,11 @@ pub struct ForestConfig {
     /// Which species stands at each spot (a paint layer of `sylva-paint`, or your own
     /// [`Composition`]); `None` grows every species everywhere by weight.
     pub composition: Option<Arc<dyn Composition>>,
+    /// Build a form for every generation of each species and its damaged forms (broken top,
+    /// dieback, dead, snag, fallen), for forests of trees of every age: what a
+    /// [`Succession`](crate::Succession)'s years are drawn with. Off, each species has its
+    /// canopy and its young form.
+    pub all_ages: bool,
 }
 
 impl ForestConfig {
@@ -109,6 +115,12 @@ impl ForestConfig {
         self
     }
 
+    /// Sets [`ForestConfig::all_ages`].
+    pub fn with_all_ages(mut self, all_ages: bool) -> Self {
+        self.all_ages = all_ages;
+        self
+    }
+
     /// Sets [`ForestConfig::seedlings_per_patch`].
     pub fn with_seedlings_per_patch(mut self, seedlings_per_patch: u32) -> Self {
         self.seedlings_per_patch = seedlings_per_patch;
@@ -128,19 +140,23 @@ impl ForestConfig {
             spacing_factor: 1.0,
             seedlings_per_patch: 8,
             composition: None,
+            all_ages: false,
         }
     }
 }
 
-/// One instance cache: a species at one maturity.
+/// One instance cache: a species in one form (a maturity, or a damage).
 #[derive(Debug, Clone)]
 pub struct Variant {
     /// Index into the configuration's species.
     pub species: usize,
-    /// Whether this is the seedling form.
+    /// Whether this is a young form: too small to stand in the canopy (no impostor, left out
+    /// of coarse tiles).
     pub seedling: bool,
     /// Generations of its trees.
     pub generations: u32,
+    /// How its trees look.
+    pub form: TreeForm,
     /// Its cache.
     pub cache: InstanceCache,
 }
@@ -211,6 +227,11 @@ pub struct ForestBuilder {
     density: PatchDensity,
     canopies: Vec<Canopy>,
     variants: Arc<[Variant]>,
+    /// Per species, its living forms' generations and drawn heights, youngest first
+    /// (forests of every age).
+    heights: Vec<Vec<(u32, f32)>>,
+    /// A year of a forest over time to draw instead of the density model's trees.
+    snapshot: Option<Arc<Snapshot>>,
     stats: ForestStats,
 }
 
@@ -250,35 +271,9 @@ impl ForestBuilder {
                 species: s.name.clone(),
             });
         }
-        let total_weight: f32 = config.species.iter().map(|s| s.weight.max(0.0)).sum();
         let start = Instant::now();
-        let mut variants = Vec::new();
-        let mut heroes = 0;
-        for (i, s) in config.species.iter().enumerate() {
-            let share =
-                (config.budget as f64 * f64::from(s.weight.max(0.0) / total_weight)) as usize;
-            for (seedling, generations, part) in [
-                (false, s.generations, share - share / 4),
-                (true, s.seedling_generations, share / 4),
-            ] {
-                if part == 0 || (seedling && config.seedlings_per_patch == 0) {
-                    continue;
-                }
-                let options = HeroOptions::default()
-                    .with_budget(part)
-                    .with_generations(generations)
-                    .with_seed(mix(config.seed ^ ((i as u64) << 1) ^ u64::from(seedling)))
-                    .with_turtle(s.turtle.clone());
-                let built = build_cache(&s.grammar, &options)?;
-                heroes += built.stats.heroes;
-                variants.push(Variant {
-                    species: i,
-                    seedling,
-                    generations,
-                    cache: built.cache,
-                });
-            }
-        }
+        let built = crate::variants::build(&config)?;
+        let (variants, heroes) = (built.variants, built.heroes);
         // Trees grow up to 1 + variation times their measured size.
         let grown = 1.0 + config.scale_variation;
         let mut density = PatchDensity::new(
@@ -318,8 +313,73 @@ impl ForestBuilder {
             density,
             canopies,
             variants: variants.into(),
+            heights: built.heights,
+            snapshot: None,
             stats,
         })
+    }
+
+    /// This builder drawing `snapshot` (a year of a [`Succession`](crate::Succession) of
+    /// the same species), or the density model's trees again with `None`, sharing its
+    /// caches: every output then draws that year. An error unless the builder has every age
+    /// ([`ForestConfig::all_ages`]).
+    pub fn with_snapshot(
+        &self,
+        snapshot: Option<Arc<Snapshot>>,
+    ) -> Result<ForestBuilder, ForestError> {
+        if snapshot.is_some() && !self.config.all_ages {
+            return Err(ForestError::NotAllAges);
+        }
+        let mut builder = self.clone();
+        builder.snapshot = snapshot;
+        Ok(builder)
+    }
+
+    /// The snapshot drawn, if one is.
+    pub fn snapshot(&self) -> Option<&Snapshot> {
+        self.snapshot.as_deref()
+    }
+
+    /// The variant drawing `species` in `form`, if the builder has it (every form when
+    /// [`ForestConfig::all_ages`] is set; the canopy and young forms otherwise).
+    pub fn variant_of(&self, species: usize, form: TreeForm) -> Option<u16> {
+        self.variants
+            .iter()
+            .position(|v| v.species == species && v.form == form)
+            .map(|i| i as u16)
+    }
+
+    /// How a living tree of `species` that stands `height` metres tall is drawn: the living
+    /// form whose drawn tree is the tallest not above 1.1 times `height` (the youngest when
+    /// every one is taller), and the scale that makes it `height` tall. `None` unless the
+    /// builder has every age.
+    ///
+    /// ```
+    /// use sylva_forest::{ForestBuilder, ForestConfig, Species, TreeForm};
+    ///
+    /// let mut config = ForestConfig::new(vec![Species::from_preset("kenwood-leafy", 4)?]);
+    /// config.budget = 4 << 20;
+    /// let builder = ForestBuilder::new(config.with_all_ages(true))?;
+    /// let (young, _) = builder.live_form(0, 0.5).unwrap();
+    /// let (old, scale) = builder.live_form(0, 500.0).unwrap();
+    /// assert_eq!((young, old), (TreeForm::Live(1), TreeForm::Live(4)));
+    /// assert!(scale > 1.0);
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn live_form(&self, species: usize, height: f32) -> Option<(TreeForm, f32)> {
+        let heights = self.heights.get(species).filter(|h| !h.is_empty())?;
+        let k = heights
+            .iter()
+            .rposition(|&(_, h)| h <= 1.1 * height)
+            .unwrap_or(0);
+        let (generations, drawn) = heights[k];
+        Some((TreeForm::Live(generations), height / drawn))
+    }
+
+    /// The living forms of `species` and the drawn height of each, youngest first (forests
+    /// of every age; empty otherwise).
+    pub fn form_heights(&self, species: usize) -> &[(u32, f32)] {
+        self.heights.get(species).map_or(&[], Vec::as_slice)
     }
 
     /// The caches, one per species and maturity; [`CompactTree::variant`] indexes this.
@@ -355,6 +415,9 @@ impl ForestBuilder {
     /// The trees of `region` on `terrain`: a pure function of (seed, paint layer, region),
     /// seamless between adjacent regions. Trees outside the terrain's bounds are dropped.
     pub fn trees(&self, terrain: &dyn HeightField, region: Rect) -> Vec<CompactTree> {
+        if let Some(snapshot) = &self.snapshot {
+            return self.snapshot_trees(snapshot, terrain, region);
+        }
         match &self.config.composition {
             Some(composition) => self.trees_with(
                 &self.density.composed(composition.as_ref()),

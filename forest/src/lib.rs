@@ -45,11 +45,15 @@ mod error;
 mod extent;
 mod floor;
 mod forest;
+mod form;
 mod ground;
+mod life;
 mod patch;
 mod species;
 mod stand;
 mod stream;
+pub mod succession;
+mod variants;
 mod variety;
 mod walk;
 
@@ -63,11 +67,14 @@ pub use floor::{FloorItem, FloorOptions, ForestFloor, MAX_FLOOR_ITEMS};
 pub use forest::{
     Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
 };
+pub use form::TreeForm;
 pub use ground::{GroundCover, GroundKind, GroundLook};
+pub use life::{BREAST_HEIGHT, Life, SEEDLING_HEIGHT};
 pub use patch::{Composition, PatchDensity, PatchSpecies};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
 pub use stream::{KeepTrees, Placement, PlacementBlock, PlacementSink, StreamStats, TreesOf};
+pub use succession::{Snapshot, Succession, SuccessionOptions};
 pub use variety::{CLUSTER_SHADE_MEAN, cluster_shade, tree_tint, tree_wind};
 pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};
 

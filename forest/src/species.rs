@@ -9,6 +9,7 @@ use sylva_turtle::{Mesh, MeshBuilder, Skeleton, Tropism, TurtleOptions, interpre
 use crate::appearance::{BarkPattern, LeafShape};
 use crate::error::ForestError;
 use crate::ground::{GroundCover, GroundKind};
+use crate::life::Life;
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
@@ -39,6 +40,9 @@ pub struct Species {
     pub weight: f32,
     /// The ground cover near its canopy trees (empty: the forest floor's default mix).
     pub ground_cover: Vec<GroundCover>,
+    /// How it grows with the years, ages, competes for light and seeds: what a forest over
+    /// time ([`Succession`](crate::Succession)) runs on.
+    pub life: Life,
 }
 
 /// Canopy size of a species, as the thesis bounds it and as measured.
@@ -79,6 +83,7 @@ impl Species {
             bark_pattern: BarkPattern::Furrowed,
             weight: 1.0,
             ground_cover: Vec::new(),
+            life: Life::default(),
         }
     }
 
@@ -188,7 +193,11 @@ impl Species {
     /// to 1: how much a branch swells where it leaves its parent, see
     /// [`TurtleOptions::branch_collar`]), `curve_steps` (1 to 8: pieces a thick stem is drawn
     /// in so the tropism curves it, see [`TurtleOptions::curve_steps`]) and `tropism`
-    /// (direction x y z and susceptibility). Errors name the file, line and column;
+    /// (direction x y z and susceptibility); and its life over the years ([`Life`]):
+    /// `max_height` (metres), `growth_rate` (per year) and `growth_shape` (its
+    /// Chapman-Richards height curve), `max_age` and `maturity_age` (years),
+    /// `shade_tolerance` (0 a pioneer, 1 tolerant), `dispersal` (mean seed distance, metres),
+    /// `seeds_per_year` and `leaf_area_index`. Errors name the file, line and column;
     /// errors inside the grammar file name that file.
     ///
     /// ```no_run
@@ -379,6 +388,21 @@ impl Species {
                 )
             })?;
         }
+        let life = &mut s.life;
+        life.max_height = number("max_height", life.max_height, 0.2, 150.0)?;
+        life.growth_rate = number("growth_rate", life.growth_rate, 1e-4, 2.0)?;
+        life.growth_shape = number("growth_shape", life.growth_shape, 0.2, 5.0)?;
+        life.max_age = number("max_age", life.max_age, 2.0, 5000.0)?;
+        life.maturity_age = number(
+            "maturity_age",
+            life.maturity_age.min(life.max_age),
+            0.0,
+            life.max_age,
+        )?;
+        life.shade_tolerance = number("shade_tolerance", life.shade_tolerance, 0.0, 1.0)?;
+        life.dispersal = number("dispersal", life.dispersal, 0.1, 2000.0)?;
+        life.seeds_per_year = number("seeds_per_year", life.seeds_per_year, 0.0, 100.0)?;
+        life.leaf_area_index = number("leaf_area_index", life.leaf_area_index, 0.0, 20.0)?;
         if let Some((l, c, _, v)) = find("ground_cover") {
             s.ground_cover = parse_ground_cover(v).map_err(|m| err(*l, *c, m))?;
         }
@@ -407,6 +431,15 @@ impl Species {
                 "tropism",
                 "leaf_shape",
                 "bark_texture",
+                "max_height",
+                "growth_rate",
+                "growth_shape",
+                "max_age",
+                "maturity_age",
+                "shade_tolerance",
+                "dispersal",
+                "seeds_per_year",
+                "leaf_area_index",
             ];
             if !KNOWN.contains(&k.as_str()) {
                 return Err(err(

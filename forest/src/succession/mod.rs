@@ -1,0 +1,540 @@
+//! A forest over time (Garden of Eden 7.9 to 7.11): a region simulated year by year from bare
+//! ground. Seeds from parent trees (and a little from beyond) take where the ground gets light
+//! and room; every tree grows by the light that reaches its top through its neighbours'
+//! crowns, answering it as its species does (pioneers and shade-tolerant trees as in the
+//! growth crate's `Response`); trees die of suppression, age and events: storms that break or
+//! throw tall exposed trees along the wind, lightning that kills or splits the tallest tree
+//! near a strike, disease that thins one species' crowns. Gaps they leave are refilled by
+//! whatever the light there favours.
+//!
+//! ```
+//! use sylva_forest::succession::{Succession, SuccessionOptions};
+//! use sylva_forest::{Rect, Species};
+//! use sylva_terrain::glam::Vec2;
+//!
+//! let mut birch = Species::from_preset("kenwood-leafy", 3)?;
+//! birch.life = birch.life.with_shade_tolerance(0.1).with_growth_rate(0.07);
+//! let region = Rect::new(Vec2::ZERO, Vec2::splat(60.0));
+//! let mut forest = Succession::new(vec![birch], region, SuccessionOptions::default())?;
+//! forest.run(40, |_| Ok(()))?;
+//! let year = forest.stats().last().unwrap();
+//! assert_eq!(year.year, 40);
+//! assert!(year.stems_per_ha > 50.0 && year.mean_height > 5.0);
+//! # Ok::<(), sylva_forest::ForestError>(())
+//! ```
+//!
+//! Everything drawn is a hash of the world seed, the year and a place or a tree's identity
+//! (itself a hash of where and when it germinated), never of the order trees are held in:
+//! a run is the same at any thread count, and a tile simulated with a halo holds the trees
+//! a larger run holds there wherever the halo kept their history the same.
+
+mod events;
+mod light;
+mod options;
+mod snapshot;
+mod stats;
+mod stem;
+
+use rayon::prelude::*;
+use sylva_base::hash::{hash_cell, mix, unit_f32};
+
+use crate::density::Rect;
+use crate::error::ForestError;
+use crate::life::{Life, SEEDLING_HEIGHT};
+use crate::species::Species;
+
+pub use light::{CELL as LIGHT_CELL, EXTINCTION, LAYERS as LIGHT_LAYERS};
+pub use options::SuccessionOptions;
+pub use snapshot::{Snapshot, SnapshotTree};
+pub use stats::{Event, MIN_DIAMETER, SpeciesYear, YearStats, thinning_slope};
+pub use stem::{Cause, State, Stem};
+
+use light::LightGrid;
+
+/// Side of the cells seedlings take, metres: a cell holds one tree.
+pub const ESTABLISHMENT_CELL: f32 = 2.0;
+/// Side of the cells seed from beyond the forest is drawn for, metres.
+const RAIN_CELL: f32 = 10.0;
+/// Most simulated area, square metres (the halo included): 400 km^2, whose light grid alone
+/// is 3 GB.
+pub const MAX_AREA: f64 = 4e8;
+/// Years a dead tree stands whole before it decays to a snag, and as a snag before it falls
+/// and rots; years a fallen tree lies.
+const DEAD_YEARS: u8 = 6;
+const SNAG_YEARS: u8 = 10;
+const FALLEN_YEARS: u8 = 25;
+/// Dead trees shorter than this, metres, are gone at once: suppressed poles collapse, only
+/// trees of some size stand as snags.
+const STANDING_DEAD_HEIGHT: f32 = 14.0;
+
+/// The radius a crown shades, as a share of the drawn tree's widest reach: the reach is the
+/// tip of its longest limb, and the leaf area thins out towards it (with the whole reach,
+/// the bundled spruce's crowns would each shade 500 m^2 at 20 m and stands would hold a third
+/// of the stems they do).
+pub const CROWN_SHARE: f32 = 0.6;
+
+/// Trees killed by suppression stand dead only above this height, metres: the shaded poles
+/// of a thinning stand break and rot within a year or two.
+const SUPPRESSED_STANDING_HEIGHT: f32 = 16.0;
+
+/// Salts of the independent draws made per tree and year.
+mod salt {
+    pub(super) const AGE: u64 = 0xa6e;
+    pub(super) const SEEDS: u64 = 0x5eed5;
+    pub(super) const RAIN: u64 = 0x4a17;
+    pub(super) const TAKE: u64 = 0x7a4e;
+    pub(super) const KEY: u64 = 0x4e7;
+}
+
+/// What a species brings to the simulation: its life and its crown's shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Kind {
+    pub(crate) life: Life,
+    /// Crown radius as a share of height, from the drawn canopy tree ([`CROWN_SHARE`] of
+    /// its widest reach).
+    pub(crate) crown: f32,
+    /// Share of the seed from beyond the forest.
+    pub(crate) rain: f32,
+}
+
+/// A region's forest, year by year.
+#[derive(Debug, Clone)]
+pub struct Succession {
+    species: Vec<Species>,
+    kinds: Vec<Kind>,
+    region: Rect,
+    /// The region and its halo: what is simulated.
+    area: Rect,
+    options: SuccessionOptions,
+    year: u32,
+    stems: Vec<Stem>,
+    grid: LightGrid,
+    /// Per establishment cell of the area, whether a tree stands there.
+    occupied: Vec<bool>,
+    cells: [usize; 2],
+    /// The disease raging, if one is: its species and its last year.
+    outbreak: Option<(usize, u32)>,
+    history: Vec<YearStats>,
+}
+
+impl Succession {
+    /// Bare ground over `region` (and its halo), to be grown by [`Succession::step`] with
+    /// `species`. An error for no species, a life out of range, or an area beyond
+    /// [`MAX_AREA`].
+    pub fn new(
+        species: Vec<Species>,
+        region: Rect,
+        options: SuccessionOptions,
+    ) -> Result<Self, ForestError> {
+        options.check()?;
+        if species.is_empty() || species.len() > 255 || !species.iter().any(|s| s.weight > 0.0) {
+            return Err(ForestError::NoSpecies);
+        }
+        let area = region.expanded(options.halo);
+        let size = area.max - area.min;
+        if region.is_empty() || f64::from(size.x) * f64::from(size.y) > MAX_AREA {
+            return Err(ForestError::SuccessionArea {
+                size: region.max - region.min,
+                halo: options.halo,
+                limit: MAX_AREA,
+            });
+        }
+        let total: f32 = species.iter().map(|s| s.weight.max(0.0)).sum();
+        let mut kinds = Vec::with_capacity(species.len());
+        for s in &species {
+            s.life.check()?;
+            let canopy = s.canopy()?;
+            let height = crate::variants::drawn_height(s, s.generations, 3)?;
+            kinds.push(Kind {
+                life: s.life,
+                crown: (CROWN_SHARE * 0.5 * canopy.measured / height).clamp(0.05, 2.0),
+                rain: s.weight.max(0.0) / total,
+            });
+        }
+        let cells = [
+            (size.x / ESTABLISHMENT_CELL).ceil() as usize,
+            (size.y / ESTABLISHMENT_CELL).ceil() as usize,
+        ];
+        let history = vec![YearStats {
+            species: vec![SpeciesYear::default(); species.len()],
+            ..YearStats::default()
+        }];
+        Ok(Succession {
+            grid: LightGrid::new(area.min.into(), area.max.into()),
+            occupied: vec![false; cells[0] * cells[1]],
+            cells,
+            species,
+            kinds,
+            region,
+            area,
+            options,
+            year: 0,
+            stems: Vec::new(),
+            outbreak: None,
+            history,
+        })
+    }
+
+    /// The year reached (0 before the first step).
+    pub fn year(&self) -> u32 {
+        self.year
+    }
+
+    /// The species, in their order.
+    pub fn species(&self) -> &[Species] {
+        &self.species
+    }
+
+    /// The region reported and drawn (the halo is simulated around it).
+    pub fn region(&self) -> Rect {
+        self.region
+    }
+
+    /// The settings.
+    pub fn options(&self) -> &SuccessionOptions {
+        &self.options
+    }
+
+    /// Every tree simulated, the halo's included.
+    pub fn stems(&self) -> &[Stem] {
+        &self.stems
+    }
+
+    /// The statistics of every year so far, from year 0.
+    pub fn stats(&self) -> &[YearStats] {
+        &self.history
+    }
+
+    /// Runs `years` more years, handing each year's statistics to `each` (an error from it
+    /// stops the run).
+    pub fn run(
+        &mut self,
+        years: u32,
+        mut each: impl FnMut(&YearStats) -> Result<(), ForestError>,
+    ) -> Result<(), ForestError> {
+        for _ in 0..years {
+            self.step()?;
+            if let Some(last) = self.history.last() {
+                each(last)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// One year: light, growth and mortality, events, seeds.
+    pub fn step(&mut self) -> Result<(), ForestError> {
+        self.year += 1;
+        let year = self.year;
+        self.shade();
+        let mut stats = YearStats {
+            year,
+            species: vec![SpeciesYear::default(); self.species.len()],
+            ..YearStats::default()
+        };
+        self.grow(&mut stats);
+        events::strike(self, &mut stats);
+        self.decay();
+        self.seed(&mut stats)?;
+        self.tally(&mut stats);
+        self.history.push(stats);
+        Ok(())
+    }
+
+    /// Fills the light grid from the crowns as they stand.
+    fn shade(&mut self) {
+        self.grid.clear();
+        for s in &self.stems {
+            if !s.state.is_alive() {
+                continue;
+            }
+            let kind = &self.kinds[usize::from(s.species)];
+            let top = s.top();
+            let radius = (kind.crown * s.height).max(0.1);
+            let lai = kind.life.leaf_area_index
+                * match s.state {
+                    State::Dieback => 0.3,
+                    _ => 1.0,
+                };
+            self.grid
+                .deposit(s.position[0], s.position[1], radius, 0.4 * top, top, lai);
+        }
+        self.grid.accumulate();
+    }
+
+    /// Every living tree grows by its light, and dies of suppression or age; each on its
+    /// own, so in parallel.
+    fn grow(&mut self, stats: &mut YearStats) {
+        let (kinds, grid, year, seed) = (&self.kinds, &self.grid, self.year, self.options.seed);
+        let deaths: Vec<Option<Cause>> = self
+            .stems
+            .par_iter_mut()
+            .map(|s| {
+                if !s.state.is_alive() {
+                    return None;
+                }
+                let life = &kinds[usize::from(s.species)].life;
+                let light = grid.light(s.position[0], s.position[1], s.top());
+                let mut share = life.growth_in(light);
+                match s.state {
+                    State::Dieback => share *= 0.3,
+                    State::BrokenTop => share *= 0.6,
+                    _ => {}
+                }
+                s.height =
+                    (s.height + life.potential_growth(s.height) * share).min(1.2 * life.max_height);
+                s.vigour = share;
+                s.age = s.age.saturating_add(1);
+                s.suppressed = if share < 0.1 {
+                    s.suppressed.saturating_add(1)
+                } else {
+                    0
+                };
+                if s.suppressed > life.suppression_years() {
+                    return Some(Cause::Suppression);
+                }
+                let old = f32::from(s.age) > 1.5 * life.max_age;
+                if old || draw(seed, s.key, year, salt::AGE) < 4.0 / life.max_age {
+                    return Some(Cause::Age);
+                }
+                events::disease_death(s, seed, year)
+            })
+            .collect();
+        for (s, cause) in self.stems.iter_mut().zip(deaths) {
+            if let Some(cause) = cause {
+                kill(s, cause, self.region, stats);
+            }
+        }
+    }
+
+    /// Dead trees decay: dead standing to snag, snag to nothing; fallen trees rot away.
+    fn decay(&mut self) {
+        for s in &mut self.stems {
+            if s.state.is_alive() {
+                continue;
+            }
+            s.dead_years = s.dead_years.saturating_add(1);
+            if s.state == State::Dead && s.dead_years > DEAD_YEARS {
+                s.state = State::Snag;
+                s.dead_years = 0;
+            }
+        }
+        self.stems.retain(|s| match s.state {
+            State::Snag => s.dead_years <= SNAG_YEARS,
+            State::Fallen => s.dead_years <= FALLEN_YEARS,
+            State::Dead => s.height >= STANDING_DEAD_HEIGHT,
+            _ => true,
+        });
+    }
+
+    /// Seeds from mature trees and from beyond land, and take where the ground has light and
+    /// room; where several land in one free cell, the one with the lowest draw takes it.
+    fn seed(&mut self, stats: &mut YearStats) -> Result<(), ForestError> {
+        let (year, seed) = (self.year, self.options.seed);
+        self.occupied.fill(false);
+        for s in &self.stems {
+            if s.state != State::Fallen
+                && let Some(c) = self.cell(s.position)
+            {
+                self.occupied[c] = true;
+            }
+        }
+        let this = &*self;
+        // Seeds of the forest's own trees, each tree's from its own draws.
+        let mut landed: Vec<(usize, u64, u8, [f32; 2])> = this
+            .stems
+            .par_iter()
+            .flat_map_iter(|s| {
+                let kind = &this.kinds[usize::from(s.species)];
+                let fertile = s.state.is_alive() && f32::from(s.age) >= kind.life.maturity_age;
+                let light = if fertile {
+                    this.grid.light(s.position[0], s.position[1], s.top())
+                } else {
+                    0.0
+                };
+                let expected = kind.life.seeds_per_year * light;
+                let h = mix(s.key ^ mix(seed ^ u64::from(year) ^ salt::SEEDS));
+                let n = expected.floor() as u32 + u32::from(unit_f32(h) < expected.fract());
+                (0..n).filter_map(move |k| {
+                    let d = mix(h ^ u64::from(k + 1));
+                    let distance = -(1.0 - unit_f32(d)).max(1e-6).ln() * kind.life.dispersal;
+                    let angle = unit_f32(mix(d)) * std::f32::consts::TAU;
+                    let p = [
+                        s.position[0] + distance * angle.cos(),
+                        s.position[1] + distance * angle.sin(),
+                    ];
+                    this.landing(p, s.species, mix(d ^ salt::TAKE))
+                })
+            })
+            .collect();
+        // Seed from beyond: per cell of a global grid, so tiles draw the same.
+        let rain = self.options.seed_rain * RAIN_CELL * RAIN_CELL / 10_000.0;
+        let (i0, j0) = (
+            (self.area.min.x / RAIN_CELL).floor() as i64,
+            (self.area.min.y / RAIN_CELL).floor() as i64,
+        );
+        let (i1, j1) = (
+            (self.area.max.x / RAIN_CELL).ceil() as i64,
+            (self.area.max.y / RAIN_CELL).ceil() as i64,
+        );
+        let rained: Vec<(usize, u64, u8, [f32; 2])> = (j0..j1)
+            .into_par_iter()
+            .flat_map_iter(|j| {
+                (i0..i1).flat_map(move |i| {
+                    this.kinds.iter().enumerate().filter_map(move |(k, kind)| {
+                        let h =
+                            hash_cell(seed, i, j, salt::RAIN ^ (u64::from(year) << 8) ^ k as u64);
+                        if unit_f32(h) >= rain * kind.rain {
+                            return None;
+                        }
+                        let p = [
+                            (i as f32 + unit_f32(mix(h))) * RAIN_CELL,
+                            (j as f32 + unit_f32(mix(h ^ 1))) * RAIN_CELL,
+                        ];
+                        this.landing(p, k as u8, mix(h ^ salt::TAKE))
+                    })
+                })
+            })
+            .collect();
+        landed.extend(rained);
+        landed.par_sort_unstable_by_key(|&(cell, priority, ..)| (cell, priority));
+        landed.dedup_by_key(|l| l.0);
+        if self.stems.len() + landed.len() > self.options.max_stems {
+            return Err(ForestError::TooManyStems {
+                stems: self.stems.len() + landed.len(),
+                limit: self.options.max_stems,
+            });
+        }
+        for (_, _, species, position) in landed {
+            let cell = [
+                (position[0] / ESTABLISHMENT_CELL).floor() as i64,
+                (position[1] / ESTABLISHMENT_CELL).floor() as i64,
+            ];
+            if self.region.contains(position.into()) {
+                stats.recruits_per_ha += 1.0;
+            }
+            self.stems.push(Stem {
+                position,
+                height: SEEDLING_HEIGHT,
+                vigour: 1.0,
+                key: hash_cell(seed, cell[0], cell[1], salt::KEY ^ (u64::from(year) << 16)),
+                age: 0,
+                species,
+                state: State::Live,
+                suppressed: 0,
+                dead_years: 0,
+                fall: 0,
+            });
+        }
+        Ok(())
+    }
+
+    /// Where a seed of `species` landing at `p` takes: its cell and priority, if the cell is
+    /// in the area and free and the ground's light lets it germinate.
+    fn landing(&self, p: [f32; 2], species: u8, h: u64) -> Option<(usize, u64, u8, [f32; 2])> {
+        let cell = self.cell(p)?;
+        if self.occupied[cell] {
+            return None;
+        }
+        let life = &self.kinds[usize::from(species)].life;
+        let light = self.grid.ground(p[0], p[1]);
+        (unit_f32(h) < life.growth_in(light)).then_some((cell, h, species, p))
+    }
+
+    /// The establishment cell of `p` within the area.
+    fn cell(&self, p: [f32; 2]) -> Option<usize> {
+        let i = ((p[0] - self.area.min.x) / ESTABLISHMENT_CELL).floor();
+        let j = ((p[1] - self.area.min.y) / ESTABLISHMENT_CELL).floor();
+        if !(i >= 0.0 && j >= 0.0 && (i as usize) < self.cells[0] && (j as usize) < self.cells[1]) {
+            return None;
+        }
+        Some(j as usize * self.cells[0] + i as usize)
+    }
+
+    /// The year's figures over the region.
+    fn tally(&self, stats: &mut YearStats) {
+        let size = self.region.max - self.region.min;
+        let hectares = f64::from(size.x) * f64::from(size.y) / 10_000.0;
+        let per_ha = |n: f64| (n / hectares) as f32;
+        let n = self.species.len();
+        let (mut stems, mut saplings, mut basal, mut heights) =
+            (vec![0f64; n], vec![0f64; n], vec![0f64; n], vec![0f64; n]);
+        let (mut dead, mut fallen, mut squares) = (0f64, 0f64, 0f64);
+        for s in &self.stems {
+            if !self.region.contains(s.position.into()) {
+                continue;
+            }
+            match s.state {
+                State::Dead | State::Snag => dead += 1.0,
+                State::Fallen => fallen += 1.0,
+                _ => {
+                    let k = usize::from(s.species);
+                    let d = f64::from(self.kinds[k].life.diameter(s.height));
+                    if d >= f64::from(MIN_DIAMETER) {
+                        stems[k] += 1.0;
+                        basal[k] += std::f64::consts::PI * d * d / 4.0;
+                        heights[k] += f64::from(s.top());
+                        squares += d * d;
+                    } else {
+                        saplings[k] += 1.0;
+                    }
+                }
+            }
+        }
+        let all: f64 = stems.iter().sum();
+        for k in 0..n {
+            stats.species[k] = SpeciesYear {
+                stems_per_ha: per_ha(stems[k]),
+                saplings_per_ha: per_ha(saplings[k]),
+                basal_area: per_ha(basal[k]),
+                mean_height: if stems[k] > 0.0 {
+                    (heights[k] / stems[k]) as f32
+                } else {
+                    0.0
+                },
+            };
+        }
+        stats.stems_per_ha = per_ha(all);
+        stats.basal_area = per_ha(basal.iter().sum());
+        stats.mean_height = if all > 0.0 {
+            (heights.iter().sum::<f64>() / all) as f32
+        } else {
+            0.0
+        };
+        stats.mean_diameter = if all > 0.0 {
+            (100.0 * (squares / all).sqrt()) as f32
+        } else {
+            0.0
+        };
+        stats.dead_standing_per_ha = per_ha(dead);
+        stats.fallen_per_ha = per_ha(fallen);
+        stats.recruits_per_ha = per_ha(f64::from(stats.recruits_per_ha));
+        for d in &mut stats.deaths_per_ha {
+            *d = per_ha(f64::from(*d));
+        }
+        stats.canopy_cover =
+            self.grid
+                .cover_within(5.0, self.region.min.into(), self.region.max.into());
+    }
+}
+
+/// A uniform draw in [0, 1) for tree `key` in `year`, of the kind `salt`.
+pub(crate) fn draw(seed: u64, key: u64, year: u32, salt: u64) -> f32 {
+    unit_f32(mix(key ^ mix(seed ^ (u64::from(year) << 20) ^ salt)))
+}
+
+/// `s` dies of `cause`: it stands dead if it was tall enough, else it is gone at the next
+/// decay; the death is counted if it stood in `region`.
+pub(crate) fn kill(s: &mut Stem, cause: Cause, region: Rect, stats: &mut YearStats) {
+    if s.state != State::Fallen {
+        s.state = State::Dead;
+    }
+    if cause == Cause::Suppression && s.height < SUPPRESSED_STANDING_HEIGHT {
+        // A suppressed pole snaps and rots where it stands: gone at the next decay.
+        s.height = 0.0;
+    }
+    s.dead_years = 0;
+    if region.contains(s.position.into()) {
+        let k = Cause::ALL.iter().position(|c| *c == cause).unwrap_or(0);
+        stats.deaths_per_ha[k] += 1.0;
+    }
+}

@@ -1,0 +1,177 @@
+//! A year of a forest over time, as trees every output draws: living trees at the form their
+//! height asks for, dead, broken and fallen ones in their damaged forms.
+
+use std::collections::BTreeMap;
+
+use sylva_base::hash::{mix, unit_f32};
+use sylva_instancing::CompactTree;
+use sylva_terrain::HeightField;
+
+use super::Succession;
+use super::stem::{State, Stem};
+use crate::density::Rect;
+use crate::forest::ForestBuilder;
+
+/// Side of the buckets a snapshot sorts its trees into, metres, so a block finds its own.
+const BUCKET: f32 = 32.0;
+
+/// One tree of a snapshot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SnapshotTree {
+    /// Position (x, z).
+    pub position: [f32; 2],
+    /// Index of its species.
+    pub species: u8,
+    /// What has happened to it.
+    pub state: State,
+    /// Height of the whole tree, metres (a broken one was this tall).
+    pub height: f32,
+    /// Its identity, from which its yaw and crown are drawn.
+    pub key: u64,
+    /// The direction it fell, turns of a circle over 256 (fallen trees).
+    pub fall: u8,
+}
+
+/// The trees of a [`Succession`]'s region in one year, sorted into buckets so that any
+/// rectangle's trees are found at once. Hand it to a builder with
+/// [`ForestBuilder::with_snapshot`] and every output (GLB, USD, tiles, the viewer) draws it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Snapshot {
+    /// The year.
+    pub year: u32,
+    buckets: BTreeMap<(i64, i64), Vec<SnapshotTree>>,
+    len: usize,
+}
+
+impl Snapshot {
+    /// Trees in the snapshot.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether it holds no tree.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The trees whose positions lie in `rect`, bucket by bucket (rows of 32 m, then
+    /// columns), each bucket's in the order of their keys.
+    pub fn trees_in(&self, rect: Rect) -> impl Iterator<Item = &SnapshotTree> + '_ {
+        let lo = (
+            (rect.min.x / BUCKET).floor() as i64,
+            (rect.min.y / BUCKET).floor() as i64,
+        );
+        let hi = (
+            (rect.max.x / BUCKET).floor() as i64,
+            (rect.max.y / BUCKET).floor() as i64,
+        );
+        (lo.1..=hi.1)
+            .flat_map(move |j| self.buckets.range((j, lo.0)..=(j, hi.0)))
+            .flat_map(|(_, trees)| trees.iter())
+            .filter(move |t| rect.contains(t.position.into()))
+    }
+
+    /// Every tree.
+    pub fn trees(&self) -> impl Iterator<Item = &SnapshotTree> + '_ {
+        self.buckets.values().flatten()
+    }
+}
+
+impl Succession {
+    /// The trees of the region as they stand this year (the halo's left out).
+    pub fn snapshot(&self) -> Snapshot {
+        let mut buckets: BTreeMap<(i64, i64), Vec<SnapshotTree>> = BTreeMap::new();
+        let mut len = 0;
+        for s in self
+            .stems
+            .iter()
+            .filter(|s| self.region.contains(s.position.into()))
+        {
+            let Stem {
+                position,
+                species,
+                state,
+                height,
+                key,
+                fall,
+                ..
+            } = *s;
+            let at = (
+                (position[0] / BUCKET).floor() as i64,
+                (position[1] / BUCKET).floor() as i64,
+            );
+            buckets.entry((at.1, at.0)).or_default().push(SnapshotTree {
+                position,
+                species,
+                state,
+                height,
+                key,
+                fall,
+            });
+            len += 1;
+        }
+        for trees in buckets.values_mut() {
+            trees.sort_unstable_by_key(|t| t.key);
+        }
+        Snapshot {
+            year: self.year,
+            buckets,
+            len,
+        }
+    }
+}
+
+impl ForestBuilder {
+    /// The trees of `snapshot` in `region` on `terrain`, each drawn by the variant of its
+    /// species and form at the scale its height asks for (the builder must have every age,
+    /// [`ForestConfig::all_ages`](crate::ForestConfig::all_ages)); trees off the terrain or
+    /// where its constraints allow none are left out, as in a forest of one age.
+    pub fn snapshot_trees(
+        &self,
+        snapshot: &Snapshot,
+        terrain: &dyn HeightField,
+        region: Rect,
+    ) -> Vec<CompactTree> {
+        let (lo, hi) = terrain.bounds();
+        let region = region.intersect(&Rect::new(lo, hi));
+        let c = &self.config().constraints;
+        let min_up = c.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
+        snapshot
+            .trees_in(region)
+            .filter_map(|t| {
+                let species = usize::from(t.species);
+                let [x, z] = t.position;
+                let height = terrain.height(x, z);
+                if !(height >= c.min_height && height <= c.max_height)
+                    || terrain.normal(x, z).y < min_up - 1e-6
+                {
+                    return None;
+                }
+                let (form, scale) = match t.state.damaged_form() {
+                    None => self.live_form(species, t.height)?,
+                    Some(form) => {
+                        let &(_, drawn) = self.form_heights(species).last()?;
+                        (form, t.height / drawn)
+                    }
+                };
+                let h = mix(t.key);
+                // A fallen tree lies along +X in its cache; turned by -angle about +Y it lies
+                // along the way it fell.
+                let yaw = if t.state == State::Fallen {
+                    -(f32::from(t.fall) / 256.0) * std::f32::consts::TAU
+                } else {
+                    unit_f32(h) * std::f32::consts::TAU
+                };
+                Some(CompactTree {
+                    position: [x, height, z],
+                    yaw,
+                    scale,
+                    seed: (h >> 32) as u32,
+                    variant: self.variant_of(species, form)?,
+                    crown_class: 0,
+                    crown_classes: 0,
+                })
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,235 @@
+//! The caches a forest draws its trees from: per species a canopy and a young form, or, for
+//! forests of every age, a form per generation and the damaged forms.
+
+use sylva_base::hash::mix;
+use sylva_instancing::{HeroOptions, InstanceCache, InstancingError, build_cache};
+use sylva_turtle::{Skeleton, interpret};
+
+use crate::error::ForestError;
+use crate::forest::{ForestConfig, Variant};
+use crate::form::TreeForm;
+use crate::species::Species;
+
+/// Heroes of a damaged form: whole trees, no instancing (damaged trees are few, and a broken
+/// trunk cuts across the branches instancing would share).
+const DAMAGED_HEROES: u32 = 4;
+
+/// Most living forms of one species in a forest of every age: a species of more
+/// generations is drawn at this many of them, spread evenly and ending at its canopy form.
+pub(crate) const MAX_LIVE_FORMS: u32 = 8;
+
+/// What building the caches made.
+pub(crate) struct Built {
+    pub(crate) variants: Vec<Variant>,
+    pub(crate) heroes: u32,
+    /// Per species, its living forms' generations and drawn heights, youngest first (empty
+    /// unless the forest has every age).
+    pub(crate) heights: Vec<Vec<(u32, f32)>>,
+}
+
+/// Fills the caches of `config`'s species.
+pub(crate) fn build(config: &ForestConfig) -> Result<Built, ForestError> {
+    let total_weight: f32 = config.species.iter().map(|s| s.weight.max(0.0)).sum();
+    let mut built = Built {
+        variants: Vec::new(),
+        heroes: 0,
+        heights: Vec::new(),
+    };
+    for (i, s) in config.species.iter().enumerate() {
+        let share = (config.budget as f64 * f64::from(s.weight.max(0.0) / total_weight)) as usize;
+        let plan = if config.all_ages {
+            let heights = form_heights(s)?;
+            let plan = every_age(s, &heights, share);
+            built.heights.push(heights);
+            plan
+        } else {
+            let mut plan = vec![(TreeForm::Live(s.generations), false, share - share / 4)];
+            if config.seedlings_per_patch > 0 {
+                plan.push((TreeForm::Live(s.seedling_generations), true, share / 4));
+            }
+            plan
+        };
+        for (form, seedling, part) in plan {
+            if part == 0 {
+                continue;
+            }
+            // The canopy and young forms keep the seeds they always had (0 and 1), so
+            // forests without every age are the same forests.
+            let salt = if config.all_ages {
+                2 + form_index(form)
+            } else {
+                u64::from(seedling)
+            };
+            let cache = form_cache(
+                s,
+                form,
+                part,
+                mix(config.seed ^ ((i as u64) << 1) ^ salt),
+                config.all_ages,
+            )?;
+            built.heroes += cache.1;
+            built.variants.push(Variant {
+                species: i,
+                seedling,
+                generations: match form {
+                    TreeForm::Live(g) => g,
+                    _ => s.generations,
+                },
+                form,
+                cache: cache.0,
+            });
+        }
+    }
+    Ok(built)
+}
+
+/// A salt per form, so each form's heroes differ.
+fn form_index(form: TreeForm) -> u64 {
+    match form {
+        TreeForm::Live(g) => u64::from(g),
+        other => {
+            100 + TreeForm::DAMAGED
+                .iter()
+                .position(|f| *f == other)
+                .unwrap_or(0) as u64
+        }
+    }
+}
+
+/// The forms of a forest of every age and their shares of `share` bytes: the canopy form
+/// two fifths, the younger generations two fifths between them, the damaged forms the rest.
+/// The generations up to the species' seedling form are its young trees.
+fn every_age(s: &Species, heights: &[(u32, f32)], share: usize) -> Vec<(TreeForm, bool, usize)> {
+    let g = s.generations.max(1);
+    let mut plan = vec![(TreeForm::Live(g), false, share * 2 / 5)];
+    let younger = share * 2 / 5 / (heights.len() - 1).max(1);
+    plan.extend(
+        heights
+            .iter()
+            .filter(|(k, _)| *k < g)
+            .map(|&(k, _)| (TreeForm::Live(k), k <= s.seedling_generations, younger)),
+    );
+    let damaged = share / 5 / TreeForm::DAMAGED.len();
+    plan.extend(TreeForm::DAMAGED.iter().map(|f| (*f, false, damaged)));
+    plan
+}
+
+/// The cache of one form of `s` under `budget` bytes (in a forest of every age, at least one
+/// hero's), and its hero count.
+fn form_cache(
+    s: &Species,
+    form: TreeForm,
+    budget: usize,
+    seed: u64,
+    every_age: bool,
+) -> Result<(InstanceCache, u32), ForestError> {
+    let mut options = HeroOptions::default()
+        .with_budget(budget)
+        .with_seed(seed)
+        .with_turtle(s.turtle.clone());
+    match form {
+        TreeForm::Live(g) => options = options.with_generations(g),
+        damaged => {
+            let height = drawn_height(s, s.generations, 2)?;
+            options = options.with_generations(s.generations);
+            options.turtle.stem_break = damaged.break_share().map(|share| share * height);
+            options.turtle.leaf_keep = damaged.leaf_keep();
+            options.p_min = 0.0;
+            options.p_max = 0.0;
+            options.complete_share = 1.0;
+            options.max_heroes = DAMAGED_HEROES;
+        }
+    }
+    let built = match build_cache(&s.grammar, &options) {
+        // A forest of every age draws each form from at least one hero, whatever its share
+        // of the budget: the forms are many, and the budget is the canopy's.
+        Err(InstancingError::BudgetTooSmall { needed, .. }) if every_age => {
+            build_cache(&s.grammar, &options.with_budget(needed))?
+        }
+        other => other?,
+    };
+    let mut cache = built.cache;
+    if form == TreeForm::Fallen {
+        lay_down(&mut cache);
+    }
+    Ok((cache, built.stats.heroes))
+}
+
+/// Turns a cache of whole upright trees to lie along +X on the ground, still: its trunk's
+/// base stays at the origin, its wind data no longer sways it.
+fn lay_down(cache: &mut InstanceCache) {
+    // A quarter turn about Z takes +Y (up) to +X: (x, y) -> (y, -x).
+    let turn = |[x, y, z]: [f32; 3]| [y, -x, z];
+    for v in &mut cache.vertices {
+        v.position = turn(v.position);
+        v.normal = turn(v.normal);
+        // Depth 0, phase 0: the trunk, which no wind moves.
+        v.wind = [v.position[0], v.position[1], v.position[2], 0.0];
+    }
+}
+
+/// The generations `s` is drawn at in a forest of every age ([`live_generations`]) and the
+/// drawn height of each: the mean top of three sample trees' skeletons.
+fn form_heights(s: &Species) -> Result<Vec<(u32, f32)>, ForestError> {
+    live_generations(s.generations)
+        .into_iter()
+        .map(|g| Ok((g, drawn_height(s, g, 3)?)))
+        .collect()
+}
+
+/// 1 to `generations`, or [`MAX_LIVE_FORMS`] of them spread evenly from 1 and ending there.
+pub(crate) fn live_generations(generations: u32) -> Vec<u32> {
+    let g = generations.max(1);
+    if g <= MAX_LIVE_FORMS {
+        return (1..=g).collect();
+    }
+    let mut out: Vec<u32> = (0..MAX_LIVE_FORMS)
+        .map(|k| 1 + ((g - 1) * k + (MAX_LIVE_FORMS - 1) / 2) / (MAX_LIVE_FORMS - 1))
+        .collect();
+    out.dedup();
+    out
+}
+
+/// The mean skeleton top of `samples` trees of `s` at `generations`.
+pub(crate) fn drawn_height(
+    s: &Species,
+    generations: u32,
+    samples: u64,
+) -> Result<f32, ForestError> {
+    let mut sum = 0.0;
+    for seed in 0..samples {
+        let word = s
+            .grammar
+            .derive(generations, seed)
+            .and_then(|w| s.grammar.interpretation(&w, seed))
+            .map_err(|source| ForestError::Derive {
+                species: s.name.clone(),
+                source,
+            })?;
+        let mut skeleton = Skeleton::default();
+        interpret(&word, &s.turtle, &mut skeleton).map_err(|source| ForestError::Turtle {
+            species: s.name.clone(),
+            source,
+        })?;
+        sum += skeleton
+            .bones
+            .iter()
+            .map(|b| b.end.y.max(b.start.y))
+            .fold(0.0f32, f32::max);
+    }
+    Ok((sum / samples as f32).max(1e-3))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn live_generations_spread_from_the_first_to_the_canopy() {
+        assert_eq!(live_generations(5), [1, 2, 3, 4, 5]);
+        let spread = live_generations(14);
+        assert_eq!(spread.len(), MAX_LIVE_FORMS as usize);
+        assert_eq!((spread[0], spread[spread.len() - 1]), (1, 14));
+        assert!(spread.windows(2).all(|w| w[0] < w[1]));
+    }
+}
