@@ -164,3 +164,35 @@ fn forest_of_seed_1_trees_and_placements() {
         placements.0
     );
 }
+
+#[test]
+fn forest_over_time_of_seed_1() {
+    use sylva::forest::succession::{Succession, SuccessionOptions};
+    let region = Rect::new(
+        sylva::terrain::glam::Vec2::ZERO,
+        sylva::terrain::glam::Vec2::splat(100.0),
+    );
+    let mut forest = Succession::new(
+        sylva::presets::species().unwrap(),
+        region,
+        SuccessionOptions::default().with_storm_rate(0.2),
+    )
+    .unwrap();
+    forest.run(60, |_| Ok(())).unwrap();
+    let mut stems = Fnv::new();
+    for s in forest.stems() {
+        stems
+            .f32s(&s.position)
+            .f32s(&[s.height, s.vigour])
+            .bytes(&s.key.to_le_bytes())
+            .u32s(&[u32::from(s.age), u32::from(s.species), s.state as u32]);
+    }
+    assert_eq!(
+        (forest.stems().len(), stems.0),
+        // Issue 25: the bundled species grown from bare ground for 60 years.
+        (6888, 0x7101_3809_7e0e_e9ca),
+        "{} {:#x}",
+        forest.stems().len(),
+        stems.0
+    );
+}

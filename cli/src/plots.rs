@@ -117,11 +117,13 @@ pub(crate) fn species_shares(
 }
 
 /// Stems per hectare against quadratic mean diameter, both logarithmic, a point per year
-/// shaded from early (light) to late (dark), and Reineke's line of slope -1.605 through the
-/// densest year for comparison; `slope` is the fitted one, named in the caption.
+/// shaded from early (light) to late (dark); the line of `slope` fitted over the thinning
+/// years `phase` (red), and Reineke's line of slope -1.605 through the densest year for
+/// comparison (black).
 pub(crate) fn self_thinning(
     path: &Path,
     years: &[YearStats],
+    phase: &[YearStats],
     slope: Option<f32>,
 ) -> Result<(), Failure> {
     let points: Vec<(f32, f32, u32)> = years
@@ -148,7 +150,11 @@ pub(crate) fn self_thinning(
             (nmin * 0.8, nmax * 1.25)
         };
         let caption = match slope {
-            Some(s) => format!("Self-thinning: fitted slope {s:.2} (Reineke -1.605)"),
+            Some(s) => format!(
+                "Self-thinning, years {} to {}: slope {s:.2} (Reineke -1.605)",
+                phase.first().map_or(0, |y| y.year),
+                phase.last().map_or(0, |y| y.year)
+            ),
             None => "Self-thinning".to_string(),
         };
         let mut chart = ChartBuilder::on(&root)
@@ -187,6 +193,26 @@ pub(crate) fn self_thinning(
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
                 });
+        }
+        let fitted: Vec<(f32, f32)> = phase
+            .iter()
+            .filter(|y| y.stems_per_ha > 0.0 && y.mean_diameter > 0.0)
+            .map(|y| (y.mean_diameter.ln(), y.stems_per_ha.ln()))
+            .collect();
+        if let (Some(s), false) = (slope, fitted.is_empty()) {
+            let n = fitted.len() as f32;
+            let (mx, my) = fitted
+                .iter()
+                .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+            let (lo, hi) = fitted
+                .iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+            let line = [lo, hi].map(|x| (x.exp(), (my + s * (x - mx)).exp()));
+            chart
+                .draw_series(LineSeries::new(line, RED.stroke_width(3)))
+                .map_err(|e| e.to_string())?
+                .label(format!("fitted over the thinning years: slope {s:.2}"))
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(3)));
         }
         chart
             .configure_series_labels()

@@ -11,7 +11,9 @@ use clap::Args;
 use serde::Serialize;
 use sylva::base::file::AtomicFile;
 use sylva::export::{GltfOptions, write_glb};
-use sylva::forest::succession::{Succession, SuccessionOptions, YearStats, thinning_slope};
+use sylva::forest::succession::{
+    Succession, SuccessionOptions, YearStats, thinning_phase, thinning_slope,
+};
 use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
 use sylva::terrain::Heightmap;
 use sylva::terrain::glam::Vec2;
@@ -63,6 +65,10 @@ pub(crate) struct SuccessionArgs {
     /// Seedlings arriving from beyond the region, per hectare and year.
     #[arg(long, default_value_t = SuccessionOptions::default().seed_rain)]
     seed_rain: f32,
+    /// Start from a planted stand instead of bare ground: SPECIES (its name) at
+    /// TREES_PER_HA (at most 2500), seed from beyond still arriving.
+    #[arg(long, value_name = "SPECIES,TREES_PER_HA", value_parser = parse_planting)]
+    plant: Option<(String, f32)>,
     /// A species file; repeat for several (default: the five bundled species).
     #[arg(long, value_name = "FILE")]
     species: Vec<PathBuf>,
@@ -85,6 +91,13 @@ pub(crate) struct SuccessionArgs {
     /// Print nothing but errors.
     #[arg(long, short)]
     quiet: bool,
+}
+
+/// Parses `NAME,DENSITY`.
+fn parse_planting(v: &str) -> Result<(String, f32), String> {
+    v.split_once(',')
+        .and_then(|(name, d)| Some((name.trim().to_string(), d.trim().parse().ok()?)))
+        .ok_or_else(|| format!("'{v}': expected SPECIES,TREES_PER_HA, such as spruce,2500"))
 }
 
 /// Parses `X0,Z0,X1,Z1`.
@@ -118,8 +131,10 @@ struct SuccessionFigures {
     storms: usize,
     lightning_strikes: usize,
     outbreaks: usize,
-    /// Slope of log stems against log mean diameter from the densest year on.
+    /// Slope of log stems against log mean diameter over the self-thinning years.
     thinning_slope: Option<f32>,
+    /// Those years: the densest, and the last while the mean diameter grew.
+    thinning_years: [u32; 2],
     simulate_ms: f64,
     ms_per_year: f64,
     peak_rss_mb: f64,
@@ -164,6 +179,15 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
         .with_seed_rain(args.seed_rain);
     let names: Vec<String> = species.iter().map(|s| s.name.clone()).collect();
     let mut forest = Succession::new(species.clone(), region, options)?;
+    if let Some((name, density)) = &args.plant {
+        let k = names.iter().position(|n| n == name).ok_or_else(|| {
+            Failure::usage(format!(
+                "--plant: no species '{name}' (the species are {})",
+                names.join(", ")
+            ))
+        })?;
+        forest.plant(k, *density)?;
+    }
     std::fs::create_dir_all(&args.out).map_err(sylva::base::file::FileError::at(&args.out))?;
     // The snapshots' caches and terrain, built only when asked for.
     let snapshots = if args.snapshots.is_empty() {
@@ -200,9 +224,15 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
     let _ = start;
     let years = forest.stats();
     write_tables(&args.out, years, &names)?;
-    let slope = thinning_slope(&from_densest(years));
+    let phase_years = thinning_phase(years);
+    let slope = thinning_slope(phase_years);
     crate::plots::species_shares(&args.out.join("species_shares.png"), years, &names)?;
-    crate::plots::self_thinning(&args.out.join("self_thinning.png"), years, slope)?;
+    crate::plots::self_thinning(
+        &args.out.join("self_thinning.png"),
+        years,
+        phase_years,
+        slope,
+    )?;
     let last = years.last().cloned().unwrap_or_default();
     let count = |kind: &str| {
         years
@@ -224,6 +254,10 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
         lightning_strikes: count("lightning"),
         outbreaks: count("disease"),
         thinning_slope: slope,
+        thinning_years: [
+            phase_years.first().map_or(0, |y| y.year),
+            phase_years.last().map_or(0, |y| y.year),
+        ],
         simulate_ms: ms(simulated),
         ms_per_year: ms(simulated) / f64::from(args.years),
         peak_rss_mb: peak_rss_mb(),
@@ -260,17 +294,6 @@ pub(crate) fn load_species(files: &[PathBuf]) -> Result<Vec<Species>, Failure> {
         .iter()
         .map(Species::from_file)
         .collect::<Result<Vec<_>, _>>()?)
-}
-
-/// The years from the densest (the most stems of at least 5 cm) on: the stand thinning
-/// itself, where Reineke's rule applies.
-fn from_densest(years: &[YearStats]) -> Vec<YearStats> {
-    let densest = years
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.stems_per_ha.total_cmp(&b.1.stems_per_ha))
-        .map_or(0, |(k, _)| k);
-    years[densest..].to_vec()
 }
 
 /// succession.csv and succession.json.

@@ -48,6 +48,11 @@ pub(crate) struct WorldArgs {
     /// them) decide where each species grows.
     #[arg(long, value_name = "MASKS_DIR")]
     paint: Option<PathBuf>,
+    /// Draw the forest as it stands in year N of a forest over time: grown from bare ground
+    /// year by year (`sylva succession`'s defaults, this seed), trees of every age, dead
+    /// standing trees, broken tops and fallen trees, instead of placed at two ages.
+    #[arg(long, value_name = "N", conflicts_with = "paint")]
+    year: Option<u32>,
 }
 
 /// A world made from its flags.
@@ -106,6 +111,7 @@ impl WorldArgs {
         let mut config = ForestConfig::new(species);
         config.seed = self.seed;
         config.budget = budget;
+        config.all_ages = self.year.is_some();
         let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
             ForestBuilder::new(config)
         });
@@ -133,10 +139,14 @@ impl WorldArgs {
         if let Some(dir) = &self.paint {
             builder = sylva::paint::with_masks(&builder, dir, &map)?;
         }
+        let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+        if let Some(year) = self.year {
+            builder = crate::succession::builder_at_year(&builder, region, year, quiet)?;
+        }
         Ok(World {
             builder,
             map,
-            region: Rect::new(Vec2::ZERO, Vec2::splat(side)),
+            region,
             side,
             seed: self.seed,
             hero_time,

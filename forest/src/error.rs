@@ -168,4 +168,14 @@ pub enum ForestError {
         /// The bound.
         limit: usize,
     },
+    /// Trees can be planted only before a forest over time's first year, of its species.
+    #[error(
+        "cannot plant species {species} in year {year}: plant before the first year, one of the forest's species"
+    )]
+    PlantingTooLate {
+        /// The species asked for.
+        species: usize,
+        /// The year the forest had reached.
+        year: u32,
+    },
 }

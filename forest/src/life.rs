@@ -29,8 +29,9 @@ pub struct Life {
     pub growth_rate: f32,
     /// The curve's shape (Chapman-Richards' p): above 1, slow first years, then the sigmoid.
     pub growth_shape: f32,
-    /// The age few trees outlive, years; the yearly chance of dying of age is `4 / max_age`
-    /// (JABOWA's rule: about 2% of trees reach it).
+    /// The age few trees outlive, years: the yearly chance of dying of age rises with age,
+    /// [`Life::age_mortality`], so about one tree in seven reaches it and none half as old
+    /// again.
     pub max_age: f32,
     /// The age at which a tree first bears seed, years.
     pub maturity_age: f32,
@@ -164,12 +165,21 @@ impl Life {
     /// slowly for a pioneer that wants the sun, as gap models' light curves do.
     pub fn growth_in(&self, light: f32) -> f32 {
         let r = self.response();
-        if !(light > r.threshold) {
+        // NaN light, like light at or below the threshold, grows nothing.
+        if light.is_nan() || light <= r.threshold {
             return 0.0;
         }
         let rate = 2.0 + 8.0 * (1.0 - r.direct_weight);
         let full = 1.0 - (-rate * (1.0 - r.threshold)).exp();
         ((1.0 - (-rate * (light - r.threshold)).exp()) / full).clamp(0.0, 1.0)
+    }
+
+    /// The yearly chance that a tree of `age` dies of age: `4 age / max_age^2`, a hazard
+    /// rising with age whose sum to `max_age` is 2 (so e^-2, 14%, of trees reach it). Young
+    /// trees die of shade, not age: JABOWA's constant `4 / max_age` thinned young stands at
+    /// random before their crowns met.
+    pub fn age_mortality(&self, age: f32) -> f32 {
+        4.0 * age.max(0.0) / (self.max_age * self.max_age)
     }
 
     /// Years a tree survives growing at under a tenth of its potential before it dies of
@@ -179,13 +189,15 @@ impl Life {
     }
 
     /// Stem diameter at breast height, metres, of a tree `height` tall: zero below 1.3 m,
-    /// then the power-law allometry `d = 0.005 (H - 1.3)^1.4`: 10 cm at 10 m, 30 cm at 20 m,
-    /// 60 cm at 32 m, as temperate trees of the open run.
+    /// then the power-law allometry `d = 0.0077 (H - 1.3)^1.25`: 11 cm at 10 m, 30 cm at
+    /// 20 m, 56 cm at 32 m, as temperate trees of the open run. The exponent also sets a
+    /// closed stand's self-thinning: crowns of a radius proportional to height fill the
+    /// ground when stems number about `D^(-2 / 1.25) = D^-1.6`, Reineke's rule.
     pub fn diameter(&self, height: f32) -> f32 {
         if height <= BREAST_HEIGHT {
             return 0.0;
         }
-        0.005 * (height - BREAST_HEIGHT).powf(1.4)
+        0.0077 * (height - BREAST_HEIGHT).powf(1.25)
     }
 
     /// Every setting in its range, or the first that is not.

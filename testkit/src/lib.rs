@@ -4,7 +4,7 @@
 //!
 //! Test code: these unwrap, as a failing fixture should fail the test that called it.
 
-use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva_forest::{ForestBuilder, ForestConfig, Life, Rect, Species};
 use sylva_terrain::glam::Vec2;
 use sylva_terrain::{DiamondSquare, FlatPlane, HeightField};
 
@@ -16,6 +16,34 @@ pub fn small_species() -> Vec<Species> {
     let mut plant = Species::from_preset("abop-1.24e", 4).unwrap();
     plant.turtle.step = 0.5;
     vec![leafy, plant]
+}
+
+/// [`small_species`] with the lives of a pioneer (the leafy tree: fast, short-lived,
+/// wanting light, seeds blown far) and a shade-tolerant tree (the plant: slow, taller,
+/// long-lived), for forests over time.
+pub fn succession_species() -> Vec<Species> {
+    let mut species = small_species();
+    species[0].life = Life::default()
+        .with_max_height(16.0)
+        .with_growth_rate(0.07)
+        .with_growth_shape(1.2)
+        .with_max_age(100.0)
+        .with_maturity_age(10.0)
+        .with_shade_tolerance(0.1)
+        .with_dispersal(60.0)
+        .with_seeds_per_year(8.0)
+        .with_leaf_area_index(3.0);
+    species[1].life = Life::default()
+        .with_max_height(22.0)
+        .with_growth_rate(0.025)
+        .with_growth_shape(1.5)
+        .with_max_age(300.0)
+        .with_maturity_age(25.0)
+        .with_shade_tolerance(0.9)
+        .with_dispersal(30.0)
+        .with_seeds_per_year(4.0)
+        .with_leaf_area_index(6.0);
+    species
 }
 
 /// A builder over [`small_species`] with 2 MiB of cache and `seed`.

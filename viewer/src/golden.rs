@@ -43,6 +43,7 @@ fn default_scene() -> Scene {
         paint: None,
         specimen: false,
         floor: true,
+        year: None,
     })
     .expect("default scene builds")
 }
@@ -182,6 +183,7 @@ fn wind_sways_trees_and_still_air_does_not() {
         paint: None,
         specimen: false,
         floor: true,
+        year: None,
     })
     .expect("birch stand builds");
     let size = (160, 90);
@@ -231,6 +233,7 @@ fn a_view_streamed_again_is_the_same_picture() {
         paint: None,
         specimen: false,
         floor: true,
+        year: None,
     })
     .expect("world builds");
     let size = (160, 90);
@@ -278,6 +281,7 @@ fn a_turntable_frames_its_tree_from_every_side() {
         paint: None,
         specimen: true,
         floor: false,
+        year: None,
     })
     .expect("a turntable's world builds");
     let (builder, _) = scene.world.forest();

@@ -43,6 +43,13 @@
 //! round it, level with its middle, to `PATH_0000.png` and on, with a contact sheet of the
 //! views (four a row, half size) at `PATH`. Without a GPU it runs on Mesa's
 //! software drivers (lavapipe, or `WGPU_BACKEND=gl`).
+//!
+//! A forest over time: `--year N` draws year N of the forest grown from bare ground
+//! (`sylva succession`'s model with this seed: trees of every age, dead standing trees,
+//! broken tops and fallen trees), and in the window Y moves it on ten years (Shift+Y one).
+//! `--years A..B --every K` with `--screenshot PATH` renders a headless time-lapse, a frame
+//! every K years from year A to B (or at the years of a list, `--years 10,50,150,300`), to
+//! `PATH_AAAA.png` and on, named by year, and a contact sheet of them at `PATH`.
 
 mod cell;
 mod cells;
@@ -68,6 +75,7 @@ mod textures;
 mod turntable;
 mod window;
 mod world;
+mod years;
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -124,11 +132,14 @@ struct Args {
     tour_spacing: f32,
     turntable: u32,
     paint: Option<std::path::PathBuf>,
+    /// A time-lapse of a forest over time: the years of its frames, ascending.
+    years: Option<Vec<u32>>,
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
                      [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
-                     [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]]";
+                     [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]] \
+                     [--year N | --years A..B [--every K] | --years Y1,Y2,...]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -151,6 +162,10 @@ fn parse() -> Result<Args, String> {
     let mut tour_spacing = 0.5f32;
     let mut turntable = 0u32;
     let mut paint: Option<std::path::PathBuf> = None;
+    let mut year: Option<u32> = None;
+    let mut years: Option<Vec<u32>> = None;
+    let mut every = 10u32;
+    let mut span = false;
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
         match a.as_str() {
@@ -186,6 +201,22 @@ fn parse() -> Result<Args, String> {
             "--tour-spacing" => tour_spacing = flags.value("--tour-spacing")?,
             "--turntable" => turntable = flags.value("--turntable")?,
             "--paint" => paint = Some(flags.value::<String>("--paint")?.into()),
+            "--year" => year = Some(flags.value("--year")?),
+            "--years" => {
+                let s: String = flags.value("--years")?;
+                let number = |t: &str| {
+                    t.trim()
+                        .parse::<u32>()
+                        .map_err(|e| format!("--years '{s}': {e}"))
+                };
+                years = Some(match s.split_once("..") {
+                    // A..B, filled in with --every below.
+                    Some((a, b)) => vec![number(a)?, number(b)?],
+                    None => s.split(',').map(number).collect::<Result<_, _>>()?,
+                });
+                span = s.contains("..");
+            }
+            "--every" => every = flags.value("--every")?,
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -234,6 +265,44 @@ fn parse() -> Result<Args, String> {
     if !(side > 10.0 && side <= 20_000.0) {
         return Err(format!("--area {side}: expected 10 to 20000 metres"));
     }
+    if year.is_some() && years.is_some() {
+        return Err(format!("give --year or --years, not both\n{USAGE}"));
+    }
+    if let (Some(list), true) = (&mut years, span) {
+        let (a, b) = (list[0], list[1]);
+        if a > b || every == 0 {
+            return Err(format!(
+                "--years {a}..{b} --every {every}: expected A <= B, every at least 1"
+            ));
+        }
+        *list = (a..=b).step_by(every as usize).collect();
+    }
+    if let Some(list) = &years {
+        if list.is_empty()
+            || list.windows(2).any(|w| w[0] >= w[1])
+            || list.iter().any(|&y| y > years::MAX_YEARS)
+            || list.len() > 1000
+        {
+            return Err(format!(
+                "--years: expected ascending years up to {}, at most 1000 frames",
+                years::MAX_YEARS
+            ));
+        }
+        if screenshot.is_none() || tour > 0 || turntable > 0 {
+            return Err(format!(
+                "--years renders a headless time-lapse: give --screenshot PATH (frames go to PATH_0000.png ... by year), without --tour or --turntable\n{USAGE}"
+            ));
+        }
+    }
+    if year.is_some_and(|y| y > years::MAX_YEARS) {
+        return Err(format!("--year: expected at most {}", years::MAX_YEARS));
+    }
+    let start_year = years.as_ref().map(|y| y[0]).or(year);
+    if start_year.is_some() && (paint.is_some() || turntable > 0) {
+        return Err(format!(
+            "a forest over time (--year, --years) is grown, not painted: not with --paint or --turntable\n{USAGE}"
+        ));
+    }
     let species = match (grammar, files.is_empty()) {
         (Some(_), false) => return Err(format!("give --grammar or --species, not both\n{USAGE}")),
         (Some(name), true) => SpeciesSource::Preset(name),
@@ -251,6 +320,7 @@ fn parse() -> Result<Args, String> {
             paint: paint.clone(),
             specimen: turntable > 0,
             floor: !no_floor,
+            year: start_year,
         },
         species,
         camera,
@@ -266,6 +336,7 @@ fn parse() -> Result<Args, String> {
         tour_spacing,
         turntable,
         paint,
+        years,
     })
 }
 
@@ -306,6 +377,13 @@ fn run() -> Result<(), ViewerError> {
                     size: args.size,
                 };
                 return turntable.run(&mut scene, &mut offscreen, &path, mode);
+            }
+            if let Some(years) = args.years {
+                let lapse = years::TimeLapse {
+                    years,
+                    size: args.size,
+                };
+                return lapse.run(&mut scene, &mut offscreen, &camera, &path, mode);
             }
             if args.tour > 0 {
                 let pitch = if args.camera.is_some() {
@@ -392,7 +470,7 @@ fn median(values: &mut [f64]) -> Option<f64> {
 }
 
 /// Writes RGBA pixels as an 8-bit PNG.
-fn write_png(path: &str, size: (u32, u32), pixels: &[u8]) -> Result<(), ViewerError> {
+pub(crate) fn write_png(path: &str, size: (u32, u32), pixels: &[u8]) -> Result<(), ViewerError> {
     let encode = || -> Result<(), png::EncodingError> {
         let file = std::fs::File::create(path)?;
         let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
@@ -409,7 +487,7 @@ fn write_png(path: &str, size: (u32, u32), pixels: &[u8]) -> Result<(), ViewerEr
 }
 
 /// `PATH` with the frame number before its extension: `tour.png` -> `tour_0007.png`.
-fn numbered(path: &str, frame: u32) -> String {
+pub(crate) fn numbered(path: &str, frame: u32) -> String {
     match path.rsplit_once('.') {
         Some((stem, ext)) if !ext.contains('/') => format!("{stem}_{frame:04}.{ext}"),
         _ => format!("{path}_{frame:04}.png"),

@@ -175,7 +175,11 @@ pub(crate) struct SpecimenSize {
 }
 
 /// RGBA pictures of `size` laid out `columns` a row at half size (each 2 x 2 block averaged).
-fn contact_sheet(pictures: &[Vec<u8>], size: (u32, u32), columns: u32) -> (Vec<u8>, (u32, u32)) {
+pub(crate) fn contact_sheet(
+    pictures: &[Vec<u8>],
+    size: (u32, u32),
+    columns: u32,
+) -> (Vec<u8>, (u32, u32)) {
     let (w, h) = ((size.0 / 2).max(1), (size.1 / 2).max(1));
     let count = pictures.len() as u32;
     let columns = columns.min(count).max(1);

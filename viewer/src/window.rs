@@ -255,11 +255,14 @@ impl App {
                 event_loop.exit();
             }
         }
-        let mode = match (&self.painting, self.paint_mode, &self.guide) {
+        let mut mode = match (&self.painting, self.paint_mode, &self.guide) {
             (Some(p), true, _) => format!("{}; ", p.status()),
             (_, _, Some(_)) => "guided walk (G to stop); ".to_string(),
             _ => String::new(),
         };
+        if let Some(year) = self.scene.world.year() {
+            mode.push_str(&format!("year {year} (Y: +10, Shift+Y: +1); "));
+        }
         gpu.window.set_title(&format!(
             "sylva: {mode}{} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
             stats.draws,
@@ -404,6 +407,14 @@ impl ApplicationHandler for App {
                             KeyCode::Escape => self.capture(false),
                             KeyCode::KeyP if !event.repeat => self.toggle_painting(),
                             KeyCode::KeyG if !event.repeat => self.toggle_guide(),
+                            KeyCode::KeyY => {
+                                let shift = self.keys.contains(&KeyCode::ShiftLeft)
+                                    || self.keys.contains(&KeyCode::ShiftRight);
+                                match self.scene.advance_years(if shift { 1 } else { 10 }) {
+                                    Ok(Some(_)) | Ok(None) => {}
+                                    Err(e) => eprintln!("cannot move the forest on: {e}"),
+                                }
+                            }
                             _ => {}
                         }
                         self.keys.insert(code);

@@ -9,12 +9,12 @@ use sylva::export::Texture;
 use sylva::export::lod::{CacheLods, Impostor, LodChain, VariantLods};
 use sylva::forest::{
     BarkPattern, Composition, FloorOptions, ForestBuilder, ForestConfig, ForestError, ForestFloor,
-    GroundKind, LeafShape, Species,
+    GroundKind, LeafShape, Rect, Species,
 };
 use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
 use sylva::terrain::Heightmap;
-use sylva::terrain::glam::{Quat, Vec3};
+use sylva::terrain::glam::{Quat, Vec2, Vec3};
 use sylva::turtle::Vertex;
 
 use crate::error::ViewerError;
@@ -122,6 +122,8 @@ pub(crate) struct World {
     /// Per variant: whether it is a seedling form (left out of coarse cells, as coarse tiles
     /// leave it out).
     pub(crate) seedling: Vec<bool>,
+    /// The forest over time the trees come from (`--year`, `--years`), if any.
+    pub(crate) years: Option<crate::years::Years>,
 }
 
 /// How to build a [`World`].
@@ -141,6 +143,9 @@ pub(crate) struct SceneOptions {
     pub(crate) specimen: bool,
     /// Whether the forest floor grows (never around a specimen).
     pub(crate) floor: bool,
+    /// Draw year N of a forest over time grown from bare ground (trees of every age, dead,
+    /// broken and fallen ones) instead of the density model's forest.
+    pub(crate) year: Option<u32>,
 }
 
 #[cfg(test)]
@@ -157,6 +162,7 @@ impl SceneOptions {
             paint: None,
             specimen: false,
             floor: true,
+            year: None,
         }
     }
 }
@@ -176,6 +182,7 @@ impl World {
         if options.specimen {
             config.seedlings_per_patch = 0;
         }
+        config.all_ages = options.year.is_some();
         let mut builder = ForestBuilder::new(config)?;
         let patch = builder.density().patch;
         let side = match options.trees {
@@ -197,6 +204,20 @@ impl World {
             builder = builder.with_composition(Some(composition))?;
             layer = Some(loaded);
         }
+        let years = match options.year {
+            Some(year) => {
+                let t = std::time::Instant::now();
+                let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+                let (years, drawn) = crate::years::Years::grow(&builder, region, year)?;
+                eprintln!(
+                    "forest over time: grew {side:.0} m from bare ground to year {year} in {:.1} s",
+                    t.elapsed().as_secs_f64()
+                );
+                builder = drawn;
+                Some(years)
+            }
+            None => None,
+        };
         let species = &builder.config().species;
         let chain = lod_chain();
         // Each variant's levels (cards grown to its whole tree's coverage) and, for canopy
@@ -320,6 +341,7 @@ impl World {
             seedling,
             floor,
             first_floor_group,
+            years,
         })
     }
 }
@@ -369,6 +391,20 @@ impl World {
     pub(crate) fn layer(&self) -> Option<Arc<PaintLayer>> {
         let recipe = self.forest.read().unwrap_or_else(PoisonError::into_inner);
         recipe.layer.clone()
+    }
+
+    /// Moves the forest over time on by `years` and draws the year reached from now on;
+    /// returns the new version (`None` without a forest over time).
+    pub(crate) fn advance_years(&self, years: u32) -> Result<Option<u64>, ForestError> {
+        let Some(over_time) = &self.years else {
+            return Ok(None);
+        };
+        let (builder, _) = self.forest();
+        let drawn = over_time.advance(&builder, years)?;
+        let mut recipe = self.forest.write().unwrap_or_else(PoisonError::into_inner);
+        recipe.version += 1;
+        recipe.builder = Arc::new(drawn);
+        Ok(Some(recipe.version))
     }
 
     /// Paints the forest with `layer` from now on; returns the new version.

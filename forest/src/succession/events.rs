@@ -18,12 +18,13 @@ const INFECTION: f32 = 0.1;
 const DISEASE_DEATH: f32 = 0.12;
 
 mod salt {
-    pub(super) const STORM: u64 = 0x5702_3;
-    pub(super) const STORM_HIT: u64 = 0x5702_4;
+    pub(super) const STORM: u64 = 0x0005_7023;
+    pub(super) const STORM_HIT: u64 = 0x0005_7024;
+    pub(super) const GUST: u64 = 0x0005_7025;
     pub(super) const STRIKE: u64 = 0x11_6471;
-    pub(super) const OUTBREAK: u64 = 0xd15e_a5e;
-    pub(super) const INFECT: u64 = 0xd15e_a5f;
-    pub(super) const DISEASE_DEATH: u64 = 0xd15e_a60;
+    pub(super) const OUTBREAK: u64 = 0x0d15_ea5e;
+    pub(super) const INFECT: u64 = 0x0d15_ea5f;
+    pub(super) const DISEASE_DEATH: u64 = 0x0d15_ea60;
 }
 
 /// A year-level draw: the same for every tile.
@@ -38,8 +39,9 @@ pub(super) fn strike(forest: &mut Succession, stats: &mut YearStats) {
     disease(forest, stats);
 }
 
-/// A storm breaks or throws tall trees, the more the taller and the more exposed (the light
-/// at their tops: a tree above its neighbours takes the wind), thrown ones falling along it.
+/// A storm breaks or throws tall trees, the more the taller, the more exposed (the light at
+/// their tops: a tree above its neighbours takes the wind) and the harder its gusts blow
+/// where they stand ([`gusts`]), thrown ones falling along it.
 fn storm(forest: &mut Succession, stats: &mut YearStats) {
     let (seed, year) = (forest.options.seed, forest.year);
     if year_draw(seed, year, salt::STORM, 0) >= forest.options.storm_rate {
@@ -56,7 +58,8 @@ fn storm(forest: &mut Succession, stats: &mut YearStats) {
         }
         let exposure = grid.light(s.position[0], s.position[1], s.top());
         let tall = ((s.height - STORM_HEIGHT) / 15.0).clamp(0.0, 1.0);
-        let p = 0.5 * strength * tall * tall * (0.2 + 0.8 * exposure);
+        let gust = gusts(seed, year, s.position);
+        let p = strength * tall * tall * (0.2 + 0.8 * exposure) * 1.5 * gust * gust;
         let d = draw(seed, s.key, year, salt::STORM_HIT);
         if d >= p {
             continue;
@@ -79,6 +82,31 @@ fn storm(forest: &mut Succession, stats: &mut YearStats) {
         thrown,
         broken,
     });
+}
+
+/// Side of the cells of a storm's gust field, metres: storms throw trees in patches of about
+/// this size, the gaps pioneers fill.
+const GUST_CELL: f32 = 80.0;
+
+/// A storm's local strength at `p`, 0 to 1: value noise over a global grid of
+/// [`GUST_CELL`], smoothly interpolated, so the same for every tile.
+fn gusts(seed: u64, year: u32, p: [f32; 2]) -> f32 {
+    let (x, z) = (p[0] / GUST_CELL, p[1] / GUST_CELL);
+    let (i, j) = (x.floor(), z.floor());
+    let (fx, fz) = (x - i, z - j);
+    let smooth = |t: f32| t * t * (3.0 - 2.0 * t);
+    let corner = |di: i64, dj: i64| {
+        unit_f32(hash_cell(
+            seed,
+            i as i64 + di,
+            j as i64 + dj,
+            salt::GUST ^ (u64::from(year) << 8),
+        ))
+    };
+    let (sx, sz) = (smooth(fx), smooth(fz));
+    let top = corner(0, 0) + (corner(1, 0) - corner(0, 0)) * sx;
+    let bottom = corner(0, 1) + (corner(1, 1) - corner(0, 1)) * sx;
+    top + (bottom - top) * sz
 }
 
 /// Lightning, per hectare of a global grid: the tallest living tree near each strike dies,

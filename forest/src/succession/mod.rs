@@ -46,7 +46,7 @@ use crate::species::Species;
 pub use light::{CELL as LIGHT_CELL, EXTINCTION, LAYERS as LIGHT_LAYERS};
 pub use options::SuccessionOptions;
 pub use snapshot::{Snapshot, SnapshotTree};
-pub use stats::{Event, MIN_DIAMETER, SpeciesYear, YearStats, thinning_slope};
+pub use stats::{Event, MIN_DIAMETER, SpeciesYear, YearStats, thinning_phase, thinning_slope};
 pub use stem::{Cause, State, Stem};
 
 use light::LightGrid;
@@ -73,6 +73,14 @@ const STANDING_DEAD_HEIGHT: f32 = 14.0;
 /// of the stems they do).
 pub const CROWN_SHARE: f32 = 0.6;
 
+/// Where a crown starts, as a share of the tree's height: the lower two fifths of a
+/// stem are bare.
+const CROWN_BASE: f32 = 0.4;
+
+/// A planted seedling's height, metres, and age, years: nursery stock.
+const PLANTED_HEIGHT: f32 = 0.4;
+const PLANTED_AGE: u16 = 3;
+
 /// Trees killed by suppression stand dead only above this height, metres: the shaded poles
 /// of a thinning stand break and rot within a year or two.
 const SUPPRESSED_STANDING_HEIGHT: f32 = 16.0;
@@ -84,6 +92,7 @@ mod salt {
     pub(super) const RAIN: u64 = 0x4a17;
     pub(super) const TAKE: u64 = 0x7a4e;
     pub(super) const KEY: u64 = 0x4e7;
+    pub(super) const PLANT: u64 = 0x91a47;
 }
 
 /// What a species brings to the simulation: its life and its crown's shape.
@@ -111,6 +120,11 @@ pub struct Succession {
     grid: LightGrid,
     /// Per establishment cell of the area, whether a tree stands there.
     occupied: Vec<bool>,
+    /// Per tree (in `stems`' order), the leaf area it put in each layer of its own light
+    /// column this year.
+    own: Vec<u32>,
+    /// The establishment cells: the global lattice's index of the first, and how many.
+    first_cell: [i64; 2],
     cells: [usize; 2],
     /// The disease raging, if one is: its species and its last year.
     outbreak: Option<(usize, u32)>,
@@ -151,9 +165,15 @@ impl Succession {
                 rain: s.weight.max(0.0) / total,
             });
         }
+        // Establishment cells on the global lattice, so runs over overlapping areas (tiles)
+        // contest the same cells.
+        let first_cell = [
+            (area.min.x / ESTABLISHMENT_CELL).floor() as i64,
+            (area.min.y / ESTABLISHMENT_CELL).floor() as i64,
+        ];
         let cells = [
-            (size.x / ESTABLISHMENT_CELL).ceil() as usize,
-            (size.y / ESTABLISHMENT_CELL).ceil() as usize,
+            ((area.max.x / ESTABLISHMENT_CELL).ceil() as i64 - first_cell[0]) as usize,
+            ((area.max.y / ESTABLISHMENT_CELL).ceil() as i64 - first_cell[1]) as usize,
         ];
         let history = vec![YearStats {
             species: vec![SpeciesYear::default(); species.len()],
@@ -162,6 +182,8 @@ impl Succession {
         Ok(Succession {
             grid: LightGrid::new(area.min.into(), area.max.into()),
             occupied: vec![false; cells[0] * cells[1]],
+            own: Vec::new(),
+            first_cell,
             cells,
             species,
             kinds,
@@ -205,6 +227,87 @@ impl Succession {
         &self.history
     }
 
+    /// Plants `species` at `per_hectare` trees (at most 2,500: one per 2 m cell) on a square
+    /// lattice over the whole area, each seedling a little off its lattice point, as a
+    /// forester plants a stand: a dense even-aged start, where self-thinning shows best.
+    /// Returns how many were planted; before the first year only (the lattice and the
+    /// seedlings' identities are of the world, so tiles plant the same trees).
+    ///
+    /// ```
+    /// use sylva_forest::succession::{Succession, SuccessionOptions};
+    /// use sylva_forest::{Rect, Species};
+    /// use sylva_terrain::glam::Vec2;
+    ///
+    /// let species = vec![Species::from_preset("kenwood-leafy", 3)?];
+    /// let region = Rect::new(Vec2::ZERO, Vec2::splat(100.0));
+    /// let mut stand = Succession::new(species, region, SuccessionOptions::default().with_halo(0.0))?;
+    /// assert_eq!(stand.plant(0, 2500.0)?, 2500);
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn plant(&mut self, species: usize, per_hectare: f32) -> Result<usize, ForestError> {
+        sylva_base::range::check(
+            "per_hectare",
+            f64::from(per_hectare),
+            per_hectare > 0.0 && per_hectare <= 2500.0,
+            "0 < trees per hectare <= 2500",
+        )?;
+        if species >= self.species.len() || self.year > 0 {
+            return Err(ForestError::PlantingTooLate {
+                species,
+                year: self.year,
+            });
+        }
+        let spacing = (10_000.0 / per_hectare).sqrt();
+        let (i0, j0) = (
+            (self.area.min.x / spacing).ceil() as i64,
+            (self.area.min.y / spacing).ceil() as i64,
+        );
+        let (i1, j1) = (
+            (self.area.max.x / spacing).ceil() as i64,
+            (self.area.max.y / spacing).ceil() as i64,
+        );
+        let count = ((i1 - i0).max(0) as usize) * ((j1 - j0).max(0) as usize);
+        if self.stems.len() + count > self.options.max_stems {
+            return Err(ForestError::TooManyStems {
+                stems: self.stems.len() + count,
+                limit: self.options.max_stems,
+            });
+        }
+        let seed = self.options.seed;
+        let before = self.stems.len();
+        for j in j0..j1 {
+            for i in i0..i1 {
+                let h = hash_cell(seed, i, j, salt::PLANT);
+                // Off the lattice point by up to a fifth of the spacing, staying in its cell.
+                let jitter = 0.2 * spacing.min(ESTABLISHMENT_CELL);
+                let p = [
+                    i as f32 * spacing + jitter * (unit_f32(h) - 0.5),
+                    j as f32 * spacing + jitter * (unit_f32(mix(h)) - 0.5),
+                ];
+                if !self.area.contains(p.into()) {
+                    continue;
+                }
+                let cell = [
+                    (p[0] / ESTABLISHMENT_CELL).floor() as i64,
+                    (p[1] / ESTABLISHMENT_CELL).floor() as i64,
+                ];
+                self.stems.push(Stem {
+                    position: p,
+                    height: PLANTED_HEIGHT,
+                    vigour: 1.0,
+                    key: hash_cell(seed, cell[0], cell[1], salt::KEY),
+                    age: PLANTED_AGE,
+                    species: species as u8,
+                    state: State::Live,
+                    suppressed: 0,
+                    dead_years: 0,
+                    fall: 0,
+                });
+            }
+        }
+        Ok(self.stems.len() - before)
+    }
+
     /// Runs `years` more years, handing each year's statistics to `each` (an error from it
     /// stops the run).
     pub fn run(
@@ -243,7 +346,9 @@ impl Succession {
     /// Fills the light grid from the crowns as they stand.
     fn shade(&mut self) {
         self.grid.clear();
-        for s in &self.stems {
+        self.own.clear();
+        self.own.resize(self.stems.len(), 0);
+        for (s, own) in self.stems.iter().zip(&mut self.own) {
             if !s.state.is_alive() {
                 continue;
             }
@@ -255,8 +360,14 @@ impl Succession {
                     State::Dieback => 0.3,
                     _ => 1.0,
                 };
-            self.grid
-                .deposit(s.position[0], s.position[1], radius, 0.4 * top, top, lai);
+            *own = self.grid.deposit(
+                s.position[0],
+                s.position[1],
+                radius,
+                CROWN_BASE * top,
+                top,
+                lai,
+            );
         }
         self.grid.accumulate();
     }
@@ -265,15 +376,21 @@ impl Succession {
     /// own, so in parallel.
     fn grow(&mut self, stats: &mut YearStats) {
         let (kinds, grid, year, seed) = (&self.kinds, &self.grid, self.year, self.options.seed);
+        let own = &self.own;
         let deaths: Vec<Option<Cause>> = self
             .stems
             .par_iter_mut()
-            .map(|s| {
+            .zip(own.par_iter())
+            .map(|(s, &own)| {
                 if !s.state.is_alive() {
                     return None;
                 }
                 let life = &kinds[usize::from(s.species)].life;
-                let light = grid.light(s.position[0], s.position[1], s.top());
+                // The light at the crown's centre, the tree's own leaves left out: the
+                // neighbours' crowns above it and beside it in its own layers shade it.
+                let top = s.top();
+                let centre = top * (1.0 + CROWN_BASE) / 2.0;
+                let light = grid.light_in_crown(s.position[0], s.position[1], centre, top, own);
                 let mut share = life.growth_in(light);
                 match s.state {
                     State::Dieback => share *= 0.3,
@@ -293,7 +410,8 @@ impl Succession {
                     return Some(Cause::Suppression);
                 }
                 let old = f32::from(s.age) > 1.5 * life.max_age;
-                if old || draw(seed, s.key, year, salt::AGE) < 4.0 / life.max_age {
+                if old || draw(seed, s.key, year, salt::AGE) < life.age_mortality(f32::from(s.age))
+                {
                     return Some(Cause::Age);
                 }
                 events::disease_death(s, seed, year)
@@ -440,11 +558,14 @@ impl Succession {
         (unit_f32(h) < life.growth_in(light)).then_some((cell, h, species, p))
     }
 
-    /// The establishment cell of `p` within the area.
+    /// The establishment cell of `p`, if `p` lies in the area.
     fn cell(&self, p: [f32; 2]) -> Option<usize> {
-        let i = ((p[0] - self.area.min.x) / ESTABLISHMENT_CELL).floor();
-        let j = ((p[1] - self.area.min.y) / ESTABLISHMENT_CELL).floor();
-        if !(i >= 0.0 && j >= 0.0 && (i as usize) < self.cells[0] && (j as usize) < self.cells[1]) {
+        if !self.area.contains(p.into()) {
+            return None;
+        }
+        let i = (p[0] / ESTABLISHMENT_CELL).floor() as i64 - self.first_cell[0];
+        let j = (p[1] / ESTABLISHMENT_CELL).floor() as i64 - self.first_cell[1];
+        if !(i >= 0 && j >= 0 && (i as usize) < self.cells[0] && (j as usize) < self.cells[1]) {
             return None;
         }
         Some(j as usize * self.cells[0] + i as usize)

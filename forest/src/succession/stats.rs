@@ -266,3 +266,27 @@ pub fn thinning_slope(years: &[YearStats]) -> Option<f32> {
     });
     (sxx > 0.0).then(|| (sxy / sxx) as f32)
 }
+
+/// The years a stand thins itself: from its densest year (the most stems of at least
+/// [`MIN_DIAMETER`]) while its mean diameter grows, until that diameter first falls 5% below
+/// the largest it reached (gaps and recruits, not thinning, then set the figures). Where
+/// Reineke's rule applies; [`thinning_slope`] over it is the self-thinning slope.
+pub fn thinning_phase(years: &[YearStats]) -> &[YearStats] {
+    let Some(densest) = (0..years.len()).max_by(|&a, &b| {
+        years[a]
+            .stems_per_ha
+            .total_cmp(&years[b].stems_per_ha)
+            .then(b.cmp(&a))
+    }) else {
+        return years;
+    };
+    let mut widest = 0.0f32;
+    let end = years[densest..]
+        .iter()
+        .position(|y| {
+            widest = widest.max(y.mean_diameter);
+            y.mean_diameter < 0.95 * widest
+        })
+        .map_or(years.len(), |k| densest + k);
+    &years[densest..end]
+}
