@@ -8,8 +8,6 @@
 //! cargo run --release --example lod [OUT.png]
 //! ```
 
-use sylva::export::Texture;
-use sylva::export::linear_to_srgb;
 use sylva::export::lod::{
     Impostor, LodChain, OrthoView, Picture, TreeLook, calibrate_leaves, compare_silhouettes, draw,
     simplify_mesh, variant_tree,
@@ -86,7 +84,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         row.push(impostor_view(&impostor, SIZE));
         rows.push(row);
     }
-    let sheet = sheet(&rows);
+    let sheet = Picture::sheet(&rows, [0.55, 0.68, 0.85]);
     std::fs::write(&out, sheet.png())?;
     println!("wrote {out}");
     Ok(())
@@ -125,30 +123,4 @@ fn impostor_view(impostor: &Impostor, size: u32) -> Picture {
         }
     }
     picture
-}
-
-/// Rows of pictures over sky blue.
-fn sheet(rows: &[Vec<Picture>]) -> Texture {
-    let columns = rows.iter().map(Vec::len).max().unwrap_or(0) as u32;
-    let (w, h) = (columns * SIZE, rows.len() as u32 * SIZE);
-    let mut rgba = Vec::with_capacity((w * h * 4) as usize);
-    let sky = [0.55f32, 0.68, 0.85];
-    for y in 0..h {
-        for x in 0..w {
-            let (row, column) = ((y / SIZE) as usize, (x / SIZE) as usize);
-            let k = ((y % SIZE) * SIZE + x % SIZE) as usize;
-            let (colour, cover) = rows[row]
-                .get(column)
-                .map_or(([0.0; 3], 0.0), |p| (p.colour[k], p.coverage[k]));
-            let c: Vec<u8> = (0..3)
-                .map(|i| linear_to_srgb(colour[i] * cover + sky[i] * (1.0 - cover)))
-                .collect();
-            rgba.extend_from_slice(&[c[0], c[1], c[2], 255]);
-        }
-    }
-    Texture {
-        width: w,
-        height: h,
-        rgba,
-    }
 }

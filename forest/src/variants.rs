@@ -3,7 +3,7 @@
 
 use sylva_base::hash::mix;
 use sylva_instancing::{HeroOptions, InstanceCache, InstancingError, build_cache};
-use sylva_turtle::{Skeleton, interpret};
+use sylva_turtle::{Skeleton, StemBreak, interpret};
 
 use crate::error::ForestError;
 use crate::forest::{ForestConfig, Variant};
@@ -130,9 +130,11 @@ fn form_cache(
     match form {
         TreeForm::Live(g) => options = options.with_generations(g),
         damaged => {
-            let height = drawn_height(s, s.generations, 2)?;
             options = options.with_generations(s.generations);
-            options.turtle.stem_break = damaged.break_share().map(|share| share * height);
+            options.turtle.stem_break = match damaged.break_share() {
+                Some(share) => Some(stem_break(s, share)?),
+                None => None,
+            };
             options.turtle.leaf_keep = damaged.leaf_keep();
             options.p_min = 0.0;
             options.p_max = 0.0;
@@ -190,6 +192,33 @@ pub(crate) fn live_generations(generations: u32) -> Vec<u32> {
     out
 }
 
+/// The skeleton of `s`' tree at `generations` from `seed`.
+fn sample_skeleton(s: &Species, generations: u32, seed: u64) -> Result<Skeleton, ForestError> {
+    let word = s
+        .grammar
+        .derive(generations, seed)
+        .and_then(|w| s.grammar.interpretation(&w, seed))
+        .map_err(|source| ForestError::Derive {
+            species: s.name.clone(),
+            source,
+        })?;
+    let mut skeleton = Skeleton::default();
+    interpret(&word, &s.turtle, &mut skeleton).map_err(|source| ForestError::Turtle {
+        species: s.name.clone(),
+        source,
+    })?;
+    Ok(skeleton)
+}
+
+/// The top of a skeleton.
+fn top(skeleton: &Skeleton) -> f32 {
+    skeleton
+        .bones
+        .iter()
+        .map(|b| b.end.y.max(b.start.y))
+        .fold(0.0f32, f32::max)
+}
+
 /// The mean skeleton top of `samples` trees of `s` at `generations`.
 pub(crate) fn drawn_height(
     s: &Species,
@@ -198,26 +227,26 @@ pub(crate) fn drawn_height(
 ) -> Result<f32, ForestError> {
     let mut sum = 0.0;
     for seed in 0..samples {
-        let word = s
-            .grammar
-            .derive(generations, seed)
-            .and_then(|w| s.grammar.interpretation(&w, seed))
-            .map_err(|source| ForestError::Derive {
-                species: s.name.clone(),
-                source,
-            })?;
-        let mut skeleton = Skeleton::default();
-        interpret(&word, &s.turtle, &mut skeleton).map_err(|source| ForestError::Turtle {
-            species: s.name.clone(),
-            source,
-        })?;
-        sum += skeleton
-            .bones
-            .iter()
-            .map(|b| b.end.y.max(b.start.y))
-            .fold(0.0f32, f32::max);
+        sum += top(&sample_skeleton(s, generations, seed)?);
     }
     Ok((sum / samples as f32).max(1e-3))
+}
+
+/// Where a canopy tree of `s` snaps at `share` of its height: every stem there at least half
+/// as thick as the thickest (the trunk, and limbs as stout), measured on a sample tree.
+fn stem_break(s: &Species, share: f32) -> Result<StemBreak, ForestError> {
+    let skeleton = sample_skeleton(s, s.generations, 0)?;
+    let height = share * top(&skeleton);
+    let thickest = skeleton
+        .bones
+        .iter()
+        .filter(|b| b.start.y < height && b.end.y >= height)
+        .map(|b| b.start_radius)
+        .fold(0.0f32, f32::max);
+    Ok(StemBreak {
+        height,
+        min_radius: 0.5 * thickest,
+    })
 }
 
 #[cfg(test)]

@@ -25,6 +25,18 @@ pub struct Tropism {
     pub susceptibility: f32,
 }
 
+/// Where a tree's stems snap: every stem at least `min_radius` thick that rises above
+/// `height` ends there, a little narrower where it tore, and nothing it would have carried
+/// from there on is drawn; branches that left it below stay, and thinner stems (twigs that
+/// bent in the storm) reach on past the break.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StemBreak {
+    /// Height of the break, in the tree's units, along +Y from its base.
+    pub height: f32,
+    /// The thinnest stem that snaps (radius).
+    pub min_radius: f32,
+}
+
 /// Turtle and meshing settings. Angles are in degrees.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -83,11 +95,9 @@ pub struct TurtleOptions {
     pub curve_steps: u32,
     /// Deepest `[` / `{` nesting accepted.
     pub max_depth: usize,
-    /// A stem broken by a storm or lightning: where the tree's first axis (the trunk, at
-    /// bracket depth 0) first rises above this height, it ends, and nothing it would have
-    /// carried from there on is drawn; branches that left it below stay. `None` draws the
-    /// whole tree. A forest's damaged trees are drawn with it (`sylva-forest`'s forms).
-    pub stem_break: Option<f32>,
+    /// A stem broken by a storm or lightning ([`StemBreak`]); `None` draws the whole tree.
+    /// A forest's damaged trees are drawn with it (`sylva-forest`'s forms).
+    pub stem_break: Option<StemBreak>,
     /// Share of leaf cards drawn, 0 to 1: 1 draws every leaf, 0 none (a dead tree), 0.3 a
     /// crown thinned by dieback. Which leaves go is a pure function of their order in the
     /// word, so a tree thins the same way every time.
@@ -173,8 +183,8 @@ impl TurtleOptions {
     }
 
     /// Sets [`TurtleOptions::stem_break`].
-    pub fn with_stem_break(mut self, height: Option<f32>) -> Self {
-        self.stem_break = height;
+    pub fn with_stem_break(mut self, stem_break: Option<StemBreak>) -> Self {
+        self.stem_break = stem_break;
         self
     }
 

@@ -2,7 +2,7 @@
 
 use proptest::prelude::*;
 use sylva_lsys::Word;
-use sylva_turtle::{InterpretStats, Skeleton, TurtleOptions, interpret};
+use sylva_turtle::{InterpretStats, Skeleton, StemBreak, TurtleOptions, interpret};
 
 fn draw(word: &str, options: &TurtleOptions) -> (Skeleton, InterpretStats) {
     let w: Word = word.parse().unwrap();
@@ -20,7 +20,11 @@ fn a_broken_stem_ends_at_the_break_and_drops_what_it_carried_above() {
     let options = TurtleOptions::default().with_angle(60.0);
     let (whole, stats) = draw(TREE, &options);
     assert_eq!((whole.bones.len(), stats.leaves), (6, 3));
-    let (broken, stats) = draw(TREE, &options.clone().with_stem_break(Some(2.5)));
+    let snap = StemBreak {
+        height: 2.5,
+        min_radius: 0.0,
+    };
+    let (broken, stats) = draw(TREE, &options.clone().with_stem_break(Some(snap)));
     // Kept: the first trunk segment, the branch from height 1, the second segment and half
     // of the third (to the break). Gone: the branch from height 3, the top and its leaf.
     assert_eq!(broken.bones.len(), 4, "{:?}", broken.bones);
@@ -43,10 +47,45 @@ fn a_broken_stem_ends_at_the_break_and_drops_what_it_carried_above() {
 }
 
 #[test]
+fn a_trunk_continued_inside_brackets_breaks_too() {
+    // The trunk goes on inside a bracket, as a grammar rewritten for instancing writes it;
+    // the thin twig at the bottom (a tenth as thick) reaches past the break unbroken.
+    let snap = StemBreak {
+        height: 2.5,
+        min_radius: 0.2,
+    };
+    let options = TurtleOptions::default()
+        .with_angle(10.0)
+        .with_stem_break(Some(snap));
+    let (broken, _) = draw("!(1)F[!(0.1)+FFFF][!(1)F[!(1)F[-FJ]F]]", &options);
+    let trunk_top = broken
+        .bones
+        .iter()
+        .filter(|b| b.start_radius > 0.2)
+        .map(|b| b.end.y)
+        .fold(f32::MIN, f32::max);
+    assert!(
+        (trunk_top - 2.5).abs() < 1e-3,
+        "the trunk ends at the break: {trunk_top}"
+    );
+    assert!(
+        broken
+            .bones
+            .iter()
+            .any(|b| b.start_radius < 0.2 && b.end.y > 3.0),
+        "the twig reaches on"
+    );
+}
+
+#[test]
 fn a_break_above_the_tree_changes_nothing() {
     let options = TurtleOptions::default().with_angle(60.0);
     let (whole, _) = draw(TREE, &options);
-    let (same, _) = draw(TREE, &options.with_stem_break(Some(100.0)));
+    let snap = StemBreak {
+        height: 100.0,
+        min_radius: 0.0,
+    };
+    let (same, _) = draw(TREE, &options.with_stem_break(Some(snap)));
     assert_eq!(whole.bones, same.bones);
 }
 

@@ -99,6 +99,56 @@ impl Picture {
     pub fn covered(&self) -> usize {
         self.coverage.iter().filter(|&&c| c >= 0.5).count()
     }
+
+    /// Rows of pictures (all of one size) laid out as one sRGB image over `background`
+    /// (linear RGB), each blended over it by its coverage; short rows end in background.
+    ///
+    /// ```
+    /// use sylva_export::lod::Picture;
+    ///
+    /// let red = Picture {
+    ///     size: 2,
+    ///     colour: vec![[1.0, 0.0, 0.0]; 4],
+    ///     coverage: vec![1.0; 4],
+    ///     normal: vec![[0.0; 3]; 4],
+    ///     depth: vec![0.0; 4],
+    ///     leaf: vec![0.0; 4],
+    /// };
+    /// let sheet = Picture::sheet(&[vec![red.clone(), red], vec![]], [0.0, 0.0, 1.0]);
+    /// assert_eq!((sheet.width, sheet.height), (4, 4));
+    /// assert_eq!(&sheet.rgba[..4], &[255, 0, 0, 255]);
+    /// assert_eq!(&sheet.rgba[sheet.rgba.len() - 4..], &[0, 0, 255, 255]);
+    /// ```
+    pub fn sheet(rows: &[Vec<Picture>], background: [f32; 3]) -> Texture {
+        let size = rows.iter().flatten().map(|p| p.size).max().unwrap_or(0);
+        let columns = rows.iter().map(Vec::len).max().unwrap_or(0) as u32;
+        let (w, h) = (columns * size, rows.len() as u32 * size);
+        let mut rgba = Vec::with_capacity((w * h * 4) as usize);
+        for y in 0..h {
+            for x in 0..w {
+                let (row, column) = ((y / size) as usize, (x / size) as usize);
+                let (colour, cover) =
+                    rows[row]
+                        .get(column)
+                        .filter(|p| p.size == size)
+                        .map_or(([0.0; 3], 0.0), |p| {
+                            let k = ((y % size) * size + x % size) as usize;
+                            (p.colour[k], p.coverage[k])
+                        });
+                let c = [0, 1, 2].map(|i| {
+                    crate::texture::linear_to_srgb(
+                        colour[i] * cover + background[i] * (1.0 - cover),
+                    )
+                });
+                rgba.extend_from_slice(&[c[0], c[1], c[2], 255]);
+            }
+        }
+        Texture {
+            width: w,
+            height: h,
+            rgba,
+        }
+    }
 }
 
 /// One sample of the supersampled buffer.

@@ -125,7 +125,12 @@ impl<S: GeometrySink + ?Sized> Turtle<'_, '_, S> {
         }
         let (mut length, mut radius) = (length, radius);
         let mut breaks = false;
-        if let Some(height) = self.options.stem_break.filter(|_| self.state.depth == 0) {
+        if let Some(height) = self
+            .options
+            .stem_break
+            .filter(|b| start_radius >= b.min_radius)
+            .map(|b| b.height)
+        {
             let rise = start.heading().y * length;
             let from = start.position.y;
             if from >= height {
