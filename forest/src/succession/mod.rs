@@ -77,7 +77,12 @@ pub const CROWN_SHARE: f32 = 0.6;
 /// stem are bare.
 const CROWN_BASE: f32 = 0.4;
 
-/// A planted seedling's height, metres, and age, years: nursery stock.
+/// How much trees' growth differs, as a share either way: each tree's own, from its
+/// identity.
+const VIGOUR_SPREAD: f32 = 0.2;
+
+/// A planted seedling's height (the middle of the nursery's spread, half to one and a half
+/// times it), metres, and age, years.
 const PLANTED_HEIGHT: f32 = 0.4;
 const PLANTED_AGE: u16 = 3;
 
@@ -93,6 +98,7 @@ mod salt {
     pub(super) const TAKE: u64 = 0x7a4e;
     pub(super) const KEY: u64 = 0x4e7;
     pub(super) const PLANT: u64 = 0x91a47;
+    pub(super) const VIGOUR: u64 = 0x0016_0e55;
 }
 
 /// What a species brings to the simulation: its life and its crown's shape.
@@ -258,9 +264,11 @@ impl Succession {
             });
         }
         let spacing = (10_000.0 / per_hectare).sqrt();
+        // Lattice points at the centres of a global grid of `spacing`, so a square of whole
+        // cells holds exactly its share.
         let (i0, j0) = (
-            (self.area.min.x / spacing).ceil() as i64,
-            (self.area.min.y / spacing).ceil() as i64,
+            (self.area.min.x / spacing).floor() as i64,
+            (self.area.min.y / spacing).floor() as i64,
         );
         let (i1, j1) = (
             (self.area.max.x / spacing).ceil() as i64,
@@ -281,8 +289,8 @@ impl Succession {
                 // Off the lattice point by up to a fifth of the spacing, staying in its cell.
                 let jitter = 0.2 * spacing.min(ESTABLISHMENT_CELL);
                 let p = [
-                    i as f32 * spacing + jitter * (unit_f32(h) - 0.5),
-                    j as f32 * spacing + jitter * (unit_f32(mix(h)) - 0.5),
+                    (i as f32 + 0.5) * spacing + jitter * (unit_f32(h) - 0.5),
+                    (j as f32 + 0.5) * spacing + jitter * (unit_f32(mix(h)) - 0.5),
                 ];
                 if !self.area.contains(p.into()) {
                     continue;
@@ -293,7 +301,7 @@ impl Succession {
                 ];
                 self.stems.push(Stem {
                     position: p,
-                    height: PLANTED_HEIGHT,
+                    height: PLANTED_HEIGHT * (0.5 + unit_f32(mix(h ^ 2))),
                     vigour: 1.0,
                     key: hash_cell(seed, cell[0], cell[1], salt::KEY),
                     age: PLANTED_AGE,
@@ -397,8 +405,12 @@ impl Succession {
                     State::BrokenTop => share *= 0.6,
                     _ => {}
                 }
-                s.height =
-                    (s.height + life.potential_growth(s.height) * share).min(1.2 * life.max_height);
+                // Trees of a species differ in vigour (their genes, their spot), so stands of
+                // equal trees still sort themselves into dominant and suppressed.
+                let vigour =
+                    1.0 + VIGOUR_SPREAD * (2.0 * unit_f32(mix(s.key ^ salt::VIGOUR)) - 1.0);
+                s.height = (s.height + vigour * life.potential_growth(s.height) * share)
+                    .min(1.2 * life.max_height);
                 s.vigour = share;
                 s.age = s.age.saturating_add(1);
                 s.suppressed = if share < 0.1 {
