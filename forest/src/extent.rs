@@ -1,7 +1,7 @@
 //! A variant's size, from its cached geometry: how tall its trees grow and how wide their
 //! crowns reach, for bounding volumes.
 
-use crate::forest::Variant;
+use crate::variants::Variant;
 
 /// A variant's size: height of its geometry and the horizontal radius of its crown.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,13 +4,14 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use glam::Vec2;
-use sylva_instancing::{Assembler, CompactTree, InstanceCache, Placements};
+use sylva_instancing::{Assembler, CompactTree, Placements};
 use sylva_terrain::HeightField;
 
 use sylva_base::hash::{mix, unit_f32 as unit};
 
 use crate::form::TreeForm;
 use crate::succession::Snapshot;
+use crate::variants::Variant;
 use sylva_base::range::check;
 
 use crate::density::{Candidate, DensityModel, Rect};
@@ -145,22 +146,6 @@ impl ForestConfig {
     }
 }
 
-/// One instance cache: a species in one form (a maturity, or a damage).
-#[derive(Debug, Clone)]
-pub struct Variant {
-    /// Index into the configuration's species.
-    pub species: usize,
-    /// Whether this is a young form: too small to stand in the canopy (no impostor, left out
-    /// of coarse tiles).
-    pub seedling: bool,
-    /// Generations of its trees.
-    pub generations: u32,
-    /// How its trees look.
-    pub form: TreeForm,
-    /// Its cache.
-    pub cache: InstanceCache,
-}
-
 /// Timings and sizes of a forest build.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[non_exhaustive]
@@ -272,7 +257,13 @@ impl ForestBuilder {
             });
         }
         let start = Instant::now();
-        let built = crate::variants::build(&config)?;
+        let built = crate::variants::build(crate::variants::Plan {
+            species: &config.species,
+            budget: config.budget,
+            seed: config.seed,
+            all_ages: config.all_ages,
+            seedlings: config.seedlings_per_patch > 0,
+        })?;
         let (variants, heroes) = (built.variants, built.heroes);
         // Trees grow up to 1 + variation times their measured size.
         let grown = 1.0 + config.scale_variation;

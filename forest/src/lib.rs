@@ -56,6 +56,7 @@ pub mod succession;
 mod variants;
 mod variety;
 mod walk;
+mod years;
 
 pub use appearance::{BarkPattern, LeafShape};
 pub use census::InstanceCounts;
@@ -65,7 +66,7 @@ pub use error::ForestError;
 pub use extent::Extent;
 pub use floor::{FloorItem, FloorOptions, ForestFloor, MAX_FLOOR_ITEMS};
 pub use forest::{
-    Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, Variant, VariantPlacements,
+    Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, VariantPlacements,
 };
 pub use form::TreeForm;
 pub use ground::{GroundCover, GroundKind, GroundLook};
@@ -75,6 +76,7 @@ pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
 pub use stream::{KeepTrees, Placement, PlacementBlock, PlacementSink, StreamStats, TreesOf};
 pub use succession::{Snapshot, Succession, SuccessionOptions};
+pub use variants::Variant;
 pub use variety::{CLUSTER_SHADE_MEAN, cluster_shade, tree_tint, tree_wind};
 pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};
 

@@ -453,6 +453,49 @@ impl Species {
     }
 }
 
+impl Species {
+    /// The skeleton of its tree at `generations` from `seed`.
+    pub(crate) fn sample_skeleton(
+        &self,
+        generations: u32,
+        seed: u64,
+    ) -> Result<Skeleton, ForestError> {
+        let word = self
+            .grammar
+            .derive(generations, seed)
+            .and_then(|w| self.grammar.interpretation(&w, seed))
+            .map_err(|source| ForestError::Derive {
+                species: self.name.clone(),
+                source,
+            })?;
+        let mut skeleton = Skeleton::default();
+        interpret(&word, &self.turtle, &mut skeleton).map_err(|source| ForestError::Turtle {
+            species: self.name.clone(),
+            source,
+        })?;
+        Ok(skeleton)
+    }
+
+    /// The mean skeleton top of `samples` of its trees at `generations`: how tall it is
+    /// drawn.
+    pub(crate) fn drawn_height(&self, generations: u32, samples: u64) -> Result<f32, ForestError> {
+        let mut sum = 0.0;
+        for seed in 0..samples {
+            sum += skeleton_top(&self.sample_skeleton(generations, seed)?);
+        }
+        Ok((sum / samples as f32).max(1e-3))
+    }
+}
+
+/// The top of a skeleton.
+pub(crate) fn skeleton_top(skeleton: &Skeleton) -> f32 {
+    skeleton
+        .bones
+        .iter()
+        .map(|b| b.end.y.max(b.start.y))
+        .fold(0.0f32, f32::max)
+}
+
 fn angle_between(a: Vec3, b: Vec3) -> f32 {
     let d = a
         .normalize_or_zero()

@@ -3,12 +3,11 @@
 
 use sylva_base::hash::mix;
 use sylva_instancing::{HeroOptions, InstanceCache, InstancingError, build_cache};
-use sylva_turtle::{Skeleton, StemBreak, interpret};
+use sylva_turtle::StemBreak;
 
 use crate::error::ForestError;
-use crate::forest::{ForestConfig, Variant};
 use crate::form::TreeForm;
-use crate::species::Species;
+use crate::species::{Species, skeleton_top};
 
 /// Heroes of a damaged form: whole trees, no instancing (damaged trees are few, and a broken
 /// trunk cuts across the branches instancing would share).
@@ -17,6 +16,34 @@ const DAMAGED_HEROES: u32 = 4;
 /// Most living forms of one species in a forest of every age: a species of more
 /// generations is drawn at this many of them, spread evenly and ending at its canopy form.
 pub(crate) const MAX_LIVE_FORMS: u32 = 8;
+
+/// One instance cache: a species in one form (a maturity, or a damage).
+#[derive(Debug, Clone)]
+pub struct Variant {
+    /// Index into the configuration's species.
+    pub species: usize,
+    /// Whether this is a young form: too small to stand in the canopy (no impostor, left out
+    /// of coarse tiles).
+    pub seedling: bool,
+    /// Generations of its trees.
+    pub generations: u32,
+    /// How its trees look.
+    pub form: TreeForm,
+    /// Its cache.
+    pub cache: InstanceCache,
+}
+
+/// What the caches are built from: a forest configuration's parts.
+pub(crate) struct Plan<'a> {
+    pub(crate) species: &'a [Species],
+    /// Bytes of all caches.
+    pub(crate) budget: usize,
+    pub(crate) seed: u64,
+    /// A form per generation and the damaged forms, or the canopy and young forms.
+    pub(crate) all_ages: bool,
+    /// Whether the young form is wanted (forests of one age with seedlings).
+    pub(crate) seedlings: bool,
+}
 
 /// What building the caches made.
 pub(crate) struct Built {
@@ -28,7 +55,7 @@ pub(crate) struct Built {
 }
 
 /// Fills the caches of `config`'s species.
-pub(crate) fn build(config: &ForestConfig) -> Result<Built, ForestError> {
+pub(crate) fn build(config: Plan<'_>) -> Result<Built, ForestError> {
     let total_weight: f32 = config.species.iter().map(|s| s.weight.max(0.0)).sum();
     let mut built = Built {
         variants: Vec::new(),
@@ -44,7 +71,7 @@ pub(crate) fn build(config: &ForestConfig) -> Result<Built, ForestError> {
             plan
         } else {
             let mut plan = vec![(TreeForm::Live(s.generations), false, share - share / 4)];
-            if config.seedlings_per_patch > 0 {
+            if config.seedlings {
                 plan.push((TreeForm::Live(s.seedling_generations), true, share / 4));
             }
             plan
@@ -175,7 +202,7 @@ fn lay_down(cache: &mut InstanceCache) {
 fn form_heights(s: &Species) -> Result<Vec<(u32, f32)>, ForestError> {
     live_generations(s.generations)
         .into_iter()
-        .map(|g| Ok((g, drawn_height(s, g, 3)?)))
+        .map(|g| Ok((g, s.drawn_height(g, 3)?)))
         .collect()
 }
 
@@ -192,51 +219,11 @@ pub(crate) fn live_generations(generations: u32) -> Vec<u32> {
     out
 }
 
-/// The skeleton of `s`' tree at `generations` from `seed`.
-fn sample_skeleton(s: &Species, generations: u32, seed: u64) -> Result<Skeleton, ForestError> {
-    let word = s
-        .grammar
-        .derive(generations, seed)
-        .and_then(|w| s.grammar.interpretation(&w, seed))
-        .map_err(|source| ForestError::Derive {
-            species: s.name.clone(),
-            source,
-        })?;
-    let mut skeleton = Skeleton::default();
-    interpret(&word, &s.turtle, &mut skeleton).map_err(|source| ForestError::Turtle {
-        species: s.name.clone(),
-        source,
-    })?;
-    Ok(skeleton)
-}
-
-/// The top of a skeleton.
-fn top(skeleton: &Skeleton) -> f32 {
-    skeleton
-        .bones
-        .iter()
-        .map(|b| b.end.y.max(b.start.y))
-        .fold(0.0f32, f32::max)
-}
-
-/// The mean skeleton top of `samples` trees of `s` at `generations`.
-pub(crate) fn drawn_height(
-    s: &Species,
-    generations: u32,
-    samples: u64,
-) -> Result<f32, ForestError> {
-    let mut sum = 0.0;
-    for seed in 0..samples {
-        sum += top(&sample_skeleton(s, generations, seed)?);
-    }
-    Ok((sum / samples as f32).max(1e-3))
-}
-
 /// Where a canopy tree of `s` snaps at `share` of its height: every stem there at least half
 /// as thick as the thickest (the trunk, and limbs as stout), measured on a sample tree.
 fn stem_break(s: &Species, share: f32) -> Result<StemBreak, ForestError> {
-    let skeleton = sample_skeleton(s, s.generations, 0)?;
-    let height = share * top(&skeleton);
+    let skeleton = s.sample_skeleton(s.generations, 0)?;
+    let height = share * skeleton_top(&skeleton);
     let thickest = skeleton
         .bones
         .iter()

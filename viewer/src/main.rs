@@ -72,6 +72,7 @@ mod render;
 mod scene;
 mod shadow;
 mod textures;
+mod timelapse;
 mod turntable;
 mod window;
 mod world;
@@ -379,7 +380,7 @@ fn run() -> Result<(), ViewerError> {
                 return turntable.run(&mut scene, &mut offscreen, &path, mode);
             }
             if let Some(years) = args.years {
-                let lapse = years::TimeLapse {
+                let lapse = timelapse::TimeLapse {
                     years,
                     size: args.size,
                 };

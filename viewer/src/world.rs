@@ -393,6 +393,11 @@ impl World {
         recipe.layer.clone()
     }
 
+    /// The year its forest over time has reached, if it has one.
+    pub(crate) fn year(&self) -> Option<u32> {
+        self.years.as_ref().map(crate::years::Years::year)
+    }
+
     /// Moves the forest over time on by `years` and draws the year reached from now on;
     /// returns the new version (`None` without a forest over time).
     pub(crate) fn advance_years(&self, years: u32) -> Result<Option<u64>, ForestError> {

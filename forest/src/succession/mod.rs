@@ -164,7 +164,7 @@ impl Succession {
         for s in &species {
             s.life.check()?;
             let canopy = s.canopy()?;
-            let height = crate::variants::drawn_height(s, s.generations, 3)?;
+            let height = s.drawn_height(s.generations, 3)?;
             kinds.push(Kind {
                 life: s.life,
                 crown: (CROWN_SHARE * 0.5 * canopy.measured / height).clamp(0.05, 2.0),
