@@ -29,7 +29,7 @@ pub struct SnapshotTree {
 
 /// The trees of a [`Succession`]'s region in one year, sorted into buckets so that any
 /// rectangle's trees are found at once. Hand it to a builder with
-/// [`ForestBuilder::with_snapshot`] and every output (GLB, USD, tiles, the viewer) draws it.
+/// [`ForestBuilder::with_snapshot`](crate::ForestBuilder::with_snapshot) and every output (GLB, USD, tiles, the viewer) draws it.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Snapshot {
     /// The year.
