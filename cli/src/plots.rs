@@ -4,6 +4,7 @@
 use std::io::Write;
 use std::path::Path;
 
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 use sylva::base::file::AtomicFile;
@@ -33,6 +34,38 @@ const COLOURS: [RGBColor; 8] = [
 fn font() -> Result<(), Failure> {
     register_font("sans-serif", FontStyle::Normal, FONT)
         .map_err(|_| Failure::job("the plots' embedded font could not be read"))
+}
+
+/// Draws the chart's grid with its axes named `x` and `y`.
+fn axes<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    x: &str,
+    y: &str,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType: std::fmt::Debug> + ValueFormatter<<X as Ranged>::ValueType>,
+    Y: Ranged<ValueType: std::fmt::Debug> + ValueFormatter<<Y as Ranged>::ValueType>,
+{
+    chart
+        .configure_mesh()
+        .x_desc(x)
+        .y_desc(y)
+        .label_style(("sans-serif", 16))
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// Draws the chart's legend, top right.
+fn legend<'a, X: Ranged, Y: Ranged>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 16))
+        .draw()
+        .map_err(|e| e.to_string())
 }
 
 /// Draws with `draw` on an RGB canvas and writes it to `path` as PNG, atomically.
@@ -80,13 +113,7 @@ pub(crate) fn species_shares(
             .y_label_area_size(60)
             .build_cartesian_2d(0u32..last, 0f32..100f32)
             .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("year")
-            .y_desc("share of basal area (%)")
-            .label_style(("sans-serif", 16))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        axes(&mut chart, "year", "share of basal area (%)")?;
         for (k, name) in names.iter().enumerate() {
             let colour = COLOURS[k % COLOURS.len()];
             let points = years.iter().map(|y| {
@@ -105,13 +132,7 @@ pub(crate) fn species_shares(
                     PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3))
                 });
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 16))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        legend(&mut chart)?;
         root.present().map_err(|e| e.to_string())
     })
 }
@@ -164,13 +185,11 @@ pub(crate) fn self_thinning(
             .y_label_area_size(70)
             .build_cartesian_2d((dmin..dmax).log_scale(), (nmin..nmax).log_scale())
             .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("quadratic mean diameter (cm)")
-            .y_desc("stems per hectare")
-            .label_style(("sans-serif", 16))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        axes(
+            &mut chart,
+            "quadratic mean diameter (cm)",
+            "stems per hectare",
+        )?;
         let last = points.last().map_or(1, |p| p.2.max(1)) as f32;
         chart
             .draw_series(points.iter().map(|&(d, n, year)| {
@@ -214,13 +233,7 @@ pub(crate) fn self_thinning(
                 .label(format!("fitted over the thinning years: slope {s:.2}"))
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(3)));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 16))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        legend(&mut chart)?;
         root.present().map_err(|e| e.to_string())
     })
 }

@@ -46,6 +46,27 @@ impl Rect {
         }
     }
 
+    /// The cells of side `side` of the global lattice (cell (i, j) spans `i * side` to
+    /// `(i + 1) * side` in x, likewise j in z) that the rectangle overlaps: the columns, then
+    /// the rows. Generators that draw per cell of the world use it, so regions asked apart
+    /// draw the same cells.
+    ///
+    /// ```
+    /// use sylva_forest::Rect;
+    /// use sylva_terrain::glam::Vec2;
+    ///
+    /// let r = Rect::new(Vec2::new(-5.0, 10.0), Vec2::new(25.0, 20.0));
+    /// assert_eq!(r.cells(10.0), (-1..3, 1..2));
+    /// ```
+    pub fn cells(&self, side: f32) -> (std::ops::Range<i64>, std::ops::Range<i64>) {
+        let lo = |v: f32| (v / side).floor() as i64;
+        let hi = |v: f32| (v / side).ceil() as i64;
+        (
+            lo(self.min.x)..hi(self.max.x),
+            lo(self.min.y)..hi(self.max.y),
+        )
+    }
+
     /// The rectangle grown by `margin` on every side.
     pub fn expanded(&self, margin: f32) -> Rect {
         Rect {

@@ -110,6 +110,18 @@ impl Species {
     /// # Ok::<(), sylva_forest::ForestError>(())
     /// ```
     pub fn mesh(&self, generations: u32, seed: u64) -> Result<Mesh, ForestError> {
+        let mut builder = MeshBuilder::new(&self.turtle);
+        self.draw_into(generations, seed, &mut builder)?;
+        Ok(builder.finish())
+    }
+
+    /// Derives its tree at `generations` from `seed` and has the turtle draw it into `sink`.
+    fn draw_into(
+        &self,
+        generations: u32,
+        seed: u64,
+        sink: &mut impl sylva_turtle::GeometrySink,
+    ) -> Result<(), ForestError> {
         let word = self
             .grammar
             .derive(generations, seed)
@@ -118,33 +130,18 @@ impl Species {
                 species: self.name.clone(),
                 source,
             })?;
-        let mut builder = MeshBuilder::new(&self.turtle);
-        interpret(&word, &self.turtle, &mut builder).map_err(|source| ForestError::Turtle {
+        interpret(&word, &self.turtle, sink).map_err(|source| ForestError::Turtle {
             species: self.name.clone(),
             source,
         })?;
-        Ok(builder.finish())
+        Ok(())
     }
 
     /// Measures the canopy on the skeletons of three sample trees (seeds 0 to 2).
     pub fn canopy(&self) -> Result<Canopy, ForestError> {
         let (mut longest, mut widest, mut reach) = (0.0f32, 0.0f32, 0.0f32);
         for seed in 0..3 {
-            let word = self
-                .grammar
-                .derive(self.generations, seed)
-                .and_then(|w| self.grammar.interpretation(&w, seed))
-                .map_err(|source| ForestError::Derive {
-                    species: self.name.clone(),
-                    source,
-                })?;
-            let mut skeleton = Skeleton::default();
-            interpret(&word, &self.turtle, &mut skeleton).map_err(|source| {
-                ForestError::Turtle {
-                    species: self.name.clone(),
-                    source,
-                }
-            })?;
+            let skeleton = self.sample_skeleton(self.generations, seed)?;
             reach = reach.max(skeleton.horizontal_extent());
             // A branch runs from one branch point to the next: chains of bones whose parent
             // has no other child. L is the longest such chain.
@@ -460,19 +457,8 @@ impl Species {
         generations: u32,
         seed: u64,
     ) -> Result<Skeleton, ForestError> {
-        let word = self
-            .grammar
-            .derive(generations, seed)
-            .and_then(|w| self.grammar.interpretation(&w, seed))
-            .map_err(|source| ForestError::Derive {
-                species: self.name.clone(),
-                source,
-            })?;
         let mut skeleton = Skeleton::default();
-        interpret(&word, &self.turtle, &mut skeleton).map_err(|source| ForestError::Turtle {
-            species: self.name.clone(),
-            source,
-        })?;
+        self.draw_into(generations, seed, &mut skeleton)?;
         Ok(skeleton)
     }
 

@@ -220,15 +220,8 @@ impl ForestFloor {
         if region.is_empty() {
             return Ok(Vec::new());
         }
-        let (x0, z0) = (
-            (region.min.x / cell).floor() as i64,
-            (region.min.y / cell).floor() as i64,
-        );
-        let (x1, z1) = (
-            (region.max.x / cell).ceil() as i64,
-            (region.max.y / cell).ceil() as i64,
-        );
-        let cells = (x1 - x0).max(0) as u64 * (z1 - z0).max(0) as u64;
+        let (columns, rows) = region.cells(cell);
+        let cells = columns.clone().count() as u64 * rows.clone().count() as u64;
         // The most a cell can hold: each kind at its densest mix and full response, capped.
         let per_cell: u64 = (0..GroundKind::ALL.len())
             .map(|k| {
@@ -253,8 +246,8 @@ impl ForestFloor {
         let (lo, hi) = terrain.bounds();
         let variation = self.options.scale_variation.clamp(0.0, 0.9);
         let mut out = Vec::new();
-        for cz in z0..z1 {
-            for cx in x0..x1 {
+        for cz in rows {
+            for cx in columns.clone() {
                 let cell_hash = mix(self.options.seed
                     ^ mix((cx as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)
                         ^ (cz as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f)));

@@ -113,18 +113,10 @@ fn gusts(seed: u64, year: u32, p: [f32; 2]) -> f32 {
 /// its trunk split (a snag) or whole.
 fn lightning(forest: &mut Succession, stats: &mut YearStats) {
     let (seed, year) = (forest.options.seed, forest.year);
-    let area = forest.area;
-    let (i0, j0) = (
-        (area.min.x / STRIKE_CELL).floor() as i64,
-        (area.min.y / STRIKE_CELL).floor() as i64,
-    );
-    let (i1, j1) = (
-        (area.max.x / STRIKE_CELL).ceil() as i64,
-        (area.max.y / STRIKE_CELL).ceil() as i64,
-    );
+    let (columns, rows) = forest.area.cells(STRIKE_CELL);
     let rate = forest.options.lightning_rate * STRIKE_CELL * STRIKE_CELL / 10_000.0;
-    for j in j0..j1 {
-        for i in i0..i1 {
+    for j in rows {
+        for i in columns.clone() {
             let h = hash_cell(seed, i, j, salt::STRIKE ^ (u64::from(year) << 8));
             if unit_f32(h) >= rate {
                 continue;

@@ -498,18 +498,11 @@ impl Succession {
             .collect();
         // Seed from beyond: per cell of a global grid, so tiles draw the same.
         let rain = self.options.seed_rain * RAIN_CELL * RAIN_CELL / 10_000.0;
-        let (i0, j0) = (
-            (self.area.min.x / RAIN_CELL).floor() as i64,
-            (self.area.min.y / RAIN_CELL).floor() as i64,
-        );
-        let (i1, j1) = (
-            (self.area.max.x / RAIN_CELL).ceil() as i64,
-            (self.area.max.y / RAIN_CELL).ceil() as i64,
-        );
-        let rained: Vec<(usize, u64, u8, [f32; 2])> = (j0..j1)
+        let (columns, rows) = self.area.cells(RAIN_CELL);
+        let rained: Vec<(usize, u64, u8, [f32; 2])> = rows
             .into_par_iter()
             .flat_map_iter(|j| {
-                (i0..i1).flat_map(move |i| {
+                columns.clone().flat_map(move |i| {
                     this.kinds.iter().enumerate().filter_map(move |(k, kind)| {
                         let h =
                             hash_cell(seed, i, j, salt::RAIN ^ (u64::from(year) << 8) ^ k as u64);

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::Succession;
-use super::stem::{State, Stem};
+use super::stem::State;
 use crate::density::Rect;
 
 /// Side of the buckets a snapshot sorts its trees into, metres, so a block finds its own.
@@ -82,26 +82,17 @@ impl Succession {
             .iter()
             .filter(|s| self.region.contains(s.position.into()))
         {
-            let Stem {
-                position,
-                species,
-                state,
-                height,
-                key,
-                fall,
-                ..
-            } = *s;
             let at = (
-                (position[0] / BUCKET).floor() as i64,
-                (position[1] / BUCKET).floor() as i64,
+                (s.position[0] / BUCKET).floor() as i64,
+                (s.position[1] / BUCKET).floor() as i64,
             );
             buckets.entry((at.1, at.0)).or_default().push(SnapshotTree {
-                position,
-                species,
-                state,
-                height,
-                key,
-                fall,
+                position: s.position,
+                species: s.species,
+                state: s.state,
+                height: s.height,
+                key: s.key,
+                fall: s.fall,
             });
             len += 1;
         }
