@@ -2,7 +2,8 @@
 # Drives the windowed viewer on a virtual X display (Xvfb) with xdotool, the way a user does:
 # keys, mouse buttons and cursor moves through winit's event loop, which no headless test
 # reaches. Paints a stroke (P, E, a left-button drag), saves the masks (Ctrl+S), undoes and
-# redoes it (Ctrl+Z, Ctrl+Y), then starts the guided walk (G). The window's title is the
+# redoes it (Ctrl+Z, Ctrl+Y), then starts the guided walk (G); then opens a forest over time
+# and moves it on with Y and Shift+Y. The window's title is the
 # viewer's status line; the script reads it to follow what the viewer did.
 # usage: .ci/window/drive.sh VIEWER FOREST_EXAMPLE WORKDIR
 # Needs Debian's xvfb and xdotool, and a Vulkan or GL driver (Mesa's lavapipe will do).
@@ -86,3 +87,24 @@ if [ "$exported" != "$after" ]; then
   echo "the window showed $after trees; its masks grow $exported" >&2; exit 1
 fi
 echo "window: its saved masks grow the same $after trees in sylva forest"
+
+# A forest over time: Y moves it on ten years, Shift+Y one, and the title follows.
+kill "$viewer_pid" 2>/dev/null || true
+wait "$viewer_pid" 2>/dev/null || true
+"$viewer" --area 150 --no-floor --year 20 > years.out 2> years.err &
+viewer_pid=$!
+trap 'kill $viewer_pid $xvfb 2>/dev/null || true' EXIT
+window=""
+for _ in $(seq 1 480); do
+  window=$(xdotool search --name '^sylva' 2>/dev/null | head -1 || true)
+  [ -n "$window" ] && break
+  sleep 0.5
+done
+[ -n "$window" ] || { echo "the viewer of a forest over time opened no window" >&2; cat years.err >&2; exit 1; }
+wait_until shows "year 20"
+xdotool windowfocus --sync "$window"
+xdotool key y
+wait_until shows "year 30"
+xdotool key shift+y
+wait_until shows "year 31"
+echo "window: Y moved the forest over time from year 20 to 30, Shift+Y to 31"
