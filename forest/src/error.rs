@@ -178,4 +178,14 @@ pub enum ForestError {
         /// The year the forest had reached.
         year: u32,
     },
+    /// A snapshot of a forest over time was given to a builder of another number of species.
+    #[error(
+        "a snapshot of a forest over time of {snapshot} species cannot be drawn by a builder of {forest}: build it with the succession's species"
+    )]
+    SnapshotSpecies {
+        /// Species of the snapshot's forest.
+        snapshot: usize,
+        /// Species of the builder.
+        forest: usize,
+    },
 }

@@ -8,17 +8,16 @@ use sylva_instancing::{Assembler, CompactTree, Placements};
 use sylva_terrain::HeightField;
 
 use sylva_base::hash::{mix, unit_f32 as unit};
-
-use crate::form::TreeForm;
-use crate::succession::Snapshot;
-use crate::variants::Variant;
 use sylva_base::range::check;
 
 use crate::density::{Candidate, DensityModel, Rect};
 use crate::error::ForestError;
+use crate::form::TreeForm;
 use crate::patch::Composition;
 use crate::patch::{PatchDensity, PatchSpecies};
 use crate::species::{Canopy, Species};
+use crate::succession::Snapshot;
+use crate::variants::Variant;
 
 /// Where on the terrain trees may stand.
 #[derive(Clone)]
@@ -313,13 +312,21 @@ impl ForestBuilder {
     /// This builder drawing `snapshot` (a year of a [`Succession`](crate::Succession) of
     /// the same species), or the density model's trees again with `None`, sharing its
     /// caches: every output then draws that year. An error unless the builder has every age
-    /// ([`ForestConfig::all_ages`]).
+    /// ([`ForestConfig::all_ages`]) and the snapshot's forest had its number of species.
     pub fn with_snapshot(
         &self,
         snapshot: Option<Arc<Snapshot>>,
     ) -> Result<ForestBuilder, ForestError> {
-        if snapshot.is_some() && !self.config.all_ages {
-            return Err(ForestError::NotAllAges);
+        if let Some(s) = &snapshot {
+            if !self.config.all_ages {
+                return Err(ForestError::NotAllAges);
+            }
+            if s.species != self.config.species.len() {
+                return Err(ForestError::SnapshotSpecies {
+                    snapshot: s.species,
+                    forest: self.config.species.len(),
+                });
+            }
         }
         let mut builder = self.clone();
         builder.snapshot = snapshot;
@@ -404,7 +411,8 @@ impl ForestBuilder {
     }
 
     /// The trees of `region` on `terrain`: a pure function of (seed, paint layer, region),
-    /// seamless between adjacent regions. Trees outside the terrain's bounds are dropped.
+    /// seamless between adjacent regions, or the snapshot's there when the builder draws one
+    /// ([`ForestBuilder::with_snapshot`]). Trees outside the terrain's bounds are dropped.
     pub fn trees(&self, terrain: &dyn HeightField, region: Rect) -> Vec<CompactTree> {
         if let Some(snapshot) = &self.snapshot {
             return self.snapshot_trees(snapshot, terrain, region);

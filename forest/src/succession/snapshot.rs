@@ -34,6 +34,8 @@ pub struct SnapshotTree {
 pub struct Snapshot {
     /// The year.
     pub year: u32,
+    /// How many species the forest it was taken of has.
+    pub species: usize,
     buckets: BTreeMap<(i64, i64), Vec<SnapshotTree>>,
     len: usize,
 }
@@ -101,6 +103,7 @@ impl Succession {
         }
         Snapshot {
             year: self.year,
+            species: self.species.len(),
             buckets,
             len,
         }
