@@ -45,7 +45,7 @@ pub(crate) struct SuccessionArgs {
     area: f32,
     /// A tile of a larger world instead: the rectangle X0,Z0,X1,Z1 (metres), simulated with
     /// its halo so that tiles simulated apart agree near their borders.
-    #[arg(long, value_name = "X0,Z0,X1,Z1", value_parser = parse_rect)]
+    #[arg(long, value_name = "X0,Z0,X1,Z1", value_parser = parse_rect, allow_hyphen_values = true)]
     region: Option<Rect>,
     /// Years to simulate.
     #[arg(long, default_value_t = 300)]
@@ -78,8 +78,8 @@ pub(crate) struct SuccessionArgs {
     /// The folder to write.
     #[arg(long, value_name = "DIR", default_value = "succession")]
     out: PathBuf,
-    /// Years to write as binary glTF (year_NNNN.glb, on the default terrain of the region),
-    /// comma-separated.
+    /// Years to write as binary glTF (year_NNNN.glb, the region's trees on the default
+    /// terrain of the world from the origin to its far corner), comma-separated.
     #[arg(long, value_name = "YEARS", value_delimiter = ',')]
     snapshots: Vec<u32>,
     /// Instance-cache budget in MiB for the snapshots, shared among the species and forms.
@@ -200,7 +200,14 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
         let (builder, _) = phase(hidden, "building every age's instance caches", || {
             ForestBuilder::new(config)
         });
-        let side = (region.max - region.min).max_element();
+        // The default terrain of the world the region is part of: from the origin to its far
+        // corner, as `sylva forest --area` would make it.
+        if region.min.min_element() < 0.0 {
+            return Err(Failure::usage(
+                "--snapshots: the world's terrain starts at the origin; give --region in positive coordinates",
+            ));
+        }
+        let side = region.max.max_element();
         let (map, _) = phase(hidden, "generating terrain", || {
             sylva::presets::terrain(args.seed, side)
         });
