@@ -214,7 +214,6 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
         Some((builder?, map?))
     };
     let progress = bar(hidden, u64::from(args.years), "years");
-    let start = Instant::now();
     let mut simulated = std::time::Duration::ZERO;
     for _ in 0..args.years {
         let t = Instant::now();
@@ -228,7 +227,6 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
         }
     }
     progress.finish_and_clear();
-    let _ = start;
     let years = forest.stats();
     write_tables(&args.out, years, &names)?;
     let phase_years = thinning_phase(years);
