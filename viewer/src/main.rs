@@ -271,9 +271,11 @@ fn parse() -> Result<Args, String> {
     }
     if let (Some(list), true) = (&mut years, span) {
         let (a, b) = (list[0], list[1]);
-        if a > b || every == 0 {
+        // Checked before the years are listed, so a huge span is an error, not a huge list.
+        if a > b || b > years::MAX_YEARS || every == 0 {
             return Err(format!(
-                "--years {a}..{b} --every {every}: expected A <= B, every at least 1"
+                "--years {a}..{b} --every {every}: expected A <= B <= {}, every at least 1",
+                years::MAX_YEARS
             ));
         }
         *list = (a..=b).step_by(every as usize).collect();

@@ -410,9 +410,10 @@ impl ApplicationHandler for App {
                             KeyCode::KeyY => {
                                 let shift = self.keys.contains(&KeyCode::ShiftLeft)
                                     || self.keys.contains(&KeyCode::ShiftRight);
-                                match self.scene.advance_years(if shift { 1 } else { 10 }) {
-                                    Ok(Some(_)) | Ok(None) => {}
-                                    Err(e) => eprintln!("cannot move the forest on: {e}"),
+                                // A world without a forest over time does nothing.
+                                if let Err(e) = self.scene.advance_years(if shift { 1 } else { 10 })
+                                {
+                                    eprintln!("cannot move the forest on: {e}");
                                 }
                             }
                             _ => {}

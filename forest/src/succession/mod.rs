@@ -57,9 +57,10 @@ use light::LightGrid;
 pub const ESTABLISHMENT_CELL: f32 = 2.0;
 /// Side of the cells seed from beyond the forest is drawn for, metres.
 const RAIN_CELL: f32 = 10.0;
-/// Most simulated area, square metres (the halo included): 400 km^2, whose light grid alone
-/// is 3 GB.
-pub const MAX_AREA: f64 = 4e8;
+/// Most simulated area, square metres (the halo included): 50 km^2, a square of about
+/// 7 km, whose light grid is 600 MB (192 bytes a 4 m column). Larger worlds are simulated as
+/// tiles.
+pub const MAX_AREA: f64 = 5e7;
 /// Years a dead tree stands whole before it decays to a snag, and as a snag before it falls
 /// and rots; years a fallen tree lies.
 const DEAD_YEARS: u8 = 6;
