@@ -21,15 +21,18 @@ sleep 1
 viewer_pid=$!
 trap 'kill $viewer_pid $xvfb 2>/dev/null || true' EXIT
 
-window=""
-for _ in $(seq 1 240); do
-  window=$(xdotool search --name '^sylva' 2>/dev/null | head -1 || true)
-  [ -n "$window" ] && break
-  sleep 0.5
-done
-if [ -z "$window" ]; then
-  echo "the viewer opened no window" >&2; cat viewer.err >&2; exit 1
-fi
+# find_window ERRFILE: the viewer's window, waited for up to four minutes.
+find_window() {
+  local found=""
+  for _ in $(seq 1 480); do
+    found=$(xdotool search --name '^sylva' 2>/dev/null | head -1 || true)
+    [ -n "$found" ] && break
+    sleep 0.5
+  done
+  [ -n "$found" ] || { echo "the viewer opened no window" >&2; cat "$1" >&2; exit 1; }
+  echo "$found"
+}
+window=$(find_window viewer.err)
 title() { xdotool getwindowname "$window"; }
 trees() { title | sed -n 's/.*; \([0-9]*\) trees in .*/\1/p'; }
 fail() { echo "$1; the title reads: $(title)" >&2; cat viewer.err >&2; exit 1; }
@@ -94,13 +97,7 @@ wait "$viewer_pid" 2>/dev/null || true
 "$viewer" --area 150 --no-floor --year 20 > years.out 2> years.err &
 viewer_pid=$!
 trap 'kill $viewer_pid $xvfb 2>/dev/null || true' EXIT
-window=""
-for _ in $(seq 1 480); do
-  window=$(xdotool search --name '^sylva' 2>/dev/null | head -1 || true)
-  [ -n "$window" ] && break
-  sleep 0.5
-done
-[ -n "$window" ] || { echo "the viewer of a forest over time opened no window" >&2; cat years.err >&2; exit 1; }
+window=$(find_window years.err)
 wait_until shows "year 20"
 xdotool windowfocus --sync "$window"
 xdotool key y

@@ -4,7 +4,6 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::time::Instant;
 
 use clap::Args;
@@ -20,9 +19,7 @@ use sylva::terrain::glam::Vec2;
 
 use crate::Failure;
 use crate::progress::{bar, ms, peak_rss_mb, phase, print_stats};
-
-/// Most years one run simulates.
-const MAX_YEARS: u32 = 10_000;
+use crate::world::MAX_YEARS;
 
 /// `sylva succession`'s flags.
 #[derive(Debug, Args)]
@@ -161,11 +158,7 @@ pub(crate) fn run(args: SuccessionArgs) -> Result<(), Failure> {
             args.years
         )));
     }
-    let budget = args
-        .budget_mb
-        .checked_mul(1 << 20)
-        .filter(|&b| b > 0)
-        .ok_or_else(|| Failure::usage("--budget-mb must be positive"))?;
+    let budget = crate::world::budget_bytes(args.budget_mb)?;
     let species = load_species(&args.species)?;
     let region = args
         .region
@@ -338,8 +331,7 @@ fn write_snapshot(
     map: &Heightmap,
     region: Rect,
 ) -> Result<(), Failure> {
-    let snapshot = forest.snapshot();
-    let trees = builder.with_snapshot(Some(Arc::new(snapshot)))?;
+    let trees = builder.drawing(forest)?;
     let path = out.join(format!("year_{:04}.glb", forest.year()));
     let (lo, hi) = sylva::terrain::HeightField::bounds(map);
     let drawn = region.intersect(&Rect::new(lo, hi));
@@ -352,28 +344,4 @@ fn write_snapshot(
         &path,
     )?;
     Ok(())
-}
-
-/// The builder drawing the forest over time of `region` in `year`, grown from bare ground
-/// with `builder`'s species and seed (`sylva forest --year`, `sylva tiles --year`).
-pub(crate) fn builder_at_year(
-    builder: &ForestBuilder,
-    region: Rect,
-    year: u32,
-    quiet: bool,
-) -> Result<ForestBuilder, Failure> {
-    if year > MAX_YEARS {
-        return Err(Failure::usage(format!(
-            "--year {year}: expected 0 to {MAX_YEARS}"
-        )));
-    }
-    let options = SuccessionOptions::default().with_seed(builder.config().seed);
-    let mut forest = Succession::new(builder.config().species.clone(), region, options)?;
-    let progress = bar(quiet, u64::from(year), "years of the forest over time");
-    for _ in 0..year {
-        forest.step()?;
-        progress.inc(1);
-    }
-    progress.finish_and_clear();
-    Ok(builder.with_snapshot(Some(Arc::new(forest.snapshot())))?)
 }

@@ -11,7 +11,7 @@ use sylva::terrain::glam::Vec2;
 use sylva::terrain::{HeightRange, Heightmap};
 
 use crate::Failure;
-use crate::progress::phase;
+use crate::progress::{bar, phase};
 
 /// The world's flags.
 #[derive(Debug, Args)]
@@ -65,6 +65,16 @@ pub(crate) struct World {
     pub(crate) hero_time: Duration,
 }
 
+/// Most years one forest over time simulates (`--year`, `sylva succession --years`).
+pub(crate) const MAX_YEARS: u32 = 10_000;
+
+/// `--budget-mb`'s bytes: an error for 0 or a size beyond memory's reach.
+pub(crate) fn budget_bytes(mb: usize) -> Result<usize, Failure> {
+    mb.checked_mul(1 << 20)
+        .filter(|&b| b > 0)
+        .ok_or_else(|| Failure::usage("--budget-mb must be positive"))
+}
+
 /// Parses `A,B`.
 pub(crate) fn parse_pair<T: std::str::FromStr>(v: &str) -> Result<(T, T), String> {
     v.split_once(',')
@@ -91,11 +101,7 @@ impl WorldArgs {
                 "--trees {n}: expected 1 to 10000000"
             )));
         }
-        let budget = self
-            .budget_mb
-            .checked_mul(1 << 20)
-            .filter(|&b| b > 0)
-            .ok_or_else(|| Failure::usage("--budget-mb must be positive"))?;
+        let budget = budget_bytes(self.budget_mb)?;
         let species = if self.species.is_empty() {
             sylva::presets::species()?
         } else {
@@ -141,7 +147,7 @@ impl WorldArgs {
         }
         let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
         if let Some(year) = self.year {
-            builder = crate::succession::builder_at_year(&builder, region, year, quiet)?;
+            builder = builder_at_year(&builder, region, year, quiet)?;
         }
         Ok(World {
             builder,
@@ -200,4 +206,27 @@ fn read_terrain(
         )));
     }
     Ok(map)
+}
+
+/// The builder drawing the forest over time of `region` in `year`, grown from bare ground
+/// with `builder`'s species and seed (`sylva forest --year`, `sylva tiles --year`).
+pub(crate) fn builder_at_year(
+    builder: &ForestBuilder,
+    region: Rect,
+    year: u32,
+    quiet: bool,
+) -> Result<ForestBuilder, Failure> {
+    if year > MAX_YEARS {
+        return Err(Failure::usage(format!(
+            "--year {year}: expected 0 to {MAX_YEARS}"
+        )));
+    }
+    let mut forest = builder.succession(region)?;
+    let progress = bar(quiet, u64::from(year), "years of the forest over time");
+    for _ in 0..year {
+        forest.step()?;
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    Ok(builder.drawing(&forest)?)
 }

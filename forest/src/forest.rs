@@ -44,6 +44,25 @@ impl std::fmt::Debug for Constraints {
     }
 }
 
+impl Constraints {
+    /// The ground's height at (x, z) of `terrain` where trees may stand there (within the
+    /// height range, no steeper than the slope limit), `None` elsewhere; the mask is the
+    /// caller's. The slope's cosine is worked out once, here, not per tree.
+    pub(crate) fn ground<'a>(
+        &'a self,
+        terrain: &'a dyn HeightField,
+    ) -> impl Fn(f32, f32) -> Option<f32> + 'a {
+        let min_up = self.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
+        move |x, z| {
+            let height = terrain.height(x, z);
+            let allowed = height >= self.min_height
+                && height <= self.max_height
+                && terrain.normal(x, z).y >= min_up - 1e-6;
+            allowed.then_some(height)
+        }
+    }
+}
+
 impl Default for Constraints {
     fn default() -> Self {
         Constraints {
@@ -464,17 +483,12 @@ impl ForestBuilder {
             .fold(0.0f32, f32::max);
         let cell = (2.0 * widest).max(self.density.patch);
         let slots = self.config.seedlings_per_patch.min(MAX_SEEDLING_SLOTS);
-        let min_up = c.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
+        let ground = c.ground(terrain);
         candidates
             .iter()
             .filter_map(|cand: &Candidate| {
                 let Vec2 { x, y: z } = cand.position;
-                let height = terrain.height(x, z);
-                if !(height >= c.min_height && height <= c.max_height)
-                    || terrain.normal(x, z).y < min_up - 1e-6
-                {
-                    return None;
-                }
+                let height = ground(x, z)?;
                 // A NaN from the mask counts as no trees.
                 if let Some(mask) = &c.mask
                     && unit(mix(cand.key ^ 0x5eed)) >= mask(x, z).clamp(0.0, 1.0).max(0.0)

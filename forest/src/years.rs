@@ -5,11 +5,28 @@ use sylva_base::hash::{mix, unit_f32};
 use sylva_instancing::CompactTree;
 use sylva_terrain::HeightField;
 
+use std::sync::Arc;
+
 use crate::density::Rect;
+use crate::error::ForestError;
 use crate::forest::ForestBuilder;
-use crate::succession::{Snapshot, State};
+use crate::succession::{Snapshot, State, Succession, SuccessionOptions};
 
 impl ForestBuilder {
+    /// A forest over time of this builder's species over `region`, from bare ground, with
+    /// the default options and the builder's seed: what `sylva forest --year` and the
+    /// viewer's `--year` grow, so both draw the same forest.
+    pub fn succession(&self, region: Rect) -> Result<Succession, ForestError> {
+        let options = SuccessionOptions::default().with_seed(self.config().seed);
+        Succession::new(self.config().species.clone(), region, options)
+    }
+
+    /// This builder drawing `forest` as it stands ([`ForestBuilder::with_snapshot`] of its
+    /// [`Succession::snapshot`]).
+    pub fn drawing(&self, forest: &Succession) -> Result<ForestBuilder, ForestError> {
+        self.with_snapshot(Some(Arc::new(forest.snapshot())))
+    }
+
     /// The trees of `snapshot` in `region` on `terrain`, each drawn by the variant of its
     /// species and form at the scale its height asks for (the builder must have every age,
     /// [`ForestConfig::all_ages`](crate::ForestConfig::all_ages)); trees off the terrain or
@@ -22,19 +39,13 @@ impl ForestBuilder {
     ) -> Vec<CompactTree> {
         let (lo, hi) = terrain.bounds();
         let region = region.intersect(&Rect::new(lo, hi));
-        let c = &self.config().constraints;
-        let min_up = c.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
+        let ground = self.config().constraints.ground(terrain);
         snapshot
             .trees_in(region)
             .filter_map(|t| {
                 let species = usize::from(t.species);
                 let [x, z] = t.position;
-                let height = terrain.height(x, z);
-                if !(height >= c.min_height && height <= c.max_height)
-                    || terrain.normal(x, z).y < min_up - 1e-6
-                {
-                    return None;
-                }
+                let height = ground(x, z)?;
                 let (form, scale) = match t.state.damaged_form() {
                     None => self.live_form(species, t.height)?,
                     Some(form) => {

@@ -1,9 +1,9 @@
 //! The forest over time a world is drawn from: its [`Succession`] at the year reached,
 //! stepped by a key in the window or for a headless time-lapse (`timelapse.rs`).
 
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Mutex, PoisonError};
 
-use sylva::forest::succession::{Succession, SuccessionOptions};
+use sylva::forest::succession::Succession;
 use sylva::forest::{ForestBuilder, ForestError, Rect};
 
 /// Most years the viewer simulates.
@@ -22,10 +22,9 @@ impl Years {
         region: Rect,
         year: u32,
     ) -> Result<(Years, ForestBuilder), ForestError> {
-        let options = SuccessionOptions::default().with_seed(builder.config().seed);
-        let mut forest = Succession::new(builder.config().species.clone(), region, options)?;
+        let mut forest = builder.succession(region)?;
         forest.run(year, |_| Ok(()))?;
-        let drawn = builder.with_snapshot(Some(Arc::new(forest.snapshot())))?;
+        let drawn = builder.drawing(&forest)?;
         Ok((
             Years {
                 forest: Mutex::new(forest),
@@ -50,6 +49,6 @@ impl Years {
     ) -> Result<ForestBuilder, ForestError> {
         let mut forest = self.forest.lock().unwrap_or_else(PoisonError::into_inner);
         forest.run(years, |_| Ok(()))?;
-        builder.with_snapshot(Some(Arc::new(forest.snapshot())))
+        builder.drawing(&forest)
     }
 }
