@@ -11,6 +11,7 @@
 //! sylva terrain --size 1025 --out height.png
 //! sylva corpus path/to/vlab/oofs
 //! sylva succession --years 300  # a forest over time: succession/ with statistics and plots
+//! sylva serve --port 8080       # worlds on demand over HTTP, and a page to walk them
 //! ```
 //!
 //! Every subcommand has `--help`. Exit status: 0 on success, 1 when the job failed (bad input
@@ -27,6 +28,7 @@ mod pack;
 mod paint;
 mod plots;
 mod progress;
+mod serve;
 mod succession;
 mod terrain;
 mod tiles;
@@ -73,6 +75,9 @@ enum Command {
     /// Grows a forest over time from bare ground, year by year (seeding, light, suppression,
     /// age, storms, lightning, disease); writes its statistics per year, plots and snapshots.
     Succession(succession::SuccessionArgs),
+    /// Serves worlds on demand over HTTP: 3D Tiles generated on first request and kept in a
+    /// cache folder, single trees, and a page that walks a world in the browser.
+    Serve(serve::ServeArgs),
 }
 
 fn main() -> ExitCode {
@@ -88,6 +93,7 @@ fn main() -> ExitCode {
         Command::Terrain(a) => terrain::run(a),
         Command::Corpus(a) => corpus::run(a),
         Command::Succession(a) => succession::run(a),
+        Command::Serve(a) => serve::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

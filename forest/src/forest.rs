@@ -384,13 +384,9 @@ impl ForestBuilder {
     /// # Ok::<(), sylva_forest::ForestError>(())
     /// ```
     pub fn live_form(&self, species: usize, height: f32) -> Option<(TreeForm, f32)> {
-        let heights = self.heights.get(species).filter(|h| !h.is_empty())?;
-        let k = heights
-            .iter()
-            .rposition(|&(_, h)| h <= 1.1 * height)
-            .unwrap_or(0);
-        let (generations, drawn) = heights[k];
-        Some((TreeForm::Live(generations), height / drawn))
+        let heights = self.heights.get(species)?;
+        let (generations, scale) = crate::variants::pick_live_form(heights, height)?;
+        Some((TreeForm::Live(generations), scale))
     }
 
     /// The living forms of `species` and the drawn height of each, youngest first (forests

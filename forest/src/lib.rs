@@ -76,7 +76,7 @@ pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};
 pub use stream::{KeepTrees, Placement, PlacementBlock, PlacementSink, StreamStats, TreesOf};
 pub use succession::{Snapshot, Succession, SuccessionOptions};
-pub use variants::Variant;
+pub use variants::{Variant, tree_at_age};
 pub use variety::{CLUSTER_SHADE_MEAN, cluster_shade, tree_tint, tree_wind};
 pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkStep};
 

@@ -206,6 +206,41 @@ fn form_heights(s: &Species) -> Result<Vec<(u32, f32)>, ForestError> {
         .collect()
 }
 
+/// Of living forms and their drawn heights (youngest first), the one a tree `height` metres
+/// tall is drawn as: the tallest not above 1.1 times `height` (the youngest when every one is
+/// taller), with the scale that makes it `height` tall. `None` for no forms.
+pub(crate) fn pick_live_form(heights: &[(u32, f32)], height: f32) -> Option<(u32, f32)> {
+    let k = heights
+        .iter()
+        .rposition(|&(_, h)| h <= 1.1 * height)
+        .unwrap_or(0);
+    let &(generations, drawn) = heights.get(k)?;
+    Some((generations, height / drawn))
+}
+
+/// How a single living tree of `species` at `age` years is drawn, as a forest of every age
+/// draws it (without building any cache): the generation its grammar is derived to, and the
+/// scale that brings that tree to its height on the species' height curve
+/// ([`Life::height`](crate::Life::height)).
+///
+/// ```
+/// use sylva_forest::{Species, tree_at_age};
+///
+/// let oak = Species::from_preset("kenwood-leafy", 4)?;
+/// let (young, _) = tree_at_age(&oak, 2.0)?;
+/// let (old, scale) = tree_at_age(&oak, 300.0)?;
+/// assert!(young < old && old == 4);
+/// assert!(scale > 0.0);
+/// # Ok::<(), sylva_forest::ForestError>(())
+/// ```
+pub fn tree_at_age(species: &Species, age: f32) -> Result<(u32, f32), ForestError> {
+    let heights = form_heights(species)?;
+    let height = species.life.height(age.max(0.0));
+    pick_live_form(&heights, height).ok_or_else(|| ForestError::EmptySpecies {
+        species: species.name.clone(),
+    })
+}
+
 /// 1 to `generations`, or [`MAX_LIVE_FORMS`] of them spread evenly from 1 and ending there.
 pub(crate) fn live_generations(generations: u32) -> Vec<u32> {
     let g = generations.max(1);

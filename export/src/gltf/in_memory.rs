@@ -108,17 +108,30 @@ impl InMemory {
 
     /// Writes the document and its buffer as a GLB at `path`, whole or not at all. Returns
     /// the file's size.
-    pub(super) fn write(mut self, path: &Path) -> Result<usize, ExportError> {
+    pub(super) fn write(self, path: &Path) -> Result<usize, ExportError> {
+        let (header, bin) = self.chunks()?;
+        let mut file = AtomicFile::create(path)?;
+        file.put(&header)?;
+        file.put(&bin)?;
+        file.commit()?;
+        Ok(header.len() + bin.len())
+    }
+
+    /// The document and its buffer as one GLB in memory.
+    pub(super) fn into_bytes(self) -> Result<Vec<u8>, ExportError> {
+        let (mut header, bin) = self.chunks()?;
+        header.extend_from_slice(&bin);
+        Ok(header)
+    }
+
+    /// The GLB's header and JSON chunk, and its buffer (the BIN chunk's payload).
+    fn chunks(mut self) -> Result<(Vec<u8>, Vec<u8>), ExportError> {
         self.doc.own_buffer(0);
         let text = self.doc.into_json()?;
         // No BIN chunk when there is nothing to put in it.
         let bin = (!self.bin.is_empty()).then_some(self.bin.len());
         let total = 12 + 8 + text.len() + bin.map_or(0, |len| 8 + len);
         let header = glb_header(total, &text, bin)?;
-        let mut file = AtomicFile::create(path)?;
-        file.put(&header)?;
-        file.put(&self.bin)?;
-        file.commit()?;
-        Ok(total)
+        Ok((header, self.bin))
     }
 }

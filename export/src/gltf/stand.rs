@@ -67,7 +67,7 @@ pub fn write_stand_glb(
     }
     let meshes = stand.meshes(species);
     let meshes: Vec<(usize, &Mesh)> = meshes.iter().map(|(s, m)| (*s, m)).collect();
-    write_trees(glb, &meshes, species, path)
+    trees_document(glb, &meshes, species)?.write(path)
 }
 
 /// Writes one tree of `species` (such as [`Species::mesh`] makes) as a binary glTF at `path`:
@@ -84,22 +84,38 @@ pub fn write_stand_glb(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_tree_glb(species: &Species, mesh: &Mesh, path: &Path) -> Result<usize, ExportError> {
-    write_trees(
+    tree_document(species, mesh)?.write(path)
+}
+
+/// The GLB [`write_tree_glb`] writes, as bytes in memory: for a server that sends a tree
+/// without a file.
+///
+/// ```
+/// let birch = sylva_forest::Species::from_preset("sylva-oak", 3)?;
+/// let glb = sylva_export::tree_glb(&birch, &birch.mesh(3, 1)?)?;
+/// assert_eq!(&glb[..4], b"glTF");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn tree_glb(species: &Species, mesh: &Mesh) -> Result<Vec<u8>, ExportError> {
+    tree_document(species, mesh)?.into_bytes()
+}
+
+/// One tree's document, ready to write.
+fn tree_document(species: &Species, mesh: &Mesh) -> Result<InMemory, ExportError> {
+    trees_document(
         InMemory::default(),
         &[(0, mesh)],
         std::slice::from_ref(species),
-        path,
     )
 }
 
 /// Adds `meshes` (each with the index of its species in `species`) to `glb`, one node each,
-/// with the materials and textures of the species they use, and writes the file.
-fn write_trees(
+/// with the materials and textures of the species they use.
+fn trees_document(
     mut glb: InMemory,
     meshes: &[(usize, &Mesh)],
     species: &[Species],
-    path: &Path,
-) -> Result<usize, ExportError> {
+) -> Result<InMemory, ExportError> {
     // Textures: one per leaf shape and per bark pattern in use, with the barks' normal maps.
     let used: Vec<usize> = {
         let mut u: Vec<usize> = meshes.iter().map(|t| t.0).collect();
@@ -138,5 +154,5 @@ fn write_trees(
         .map(|(k, png)| (glb.view(png, None, None), k >= textures.first_bark()))
         .collect();
     glb.doc.images(views);
-    glb.write(path)
+    Ok(glb)
 }

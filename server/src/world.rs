@@ -1,0 +1,197 @@
+//! A kept world made ready to draw tiles: its species' instance caches, its terrain and its
+//! tile scheme, built from its description the way `sylva tiles` builds them from its flags,
+//! so a served tile is the batch writer's tile byte for byte.
+
+use std::collections::VecDeque;
+use std::path::Path;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use sylva::export::{TileScheme, TilesetOptions};
+use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::terrain::glam::Vec2;
+use sylva::terrain::{DiamondSquare, EdgeMode, HeightRange, Heightmap};
+
+use crate::cache::Cache;
+use crate::description::{
+    BUNDLED_SPECIES, MAX_SIDE, SpeciesEntry, TerrainDescription, WorldDescription,
+};
+use crate::error::ApiError;
+use crate::id::WorldId;
+
+/// A world ready to draw.
+#[derive(Debug)]
+pub(crate) struct BuiltWorld {
+    /// Its species' caches and placement.
+    pub(crate) builder: ForestBuilder,
+    /// Its ground.
+    pub(crate) map: Heightmap,
+    /// How it is cut into tiles.
+    pub(crate) scheme: TileScheme,
+    /// Where it stands on the globe.
+    pub(crate) options: TilesetOptions,
+}
+
+/// The species of a description, parsed: bundled ones by name, inline files as written.
+pub(crate) fn species_of(description: &WorldDescription) -> Result<Vec<Species>, ApiError> {
+    let bundled = sylva::presets::species().map_err(|e| ApiError::internal(e.to_string()))?;
+    if description.species.is_empty() {
+        return Ok(bundled);
+    }
+    description
+        .species
+        .iter()
+        .enumerate()
+        .map(|(k, entry)| match entry {
+            SpeciesEntry::Bundled(name) => BUNDLED_SPECIES
+                .iter()
+                .position(|b| b == name)
+                .map(|i| bundled[i].clone())
+                .ok_or_else(|| {
+                    ApiError::bad_request("unknown_species", format!("unknown species '{name}'"))
+                }),
+            SpeciesEntry::Inline { file } => {
+                let name = format!("species[{k}]");
+                Species::parse_file(file, Path::new(&name))
+                    .map_err(|e| ApiError::bad_request("bad_species", e.to_string()))
+            }
+        })
+        .collect()
+}
+
+/// Reads an uploaded heightmap with the description's fallbacks for what the file does not
+/// say. Blocking.
+fn uploaded_terrain(
+    cache: &Cache,
+    id: &str,
+    spacing: Option<f32>,
+    range: Option<[f32; 2]>,
+) -> Result<Heightmap, ApiError> {
+    let id = WorldId::parse(id)
+        .ok_or_else(|| ApiError::bad_request("bad_description", "bad heightmap id"))?;
+    let path = cache.heightmap_path(&id);
+    let file = std::fs::File::open(&path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => ApiError::bad_request(
+            "unknown_heightmap",
+            format!("no heightmap {id}: upload it with POST /heightmaps first"),
+        ),
+        _ => ApiError::internal(format!("heightmap {id}: {e}")),
+    })?;
+    let fallback = match (range, spacing) {
+        (Some([min, max]), Some(s)) => Some((HeightRange { min, max }, s)),
+        _ => None,
+    };
+    Heightmap::read_png16(std::io::BufReader::new(file), fallback)
+        .map_err(|e| ApiError::bad_request("bad_heightmap", format!("heightmap {id}: {e}")))
+}
+
+/// Builds a world (seconds: hero trees for every species). Blocking.
+pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<BuiltWorld, ApiError> {
+    let fail = |e: &(dyn std::error::Error + 'static)| ApiError::generation(e, "the world");
+    let species = species_of(description)?;
+    let (map, side) = match &description.terrain {
+        TerrainDescription::Heightmap {
+            id,
+            spacing,
+            height_range,
+        } => {
+            let map = uploaded_terrain(cache, id, *spacing, *height_range)?;
+            let side = map.spacing() * (map.size() - 1) as f32;
+            if !(side >= 10.0 && side <= MAX_SIDE) {
+                return Err(ApiError::bad_request(
+                    "bad_heightmap",
+                    format!(
+                        "the heightmap covers {side} m: expected 10 to {MAX_SIDE} (set its spacing)"
+                    ),
+                ));
+            }
+            (map, side)
+        }
+        TerrainDescription::Generated {
+            seed,
+            roughness,
+            relief,
+            smoothing,
+        } => {
+            let side = description.area;
+            // The batch tools' default terrain (`sylva::presets::terrain`) when left as is.
+            let mut map = DiamondSquare::new(257)
+                .with_seed(seed.unwrap_or(description.seed))
+                .with_spacing(side / 256.0)
+                .with_roughness(*roughness)
+                .with_amplitude(side * relief)
+                .generate()
+                .map_err(|e| fail(&e))?;
+            if *smoothing > 0.0 {
+                map.smooth(*smoothing, EdgeMode::Mirror)
+                    .map_err(|e| fail(&e))?;
+            }
+            (map, side)
+        }
+    };
+    let mut config = ForestConfig::new(species);
+    config.seed = description.seed;
+    config.budget = description.budget_mb as usize * (1 << 20);
+    let mut builder = ForestBuilder::new(config).map_err(|e| fail(&e))?;
+    if let Some(d) = description.density {
+        builder.density_mut().patch = (10_000.0 / d).sqrt();
+    }
+    let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+    let scheme = TileScheme::new(region, description.tile_size, description.group)
+        .map_err(|e| ApiError::bad_request("bad_description", e.to_string()))?;
+    let [lon, lat] = description.origin;
+    let options = TilesetOptions::default().with_origin((lon, lat));
+    Ok(BuiltWorld {
+        builder,
+        map,
+        scheme,
+        options,
+    })
+}
+
+/// One world's slot: built once, by whichever job needs it first.
+type Slot = Arc<OnceLock<Result<Arc<BuiltWorld>, ApiError>>>;
+
+/// The worlds held in memory, the most recently used last: at most `capacity`, each its
+/// caches (the budget) and terrain, so memory is bounded by the count.
+#[derive(Debug)]
+pub(crate) struct Worlds {
+    slots: Mutex<VecDeque<(WorldId, Slot)>>,
+    capacity: usize,
+}
+
+impl Worlds {
+    /// Room for `capacity` worlds (at least 1).
+    pub(crate) fn new(capacity: usize) -> Worlds {
+        Worlds {
+            slots: Mutex::new(VecDeque::new()),
+            capacity: capacity.max(1),
+        }
+    }
+
+    /// The world `id`, built now unless held (jobs needing it meanwhile wait for the one
+    /// build). Blocking.
+    pub(crate) fn get(&self, id: &WorldId, cache: &Cache) -> Result<Arc<BuiltWorld>, ApiError> {
+        let slot = {
+            let mut slots = self.slots.lock().unwrap_or_else(|p| p.into_inner());
+            let slot = match slots.iter().position(|(k, _)| k == id) {
+                Some(i) => slots.remove(i).map(|(_, s)| s).unwrap_or_default(),
+                None => Slot::default(),
+            };
+            slots.push_back((id.clone(), slot.clone()));
+            while slots.len() > self.capacity {
+                slots.pop_front();
+            }
+            slot
+        };
+        slot.get_or_init(|| {
+            let description = cache.description(id)?;
+            build(&description, cache).map(Arc::new)
+        })
+        .clone()
+    }
+
+    /// How many worlds are held.
+    pub(crate) fn len(&self) -> usize {
+        self.slots.lock().map(|s| s.len()).unwrap_or(0)
+    }
+}
