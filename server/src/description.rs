@@ -146,12 +146,25 @@ impl WorldDescription {
                 bytes.len()
             )));
         }
-        let description: WorldDescription = serde_json::from_slice(bytes).map_err(|e| {
+        let invalid = |m: String| {
             ApiError::bad_request(
                 "bad_description",
-                format!("the world description is not valid: {e}"),
+                format!("the world description is not valid: {m}"),
             )
-        })?;
+        };
+        let mut json = serde_json::Deserializer::from_slice(bytes);
+        let description: WorldDescription =
+            serde_path_to_error::deserialize(&mut json).map_err(|e| {
+                let at = e.path().to_string();
+                let field = if at == "." {
+                    String::new()
+                } else {
+                    format!("{at}: ")
+                };
+                invalid(format!("{field}{}", e.inner()))
+            })?;
+        // Nothing may follow the description but white space.
+        json.end().map_err(|e| invalid(e.to_string()))?;
         description.check()?;
         Ok(description)
     }

@@ -4,9 +4,7 @@
 use std::sync::Arc;
 
 use axum::Json;
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
+use axum::extract::{Request, State};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
@@ -17,7 +15,6 @@ use crate::cache::write_whole;
 use crate::error::ApiError;
 use crate::id::WorldId;
 use crate::state::Server;
-use crate::worlds::body_error;
 
 /// Most bytes an upload may have.
 pub const MAX_HEIGHTMAP_BYTES: usize = 64 << 20;
@@ -58,9 +55,9 @@ fn check(bytes: &[u8]) -> Result<(), ApiError> {
 /// `POST /heightmaps`: answers `{"id": ...}` (201).
 pub(crate) async fn upload(
     State(server): State<Arc<Server>>,
-    body: Result<Bytes, BytesRejection>,
+    request: Request,
 ) -> Result<Response, ApiError> {
-    let body = body.map_err(body_error)?;
+    let body = crate::body::read(request, MAX_HEIGHTMAP_BYTES).await?;
     let id = WorldId::of(&Sha256::digest(&body));
     let path = server.cache.heightmap_path(&id);
     if !tokio::fs::try_exists(&path).await.unwrap_or(false) {

@@ -29,6 +29,7 @@
 //! # Ok(()) }
 //! ```
 
+mod body;
 mod cache;
 mod description;
 mod error;
@@ -47,11 +48,12 @@ use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
 use axum::Router;
-use axum::extract::{DefaultBodyLimit, Request, State};
+use axum::extract::{Request, State};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 
+pub use body::BODY_TIMEOUT;
 pub use cache::{Cache, GENERATOR};
 pub use description::{
     BUNDLED_SPECIES, MAX_DESCRIPTION_BYTES, MAX_SIDE, MAX_SPECIES, SpeciesEntry,
@@ -69,19 +71,13 @@ pub fn router(server: Arc<Server>) -> Router {
         .route("/", get(page::page))
         .route("/status", get(page::status))
         .route("/modules/{*path}", get(page::module))
-        .route(
-            "/worlds",
-            post(worlds::create).layer(DefaultBodyLimit::max(MAX_DESCRIPTION_BYTES)),
-        )
+        .route("/worlds", post(worlds::create))
         .route("/worlds/{id}", get(worlds::description))
         .route("/worlds/{id}/tileset.json", get(worlds::tileset))
         .route("/worlds/{id}/shared.bin", get(worlds::shared))
         .route("/worlds/{id}/impostors/{file}", get(worlds::impostor))
         .route("/worlds/{id}/tiles/{tile}", get(worlds::tile))
-        .route(
-            "/heightmaps",
-            post(heightmaps::upload).layer(DefaultBodyLimit::max(MAX_HEIGHTMAP_BYTES)),
-        )
+        .route("/heightmaps", post(heightmaps::upload))
         .route("/trees/{species}", get(trees::tree))
         .fallback(unknown_route)
         .layer(middleware::from_fn_with_state(server.clone(), admit))

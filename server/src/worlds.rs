@@ -5,9 +5,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use axum::Json;
-use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
-use axum::extract::{Path, State};
+use axum::extract::{Path, Request, State};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
@@ -17,26 +15,18 @@ use sylva::forest::Rect;
 use sylva::terrain::glam::Vec2;
 
 use crate::cache::GENERATOR;
-use crate::description::{TerrainDescription, WorldDescription};
+use crate::description::{MAX_DESCRIPTION_BYTES, TerrainDescription, WorldDescription};
 use crate::error::ApiError;
 use crate::files;
 use crate::id::WorldId;
 use crate::state::Server;
 
-/// Answers a body the extractor refused (too large, unreadable) in JSON.
-pub(crate) fn body_error(r: BytesRejection) -> ApiError {
-    match r.status() {
-        StatusCode::PAYLOAD_TOO_LARGE => ApiError::too_large(r.body_text()),
-        _ => ApiError::bad_request("bad_body", r.body_text()),
-    }
-}
-
 /// `POST /worlds`: keeps a world description, answers its id and URLs (201).
 pub(crate) async fn create(
     State(server): State<Arc<Server>>,
-    body: Result<Bytes, BytesRejection>,
+    request: Request,
 ) -> Result<Response, ApiError> {
-    let body = body.map_err(body_error)?;
+    let body = crate::body::read(request, MAX_DESCRIPTION_BYTES).await?;
     let description = WorldDescription::parse(&body)?;
     // Inline species are parsed now, so a mistake in one is this answer's, with its line.
     crate::world::species_of(&description)?;

@@ -1,0 +1,290 @@
+//! The server as a client sees it: kept worlds, the batch writer's bytes, caching headers and
+//! ranges, one tree, and every kind of bad request answered with a 4xx in JSON.
+
+mod common;
+
+use common::{Client, SMALL_WORLD, options, scratch, start, world};
+use hyper::{Method, StatusCode};
+use sylva_server::{MAX_DESCRIPTION_BYTES, WorldDescription};
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_served_world_is_the_batch_writers_world() {
+    let server = start(options(scratch("batch"))).await;
+    let id = world(server.address, SMALL_WORLD).await;
+    // Posting it again, written otherwise, names the same world.
+    let again = world(server.address, &SMALL_WORLD.replace("200", "200.0")).await;
+    assert_eq!(id, again);
+    let mut c = Client::connect(server.address).await;
+    let description = c.get(&format!("/worlds/{id}")).await;
+    assert_eq!(description.status, StatusCode::OK);
+    assert_eq!(description.json()["area"], 200.0);
+
+    // The batch writer's world from the same description.
+    let parsed = WorldDescription::parse(SMALL_WORLD.as_bytes()).unwrap();
+    let batch = scratch("batch-out");
+    let species: Vec<_> = sylva::presets::species()
+        .unwrap()
+        .into_iter()
+        .filter(|s| s.name == "birch")
+        .collect();
+    let mut config = sylva::forest::ForestConfig::new(species);
+    config.seed = parsed.seed;
+    config.budget = 4 << 20;
+    let builder = sylva::forest::ForestBuilder::new(config).unwrap();
+    let map = sylva::presets::terrain(parsed.seed, 200.0).unwrap();
+    let region = sylva::forest::Rect::new(
+        sylva::terrain::glam::Vec2::ZERO,
+        sylva::terrain::glam::Vec2::splat(200.0),
+    );
+    let scheme = sylva::export::TileScheme::new(region, 50.0, 2).unwrap();
+    sylva::export::write_tileset(
+        &builder,
+        &map,
+        &scheme,
+        &batch,
+        &sylva::export::TilesetOptions::default(),
+    )
+    .unwrap();
+    for tile in ["f_1_2", "c_1_0"] {
+        sylva::export::write_tile(&builder, &map, &scheme, tile.parse().unwrap(), &batch).unwrap();
+    }
+    for (url, file) in [
+        ("tileset.json", "tileset.json"),
+        ("shared.bin", "shared.bin"),
+        ("impostors/variant_0.png", "impostors/variant_0.png"),
+        ("tiles/f_1_2.glb", "tiles/f_1_2.glb"),
+        ("tiles/c_1_0.glb", "tiles/c_1_0.glb"),
+    ] {
+        let a = c.get(&format!("/worlds/{id}/{url}")).await;
+        assert_eq!(
+            a.status,
+            StatusCode::OK,
+            "{url}: {}",
+            String::from_utf8_lossy(&a.body)
+        );
+        assert_eq!(
+            a.body,
+            std::fs::read(batch.join(file)).unwrap(),
+            "{url} differs from the batch writer's"
+        );
+        assert_eq!(
+            a.headers["cache-control"],
+            "public, max-age=31536000, immutable"
+        );
+    }
+    server.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn etags_and_ranges_answer_as_http_says() {
+    let server = start(options(scratch("ranges"))).await;
+    let id = world(server.address, SMALL_WORLD).await;
+    let mut c = Client::connect(server.address).await;
+    let path = format!("/worlds/{id}/tiles/f_0_0.glb");
+    let whole = c.get(&path).await;
+    assert_eq!(whole.status, StatusCode::OK);
+    assert_eq!(&whole.body[..4], b"glTF");
+    assert_eq!(whole.headers["content-type"], "model/gltf-binary");
+    let tag = whole.headers["etag"].to_str().unwrap().to_owned();
+    let len = whole.body.len();
+
+    let cached = c
+        .send(Method::GET, &path, &[("if-none-match", &tag)], vec![])
+        .await
+        .unwrap();
+    assert_eq!(cached.status, StatusCode::NOT_MODIFIED);
+    assert!(cached.body.is_empty());
+
+    let part = c
+        .send(Method::GET, &path, &[("range", "bytes=12-19")], vec![])
+        .await
+        .unwrap();
+    assert_eq!(part.status, StatusCode::PARTIAL_CONTENT);
+    assert_eq!(part.body, whole.body[12..20]);
+    assert_eq!(
+        part.headers["content-range"],
+        format!("bytes 12-19/{len}").as_str()
+    );
+    let tail = c
+        .send(Method::GET, &path, &[("range", "bytes=-4")], vec![])
+        .await
+        .unwrap();
+    assert_eq!(tail.body, whole.body[len - 4..]);
+    let past = c
+        .send(
+            Method::GET,
+            &path,
+            &[("range", &format!("bytes={len}-"))],
+            vec![],
+        )
+        .await
+        .unwrap();
+    assert_eq!(past.status, StatusCode::RANGE_NOT_SATISFIABLE);
+    assert_eq!(
+        past.headers["content-range"],
+        format!("bytes */{len}").as_str()
+    );
+    server.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn one_tree_at_an_age() {
+    let server = start(options(scratch("trees"))).await;
+    let mut c = Client::connect(server.address).await;
+    let young = c.get("/trees/birch.glb?seed=3&age=8").await;
+    let old = c.get("/trees/birch.glb?seed=3&age=80").await;
+    for a in [&young, &old] {
+        assert_eq!(
+            a.status,
+            StatusCode::OK,
+            "{}",
+            String::from_utf8_lossy(&a.body)
+        );
+        assert_eq!(&a.body[..4], b"glTF");
+    }
+    // An older tree is drawn from a later generation: more geometry.
+    assert!(
+        old.body.len() > young.body.len(),
+        "{} <= {}",
+        old.body.len(),
+        young.body.len()
+    );
+    // The same URL is the same bytes (and its tag), from the store.
+    let again = c.get("/trees/birch.glb?seed=3&age=80").await;
+    assert_eq!(again.body, old.body);
+    assert_eq!(again.headers["etag"], old.headers["etag"]);
+    server.stop().await;
+}
+
+/// Every request here is the client's mistake: each must be a 4xx with a JSON error, never
+/// a 5xx, and the server must go on serving.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_requests_are_4xx_in_json() {
+    let server = start(options(scratch("bad"))).await;
+    let id = world(server.address, SMALL_WORLD).await;
+    let mut c = Client::connect(server.address).await;
+    let big = format!(
+        "{{\"species\": [{}]}}",
+        vec!["\"oak\""; MAX_DESCRIPTION_BYTES / 6].join(",")
+    );
+    let deep = format!("{}{}", "[".repeat(100_000), "]".repeat(100_000));
+    let posts: Vec<(&str, Vec<u8>, u16)> = vec![
+        ("/worlds", b"{\"area\": ".to_vec(), 400),
+        ("/worlds", b"not json".to_vec(), 400),
+        ("/worlds", vec![0xff, 0xfe, 0x00], 400),
+        ("/worlds", deep.into_bytes(), 400),
+        ("/worlds", big.into_bytes(), 413),
+        ("/worlds", br#"{"species": ["baobab"]}"#.to_vec(), 400),
+        (
+            "/worlds",
+            br#"{"species": [{"file": "grammar: nonsense ((("}]}"#.to_vec(),
+            400,
+        ),
+        ("/worlds", br#"{"area": 1e12}"#.to_vec(), 400),
+        ("/worlds", br#"{"tile_size": 0.001}"#.to_vec(), 400),
+        (
+            "/worlds",
+            br#"{"seed": 123456789012345678901234567890}"#.to_vec(),
+            400,
+        ),
+        (
+            "/worlds",
+            br#"{"terrain": {"heightmap": {"id": "0123456789abcdef0123456789abcdef"}}}"#.to_vec(),
+            400,
+        ),
+        (
+            "/worlds",
+            br#"{"terrain": {"heightmap": {"id": "../../../etc/passwd"}}}"#.to_vec(),
+            400,
+        ),
+        ("/heightmaps", b"GIF89a not a png".to_vec(), 400),
+    ];
+    for (path, body, want) in posts {
+        let shown = String::from_utf8_lossy(&body[..body.len().min(60)]).into_owned();
+        let a = c.post(path, &body).await;
+        assert_eq!(
+            a.status.as_u16(),
+            want,
+            "POST {path} {shown}: {}",
+            String::from_utf8_lossy(&a.body)
+        );
+        assert!(a.json()["message"].is_string(), "POST {path} {shown}");
+    }
+    let w = format!("/worlds/{id}");
+    let long = "9".repeat(5000);
+    let gets = [
+        (format!("{w}/tiles/f_99_0.glb"), 404),
+        (format!("{w}/tiles/c_0_4294967295.glb"), 404),
+        (format!("{w}/tiles/f_{long}_0.glb"), 404),
+        (format!("{w}/tiles/x_0_0.glb"), 404),
+        (format!("{w}/tiles/f_0_0"), 404),
+        (
+            format!("{w}/tiles/..%2F..%2F..%2Fdescriptions%2F{id}.json"),
+            404,
+        ),
+        (format!("{w}/impostors/..%2Fshared.bin"), 404),
+        (format!("{w}/impostors/variant_99999999999.png"), 404),
+        (
+            "/worlds/..%2F..%2Fetc%2Fpasswd/tileset.json".to_string(),
+            404,
+        ),
+        (
+            "/worlds/ffffffffffffffffffffffffffffffff/tileset.json".to_string(),
+            404,
+        ),
+        ("/worlds/ffffffffffffffffffffffffffffffff".to_string(), 404),
+        ("/worlds/%00/tiles/f_0_0.glb".to_string(), 404),
+        ("/modules/..%2F..%2FCargo.toml".to_string(), 404),
+        ("/modules/three/../../Cargo.toml".to_string(), 404),
+        ("/trees/baobab.glb".to_string(), 404),
+        ("/trees/..%2Fbirch.glb".to_string(), 404),
+        (
+            "/trees/birch.glb?seed=999999999999999999999999999999".to_string(),
+            400,
+        ),
+        ("/trees/birch.glb?age=1e300".to_string(), 400),
+        ("/trees/birch.glb?age=-5".to_string(), 400),
+        (format!("/trees/birch.glb?seed={long}"), 400),
+        ("/trees/birch.glb?generations=100000".to_string(), 400),
+        ("/no/such/endpoint".to_string(), 404),
+    ];
+    for (path, want) in gets {
+        let a = c.get(&path).await;
+        let shown: String = path.chars().take(90).collect();
+        assert_eq!(
+            a.status.as_u16(),
+            want,
+            "GET {shown}: {}",
+            String::from_utf8_lossy(&a.body)
+        );
+        assert!(a.json()["message"].is_string(), "GET {shown}");
+    }
+    // A body declared far over the limit is refused from its head, before it is read.
+    let answer = head_only(server.address, "POST /worlds", 5 << 30).await;
+    assert!(answer.starts_with("HTTP/1.1 413"), "{answer}");
+    let answer = head_only(server.address, "POST /heightmaps", 1 << 40).await;
+    assert!(answer.starts_with("HTTP/1.1 413"), "{answer}");
+    // Wrong methods are refused too (axum's 405).
+    let a = c.send(Method::DELETE, &w, &[], vec![]).await.unwrap();
+    assert_eq!(a.status, StatusCode::METHOD_NOT_ALLOWED);
+    // And the server still serves.
+    assert_eq!(
+        c.get(&format!("{w}/tiles/f_0_0.glb")).await.status,
+        StatusCode::OK
+    );
+    server.stop().await;
+}
+
+/// Sends a request's head declaring `length` bytes of body, sends none, and reads the answer.
+async fn head_only(address: std::net::SocketAddr, request: &str, length: u64) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let mut stream = tokio::net::TcpStream::connect(address).await.unwrap();
+    let head = format!("{request} HTTP/1.1\r\nhost: test\r\ncontent-length: {length}\r\n\r\n");
+    stream.write_all(head.as_bytes()).await.unwrap();
+    let mut answer = vec![0; 4096];
+    let n = tokio::time::timeout(std::time::Duration::from_secs(10), stream.read(&mut answer))
+        .await
+        .expect("no answer in 10 s")
+        .unwrap();
+    String::from_utf8_lossy(&answer[..n]).into_owned()
+}
