@@ -1,8 +1,11 @@
 //! A world description: the JSON a client posts to make a world, checked, completed with
 //! defaults and written back in one canonical form whose hash is the world's id.
 
+use std::path::Path;
+
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
+use sylva::forest::Species;
 
 use crate::error::ApiError;
 use crate::id::WorldId;
@@ -266,6 +269,44 @@ impl WorldDescription {
             }
         }
         Ok(())
+    }
+
+    /// The world's species, parsed: the bundled ones by name (all five for none), inline
+    /// files as written (a mistake in one is a 400 with its line and column).
+    ///
+    /// ```
+    /// use sylva_server::WorldDescription;
+    /// let d = WorldDescription::parse(br#"{"species": ["pine", "oak"]}"#)?;
+    /// let names: Vec<String> = d.species()?.into_iter().map(|s| s.name).collect();
+    /// assert_eq!(names, ["pine", "oak"]);
+    /// # Ok::<(), sylva_server::ApiError>(())
+    /// ```
+    pub fn species(&self) -> Result<Vec<Species>, ApiError> {
+        let bundled = sylva::presets::species().map_err(|e| ApiError::internal(e.to_string()))?;
+        if self.species.is_empty() {
+            return Ok(bundled);
+        }
+        self.species
+            .iter()
+            .enumerate()
+            .map(|(k, entry)| match entry {
+                SpeciesEntry::Bundled(name) => BUNDLED_SPECIES
+                    .iter()
+                    .position(|b| b == name)
+                    .map(|i| bundled[i].clone())
+                    .ok_or_else(|| {
+                        ApiError::bad_request(
+                            "unknown_species",
+                            format!("unknown species '{name}'"),
+                        )
+                    }),
+                SpeciesEntry::Inline { file } => {
+                    let name = format!("species[{k}]");
+                    Species::parse_file(file, Path::new(&name))
+                        .map_err(|e| ApiError::bad_request("bad_species", e.to_string()))
+                }
+            })
+            .collect()
     }
 
     /// The canonical form: compact JSON with every field, in a fixed order, numbers as

@@ -103,10 +103,18 @@ impl ServerOptions {
     }
 }
 
+/// The kept trees by key, their keys oldest first, and their bytes.
+#[derive(Debug, Default)]
+struct Kept {
+    trees: HashMap<String, Arc<Vec<u8>>>,
+    order: VecDeque<String>,
+    bytes: usize,
+}
+
 /// Single trees' GLBs, the most recently made kept within a byte budget.
 #[derive(Debug, Default)]
 pub(crate) struct TreeStore {
-    inner: Mutex<(HashMap<String, Arc<Vec<u8>>>, VecDeque<String>, usize)>,
+    inner: Mutex<Kept>,
     budget: usize,
 }
 
@@ -121,7 +129,7 @@ impl TreeStore {
 
     /// The tree under `key`, if kept.
     pub(crate) fn get(&self, key: &str) -> Option<Arc<Vec<u8>>> {
-        self.inner.lock().ok()?.0.get(key).cloned()
+        self.inner.lock().ok()?.trees.get(key).cloned()
     }
 
     /// Keeps `glb` under `key`, dropping the oldest beyond the budget.
@@ -129,7 +137,11 @@ impl TreeStore {
         let Ok(mut inner) = self.inner.lock() else {
             return;
         };
-        let (map, order, bytes) = &mut *inner;
+        let Kept {
+            trees: map,
+            order,
+            bytes,
+        } = &mut *inner;
         *bytes += glb.len();
         if let Some(old) = map.insert(key.clone(), Arc::new(glb)) {
             *bytes -= old.len();
@@ -147,7 +159,7 @@ impl TreeStore {
 
     /// Bytes kept.
     pub(crate) fn bytes(&self) -> usize {
-        self.inner.lock().map(|i| i.2).unwrap_or(0)
+        self.inner.lock().map(|i| i.bytes).unwrap_or(0)
     }
 }
 

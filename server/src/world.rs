@@ -3,18 +3,15 @@
 //! so a served tile is the batch writer's tile byte for byte.
 
 use std::collections::VecDeque;
-use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use sylva::export::{TileScheme, TilesetOptions};
-use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::forest::{ForestBuilder, ForestConfig, Rect};
 use sylva::terrain::glam::Vec2;
 use sylva::terrain::{DiamondSquare, EdgeMode, HeightRange, Heightmap};
 
 use crate::cache::Cache;
-use crate::description::{
-    BUNDLED_SPECIES, MAX_SIDE, SpeciesEntry, TerrainDescription, WorldDescription,
-};
+use crate::description::{MAX_SIDE, TerrainDescription, WorldDescription};
 use crate::error::ApiError;
 use crate::id::WorldId;
 
@@ -29,33 +26,6 @@ pub(crate) struct BuiltWorld {
     pub(crate) scheme: TileScheme,
     /// Where it stands on the globe.
     pub(crate) options: TilesetOptions,
-}
-
-/// The species of a description, parsed: bundled ones by name, inline files as written.
-pub(crate) fn species_of(description: &WorldDescription) -> Result<Vec<Species>, ApiError> {
-    let bundled = sylva::presets::species().map_err(|e| ApiError::internal(e.to_string()))?;
-    if description.species.is_empty() {
-        return Ok(bundled);
-    }
-    description
-        .species
-        .iter()
-        .enumerate()
-        .map(|(k, entry)| match entry {
-            SpeciesEntry::Bundled(name) => BUNDLED_SPECIES
-                .iter()
-                .position(|b| b == name)
-                .map(|i| bundled[i].clone())
-                .ok_or_else(|| {
-                    ApiError::bad_request("unknown_species", format!("unknown species '{name}'"))
-                }),
-            SpeciesEntry::Inline { file } => {
-                let name = format!("species[{k}]");
-                Species::parse_file(file, Path::new(&name))
-                    .map_err(|e| ApiError::bad_request("bad_species", e.to_string()))
-            }
-        })
-        .collect()
 }
 
 /// Reads an uploaded heightmap with the description's fallbacks for what the file does not
@@ -87,7 +57,7 @@ fn uploaded_terrain(
 /// Builds a world (seconds: hero trees for every species). Blocking.
 pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<BuiltWorld, ApiError> {
     let fail = |e: &(dyn std::error::Error + 'static)| ApiError::generation(e, "the world");
-    let species = species_of(description)?;
+    let species = description.species()?;
     let (map, side) = match &description.terrain {
         TerrainDescription::Heightmap {
             id,
@@ -96,7 +66,7 @@ pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<Bui
         } => {
             let map = uploaded_terrain(cache, id, *spacing, *height_range)?;
             let side = map.spacing() * (map.size() - 1) as f32;
-            if !(side >= 10.0 && side <= MAX_SIDE) {
+            if !(10.0..=MAX_SIDE).contains(&side) {
                 return Err(ApiError::bad_request(
                     "bad_heightmap",
                     format!(

@@ -29,7 +29,7 @@ pub(crate) async fn create(
     let body = crate::body::read(request, MAX_DESCRIPTION_BYTES).await?;
     let description = WorldDescription::parse(&body)?;
     // Inline species are parsed now, so a mistake in one is this answer's, with its line.
-    crate::world::species_of(&description)?;
+    description.species()?;
     if let TerrainDescription::Heightmap { id, .. } = &description.terrain {
         let id = WorldId::parse(id)
             .ok_or_else(|| ApiError::bad_request("bad_description", "bad heightmap id"))?;

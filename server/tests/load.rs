@@ -81,7 +81,7 @@ async fn sixty_four_connections_hold_without_an_error() {
                     .wrapping_mul(6364136223846793005)
                     .wrapping_add(1442695040888963407);
                 let pick = (state >> 33) as usize;
-                let new_tile = (n + connection) % NEW_EVERY == 0;
+                let new_tile = (n + connection).is_multiple_of(NEW_EVERY);
                 let path = if new_tile {
                     let k = fresh.fetch_add(1, Ordering::Relaxed);
                     if k >= ROW * ROW {
@@ -89,7 +89,7 @@ async fn sixty_four_connections_hold_without_an_error() {
                     } else {
                         fine(k)
                     }
-                } else if pick % 8 == 0 {
+                } else if pick.is_multiple_of(8) {
                     format!("/worlds/{id}/tileset.json")
                 } else {
                     fine(pick % warm)
