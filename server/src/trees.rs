@@ -112,10 +112,17 @@ pub(crate) async fn tree(
                     Ok(())
                 })
                 .await?;
-            // Just made; a store too small for it gives it out once without keeping it.
+            // Just made (a store keeps its newest tree whatever its size), unless trees made
+            // since by others pushed it out: then it is drawn again for this answer.
             match server.trees.get(&key) {
                 Some(glb) => glb,
-                None => Arc::new(draw(&server, index, q)?),
+                None => {
+                    let worker = server.clone();
+                    tokio::task::spawn_blocking(move || draw(&worker, index, q))
+                        .await
+                        .map_err(|e| ApiError::internal(e.to_string()))?
+                        .map(Arc::new)?
+                }
             }
         }
     };

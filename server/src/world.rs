@@ -153,11 +153,19 @@ impl Worlds {
             }
             slot
         };
-        slot.get_or_init(|| {
-            let description = cache.description(id)?;
-            build(&description, cache).map(Arc::new)
-        })
-        .clone()
+        let built = slot
+            .get_or_init(|| {
+                let description = cache.description(id)?;
+                build(&description, cache).map(Arc::new)
+            })
+            .clone();
+        if built.is_err() {
+            // A failure is not kept: the next request tries again (a heightmap unreadable
+            // for a moment, say), and a world that cannot be built fails again as fast.
+            let mut slots = self.slots.lock().unwrap_or_else(|p| p.into_inner());
+            slots.retain(|(_, s)| !Arc::ptr_eq(s, &slot));
+        }
+        built
     }
 
     /// How many worlds are held.
