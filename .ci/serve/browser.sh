@@ -2,7 +2,8 @@
 # The browser as the Garden of Eden had it: starts `sylva serve` on a loopback port, posts a
 # world, and has headless Chromium open the server's own page, which streams the world's tiles
 # (generated on first request) with three.js and 3d-tiles-renderer. Checks that fine tiles
-# (branches) drew near the camera and coarse ones (impostor cards) beyond; writes the frame.
+# (branches) drew near the camera and coarse ones (impostor cards) beyond; writes the frame,
+# and one tree of the tree API as serve_tree.glb beside it.
 # usage: .ci/serve/browser.sh SYLVA OUT.png CACHE_DIR [WORLD_JSON [EYE]]
 # Needs Debian's chromium and npm's three and 3d-tiles-renderer in .ci/three/node_modules.
 set -euo pipefail
@@ -35,6 +36,8 @@ if [[ "$title" == *"fine=0 "* || "$title" == *"coarse=0 "* ]]; then
   exit 1
 fi
 test -s "$out" || { echo "the page gave no picture" >&2; exit 1; }
+# One tree from the tree API, beside the picture, for the validator.
+curl -sf -o "$(dirname "$out")/serve_tree.glb" "$base/trees/oak.glb?seed=3&age=40"
 # What the server made for the page: generated on request, kept in the cache.
 echo "tiles generated into the cache: $(ls "$cache"/worlds/*/"$id"/tiles | wc -l)"
 curl -sf "$base/status"; echo

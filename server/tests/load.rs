@@ -14,9 +14,9 @@ use common::{Client, memory_mb, options, scratch, start, world};
 /// Connections held at once.
 const CONNECTIONS: usize = 64;
 /// Fine tiles along a side of the world.
-const ROW: usize = 48;
+const ROW: usize = 96;
 /// One request in this many asks for a tile not generated yet.
-const NEW_EVERY: usize = 16;
+const NEW_EVERY: usize = 8;
 
 /// What one connection saw.
 #[derive(Default)]
@@ -42,10 +42,10 @@ async fn sixty_four_connections_hold_without_an_error() {
         .unwrap_or(3)
         .clamp(1, 120);
     let server = start(options(scratch("load"))).await;
-    // 1.2 km in 25 m tiles: 2,304 fine tiles, enough never asked for to last the run.
+    // 2.4 km in 25 m tiles: 9,216 fine tiles, enough never asked for to last the run.
     let id = world(
         server.address,
-        r#"{"area": 1200, "tile_size": 25, "group": 4, "budget_mb": 8, "species": ["birch", "pine"], "seed": 9}"#,
+        r#"{"area": 2400, "tile_size": 25, "group": 4, "budget_mb": 8, "species": ["birch", "pine"], "seed": 9}"#,
     )
     .await;
     let fine = |k: usize| format!("/worlds/{id}/tiles/f_{}_{}.glb", k % ROW, k / ROW);
