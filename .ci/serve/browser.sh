@@ -4,13 +4,14 @@
 # (generated on first request) with three.js and 3d-tiles-renderer. Checks that fine tiles
 # (branches) drew near the camera and coarse ones (impostor cards) beyond; writes the frame,
 # and one tree of the tree API as serve_tree.glb beside it.
-# usage: .ci/serve/browser.sh SYLVA OUT.png CACHE_DIR [WORLD_JSON [EYE]]
+# usage: .ci/serve/browser.sh SYLVA OUT.png CACHE_DIR [WORLD_JSON [EYE [QUERY]]]
+# EYE is x,y,z,tx,ty,tz in the world's metres (y up); QUERY more page parameters (sse=N).
 # Needs Debian's chromium and npm's three and 3d-tiles-renderer in .ci/three/node_modules.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 sylva="$(realpath "$1")"; out="$(realpath -m "$2")"; cache="$(realpath -m "$3")"
 world="${4:-{\"area\": 1000, \"tile_size\": 100, \"group\": 2\}}"
-eye="${5:-20,40,20,500,0,500}"
+eye="${5:-20,40,20,500,0,500}"; query="${6:-}"
 log="$(mktemp)"; profile="$(mktemp -d)"; page="$(mktemp)"
 "$sylva" serve --port 0 --cache "$cache" --web-modules "$here/../three/node_modules" > "$log" &
 server=$!
@@ -23,7 +24,7 @@ echo "sylva serve at $base, world $id"
 flags=(--headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader --disable-gpu
   --disable-quic --no-first-run --disable-background-networking --disable-component-update
   --disable-sync --user-data-dir="$profile" --window-size=960,540 --virtual-time-budget=900000)
-chromium "${flags[@]}" --dump-dom "$base/?world=$id&check=1&eye=$eye" 2>/dev/null > "$page" || true
+chromium "${flags[@]}" --dump-dom "$base/?world=$id&check=1&eye=$eye${query:+&$query}" 2>/dev/null > "$page" || true
 title=$(grep -o '<title>[^<]*</title>' "$page" || true)
 echo "the page: $title"
 sed -n 's/.*<pre id="picture">data:image\/png;base64,\([^<]*\)<\/pre>.*/\1/p' "$page" | base64 -d > "$out" || true
