@@ -202,7 +202,10 @@ async fn bad_requests_are_4xx_in_json() {
     for (path, body, want) in posts {
         let shown = String::from_utf8_lossy(&body[..body.len().min(60)]).into_owned();
         // A connection per request: one whose body was refused unread is closed after it.
-        let a = Client::connect(server.address).await.post(path, &body).await;
+        let a = Client::connect(server.address)
+            .await
+            .post(path, &body)
+            .await;
         assert_eq!(
             a.status.as_u16(),
             want,
@@ -295,13 +298,24 @@ async fn a_world_on_an_uploaded_heightmap() {
     let server = start(options(scratch("upload"))).await;
     let mut png = Vec::new();
     // 300 m of the default terrain, its range and spacing in the file's sylva chunk.
-    sylva::presets::terrain(4, 300.0).unwrap().write_png16(&mut png).unwrap();
+    sylva::presets::terrain(4, 300.0)
+        .unwrap()
+        .write_png16(&mut png)
+        .unwrap();
     let mut c = Client::connect(server.address).await;
     let up = c.post("/heightmaps", &png).await;
-    assert_eq!(up.status, StatusCode::CREATED, "{}", String::from_utf8_lossy(&up.body));
+    assert_eq!(
+        up.status,
+        StatusCode::CREATED,
+        "{}",
+        String::from_utf8_lossy(&up.body)
+    );
     let heightmap = up.json()["id"].as_str().unwrap().to_owned();
     // The same bytes again: the same id.
-    assert_eq!(c.post("/heightmaps", &png).await.json()["id"], heightmap.as_str());
+    assert_eq!(
+        c.post("/heightmaps", &png).await.json()["id"],
+        heightmap.as_str()
+    );
     let id = world(
         server.address,
         &format!(r#"{{"terrain": {{"heightmap": {{"id": "{heightmap}"}}}}, "tile_size": 100, "group": 2, "budget_mb": 4, "species": ["pine"]}}"#),
@@ -309,7 +323,12 @@ async fn a_world_on_an_uploaded_heightmap() {
     .await;
     // The world is the heightmap's 300 m: three fine tiles a side.
     let tile = c.get(&format!("/worlds/{id}/tiles/f_2_2.glb")).await;
-    assert_eq!(tile.status, StatusCode::OK, "{}", String::from_utf8_lossy(&tile.body));
+    assert_eq!(
+        tile.status,
+        StatusCode::OK,
+        "{}",
+        String::from_utf8_lossy(&tile.body)
+    );
     assert_eq!(&tile.body[..4], b"glTF");
     let outside = c.get(&format!("/worlds/{id}/tiles/f_3_0.glb")).await;
     assert_eq!(outside.status, StatusCode::NOT_FOUND);
@@ -325,7 +344,9 @@ async fn many_asking_for_one_new_tile_get_one_tile() {
     let mut askers = Vec::new();
     for _ in 0..32 {
         let (address, path) = (server.address, path.clone());
-        askers.push(tokio::spawn(async move { Client::connect(address).await.get(&path).await }));
+        askers.push(tokio::spawn(async move {
+            Client::connect(address).await.get(&path).await
+        }));
     }
     let mut bodies = Vec::new();
     for a in askers {
@@ -334,7 +355,11 @@ async fn many_asking_for_one_new_tile_get_one_tile() {
         bodies.push(answer.body);
     }
     assert!(bodies.windows(2).all(|w| w[0] == w[1]));
-    let status = Client::connect(server.address).await.get("/status").await.json();
+    let status = Client::connect(server.address)
+        .await
+        .get("/status")
+        .await
+        .json();
     assert_eq!(status["generations_queued"], 0);
     server.stop().await;
 }
