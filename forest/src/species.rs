@@ -208,6 +208,36 @@ impl Species {
 
     /// Parses species-file text; `path` names the file in errors and anchors relative paths.
     pub fn parse_file(text: &str, path: &Path) -> Result<Self, ForestError> {
+        Self::parse_species(text, path, None)
+    }
+
+    /// Parses species-file text that stands on no disk (sent to a server, say): its grammar is
+    /// a preset or, whatever name it gives, the grammar text `grammar`; no file is ever read.
+    /// `path` names the file in errors.
+    ///
+    /// ```
+    /// use std::path::Path;
+    /// use sylva_forest::Species;
+    ///
+    /// let text = "name: bush\ngrammar: bush.lsys\ngenerations: 3\n";
+    /// let grammar = "axiom: A\nA -> F[+A][-A]\n";
+    /// let bush = Species::parse_detached(text, Path::new("bush"), Some(grammar))?;
+    /// assert_eq!(bush.name, "bush");
+    /// // Without the grammar's text, a grammar that is not a preset is an error, not a read.
+    /// assert!(Species::parse_detached("grammar: /etc/passwd", Path::new("x"), None).is_err());
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn parse_detached(
+        text: &str,
+        path: &Path,
+        grammar: Option<&str>,
+    ) -> Result<Self, ForestError> {
+        Self::parse_species(text, path, Some(grammar.unwrap_or("")))
+    }
+
+    /// Parses species-file text; a grammar that is not a preset is read from the file it names
+    /// (`detached` `None`) or is the given text (`Some`, empty when none was given).
+    fn parse_species(text: &str, path: &Path, detached: Option<&str>) -> Result<Self, ForestError> {
         // Editors on Windows may start the file with a byte-order mark; it is not text.
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let err = |line: usize, column: usize, message: String| ForestError::SpeciesFile {
@@ -248,6 +278,38 @@ impl Species {
                 Some(p.angle as f32),
                 TurtleOptions::for_preset(p).tropism,
             ),
+            None if detached.is_some() => {
+                let given = detached.unwrap_or("");
+                if given.trim().is_empty() {
+                    return Err(err(
+                        *gl,
+                        *gc,
+                        format!(
+                            "grammar '{grammar_ref}' is not a preset, and no grammar text came with the species"
+                        ),
+                    ));
+                }
+                if given.len() > sylva_lsys::MAX_GRAMMAR_BYTES {
+                    return Err(err(
+                        *gl,
+                        *gc,
+                        format!(
+                            "the grammar text is over {} bytes",
+                            sylva_lsys::MAX_GRAMMAR_BYTES
+                        ),
+                    ));
+                }
+                // In the dialect the text declares, as a grammar file's.
+                let g = given
+                    .parse::<LSystem>()
+                    .map_err(|error| ForestError::SpeciesFile {
+                        file: PathBuf::from(format!("{} (grammar)", path.display())),
+                        line: error.location.line,
+                        column: error.location.column,
+                        message: error.message,
+                    })?;
+                (g, None, None)
+            }
             None => {
                 let gpath: PathBuf = path.parent().unwrap_or(Path::new(".")).join(grammar_ref);
                 let g = LSystem::from_file(&gpath).map_err(|e| match e {

@@ -60,10 +60,14 @@ pub struct WorldDescription {
 pub enum SpeciesEntry {
     /// A bundled species by name: oak, birch, spruce, pine or hazel.
     Bundled(String),
-    /// A species file's text (the format of `Species::parse_file`).
+    /// A species file's text (the format of `Species::parse_file`), and the text of its
+    /// grammar unless it names a preset: nothing is read from the server's disk.
     Inline {
         /// The species file.
         file: String,
+        /// The grammar file's text, for a species whose `grammar:` is not a preset.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        grammar: Option<String>,
     },
 }
 
@@ -272,7 +276,8 @@ impl WorldDescription {
     }
 
     /// The world's species, parsed: the bundled ones by name (all five for none), inline
-    /// files as written (a mistake in one is a 400 with its line and column).
+    /// files as written with their grammars (a mistake in one is a 400 with its line and
+    /// column); an inline species never reads a file.
     ///
     /// ```
     /// use sylva_server::WorldDescription;
@@ -300,9 +305,9 @@ impl WorldDescription {
                             format!("unknown species '{name}'"),
                         )
                     }),
-                SpeciesEntry::Inline { file } => {
+                SpeciesEntry::Inline { file, grammar } => {
                     let name = format!("species[{k}]");
-                    Species::parse_file(file, Path::new(&name))
+                    Species::parse_detached(file, Path::new(&name), grammar.as_deref())
                         .map_err(|e| ApiError::bad_request("bad_species", e.to_string()))
                 }
             })

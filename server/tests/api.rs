@@ -180,6 +180,23 @@ async fn bad_requests_are_4xx_in_json() {
             br#"{"species": [{"file": "grammar: nonsense ((("}]}"#.to_vec(),
             400,
         ),
+        // An inline species never reads the server's disk.
+        (
+            "/worlds",
+            br#"{"species": [{"file": "grammar: /etc/passwd"}]}"#.to_vec(),
+            400,
+        ),
+        (
+            "/worlds",
+            br#"{"species": [{"file": "grammar: ../../Cargo.toml"}]}"#.to_vec(),
+            400,
+        ),
+        (
+            "/worlds",
+            br#"{"species": [{"file": "grammar: x.lsys", "grammar": "axiom: A\nA -> B("}]}"#
+                .to_vec(),
+            400,
+        ),
         ("/worlds", br#"{"area": 1e12}"#.to_vec(), 400),
         ("/worlds", br#"{"tile_size": 0.001}"#.to_vec(), 400),
         (
@@ -361,5 +378,27 @@ async fn many_asking_for_one_new_tile_get_one_tile() {
         .await
         .json();
     assert_eq!(status["generations_queued"], 0);
+    server.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_world_of_an_inline_species_with_its_grammar() {
+    let server = start(options(scratch("inline"))).await;
+    let species = r#"name: bush\ngrammar: bush.lsys\ngenerations: 4\nleaves: A\n"#;
+    let grammar = r#"axiom: A\nA -> F[+A][-A]F[&A]A\n"#;
+    let id = world(
+        server.address,
+        &format!(r#"{{"area": 100, "tile_size": 50, "group": 2, "budget_mb": 2, "species": [{{"file": "{species}", "grammar": "{grammar}"}}]}}"#),
+    )
+    .await;
+    let mut c = Client::connect(server.address).await;
+    let tile = c.get(&format!("/worlds/{id}/tiles/f_1_1.glb")).await;
+    assert_eq!(
+        tile.status,
+        StatusCode::OK,
+        "{}",
+        String::from_utf8_lossy(&tile.body)
+    );
+    assert_eq!(&tile.body[..4], b"glTF");
     server.stop().await;
 }
