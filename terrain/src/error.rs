@@ -68,6 +68,32 @@ pub enum TerrainError {
         /// Samples per side of the grid.
         size: usize,
     },
+    /// An elevation model claims more samples than are read.
+    #[error("the elevation model has {what}: more than the limit of {limit}")]
+    TooLarge {
+        /// What it claims.
+        what: String,
+        /// The limit.
+        limit: String,
+    },
+    /// An elevation model's file is not what its format says.
+    #[error("{format}: {message}")]
+    Dem {
+        /// The format.
+        format: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// An ESRI ASCII grid is malformed.
+    #[error("ASCII grid, line {line}, column {column}: {message}")]
+    AsciiGrid {
+        /// Line, from 1.
+        line: usize,
+        /// Column, from 1.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
     /// Reading or writing the data failed.
     #[error("reading or writing heights: {0}")]
     Io(#[source] Arc<std::io::Error>),

@@ -28,6 +28,7 @@
 //!
 //! - `serde`: `Serialize`/`Deserialize` for [`HeightRange`].
 
+pub mod dem;
 mod diamond_square;
 mod erosion;
 mod error;
