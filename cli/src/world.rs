@@ -5,10 +5,10 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use clap::Args;
-use sylva::base::file::FileError;
 use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::terrain::Heightmap;
+use sylva::terrain::dem::{ElevationModel, ReadOptions};
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{HeightRange, Heightmap};
 
 use crate::Failure;
 use crate::progress::{bar, phase};
@@ -22,13 +22,17 @@ pub(crate) struct WorldArgs {
     /// About this many canopy trees: the world's side follows from the patch size.
     #[arg(long, value_name = "N", conflicts_with = "terrain")]
     trees: Option<usize>,
-    /// Your own heightmap: a 16-bit PNG, or a square RAW of little-endian 16-bit samples
-    /// (.raw or .r16, with --spacing and --height-range).
+    /// Your own elevation model, of any size: GeoTIFF, SRTM .hgt, ESRI ASCII grid (.asc),
+    /// 16-bit PNG, or RAW of little-endian 16-bit samples (.raw or .r16, with --height-range,
+    /// and --raw-size unless square). Georeferencing gives the spacing; nodata is filled.
     #[arg(long, value_name = "HEIGHTS")]
     terrain: Option<PathBuf>,
-    /// Metres between the heightmap's samples (for --terrain).
+    /// Metres between the model's samples (for --terrain): overrides the file's.
     #[arg(long, value_name = "M")]
     spacing: Option<f32>,
+    /// Width and height of a RAW model (for --terrain).
+    #[arg(long, value_name = "W,H", value_parser = parse_pair::<usize>)]
+    raw_size: Option<(usize, usize)>,
     /// Heights of the samples 0 and 65535, in metres (for --terrain).
     #[arg(long, value_name = "LO,HI", value_parser = parse_pair::<f32>)]
     height_range: Option<(f32, f32)>,
@@ -111,7 +115,7 @@ impl WorldArgs {
                 .collect::<Result<Vec<_>, _>>()?
         };
         let user_map = match &self.terrain {
-            Some(file) => Some(read_terrain(file, self.spacing, self.height_range)?),
+            Some(file) => Some(read_terrain(self, file, quiet)?),
             None => None,
         };
         let mut config = ForestConfig::new(species);
@@ -125,11 +129,8 @@ impl WorldArgs {
         if let Some(d) = self.density {
             builder.density_mut().patch = (10_000.0 / d).sqrt();
         }
-        let (map, side) = match user_map {
-            Some(map) => {
-                let side = map.spacing() * (map.size() - 1) as f32;
-                (map, side)
-            }
+        let (map, extent) = match user_map {
+            Some((map, extent)) => (map, extent),
             None => {
                 let side = match (self.area, self.trees) {
                     (Some(a), _) => a,
@@ -139,13 +140,15 @@ impl WorldArgs {
                 let (map, _) = phase(quiet, "generating terrain", || {
                     sylva::presets::terrain(self.seed, side)
                 });
-                (map?, side)
+                (map?, [side, side])
             }
         };
+        // A model longer than wide is drawn over its own extent, not the square map's.
+        let side = extent[0].max(extent[1]);
         if let Some(dir) = &self.paint {
             builder = sylva::paint::with_masks(&builder, dir, &map)?;
         }
-        let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
+        let region = Rect::new(Vec2::ZERO, Vec2::new(extent[0], extent[1]));
         if let Some(year) = self.year {
             builder = builder_at_year(&builder, region, year, quiet)?;
         }
@@ -160,52 +163,44 @@ impl WorldArgs {
     }
 }
 
-/// Reads a user's heightmap: a 16-bit PNG, or a square RAW of little-endian 16-bit samples.
+/// Reads a user's elevation model of any size (GeoTIFF, SRTM .hgt, ESRI ASCII grid, 16-bit
+/// PNG or RAW) onto a square heightmap; answers it with the model's own extent.
 fn read_terrain(
+    args: &WorldArgs,
     file: &Path,
-    spacing: Option<f32>,
-    range: Option<(f32, f32)>,
-) -> Result<Heightmap, Failure> {
-    // A 8193 x 8193 map of 16-bit samples is 134 MB; refuse files well beyond any map.
-    const MAX_BYTES: u64 = 512 << 20;
+    quiet: bool,
+) -> Result<(Heightmap, [f32; 2]), Failure> {
     let name = file.display();
-    let size = std::fs::metadata(file).map_err(FileError::at(file))?.len();
-    if size > MAX_BYTES {
-        return Err(Failure::job(format!(
-            "{name}: {size} bytes is more than the limit of {MAX_BYTES}"
+    let options = ReadOptions {
+        spacing: args.spacing,
+        height_range: args.height_range.map(|(lo, hi)| [lo, hi]),
+        raw_size: args.raw_size.map(|(w, h)| [w, h]),
+    };
+    let model =
+        ElevationModel::read(file, &options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    if !model.spacing_from_file && args.spacing.is_none() {
+        return Err(Failure::usage(format!(
+            "{name}: the file does not say how far apart its samples are: give --spacing M"
         )));
     }
-    let fallback = match (range, spacing) {
-        (Some((min, max)), Some(s)) => Some((HeightRange { min, max }, s)),
-        _ => None,
-    };
-    let raw = matches!(
-        file.extension().and_then(|e| e.to_str()),
-        Some("raw" | "r16")
-    );
-    let map = if raw {
-        let (range, spacing) = fallback.ok_or_else(|| {
-            Failure::usage(format!(
-                "{name}: a RAW heightmap needs --height-range LO,HI and --spacing M"
-            ))
-        })?;
-        let bytes = std::fs::read(file).map_err(FileError::at(file))?;
-        Heightmap::from_raw16(&bytes, range, spacing)
-    } else {
-        let f = std::fs::File::open(file).map_err(FileError::at(file))?;
-        Heightmap::read_png16(std::io::BufReader::new(f), fallback)
-    };
-    let map = map.map_err(|e| Failure::job(format!("{name}: {e}")))?;
-    let side = map.spacing() * (map.size() - 1) as f32;
-    if !(side > 10.0 && side <= 20_000.0) {
+    let [x, z] = model.extent();
+    if !(x > 10.0 && z > 10.0 && x <= 20_000.0 && z <= 20_000.0) {
         return Err(Failure::job(format!(
-            "{name}: a {} x {} map at {} m spacing is {side} m across; expected 10 to 20000 m",
-            map.size(),
-            map.size(),
-            map.spacing()
+            "{name}: {} x {} samples at {:.2} x {:.2} m cover {x:.0} x {z:.0} m; a world is 10 to 20000 m a side (--spacing sets the samples' distance)",
+            model.width, model.height, model.spacing[0], model.spacing[1]
         )));
     }
-    Ok(map)
+    if model.nodata > 0 && !quiet {
+        eprintln!(
+            "{name}: {} of {} cells had no data and were filled from their neighbours",
+            model.nodata,
+            model.width * model.height
+        );
+    }
+    let (map, extent) = model
+        .to_heightmap()
+        .map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    Ok((map, extent))
 }
 
 /// The builder drawing the forest over time of `region` in `year`, grown from bare ground

@@ -1,4 +1,5 @@
-//! `POST /heightmaps`: a user's 16-bit PNG heightmap, kept under the SHA-256 of its bytes for
+//! `POST /heightmaps`: a user's elevation model (GeoTIFF, SRTM .hgt, ESRI ASCII grid or 16-bit
+//! PNG, of any size), kept under the SHA-256 of its bytes for
 //! worlds to stand on (`"terrain": {"heightmap": {"id": ...}}`).
 
 use std::sync::Arc;
@@ -9,12 +10,13 @@ use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
 use sha2::{Digest, Sha256};
-use sylva::terrain::{HeightRange, Heightmap};
+use sylva::terrain::dem::{ElevationModel, ReadOptions};
 
 use crate::cache::write_whole;
 use crate::error::ApiError;
 use crate::id::WorldId;
 use crate::state::Server;
+use crate::world::upload_format;
 
 /// Most bytes an upload may have.
 pub const MAX_HEIGHTMAP_BYTES: usize = 64 << 20;
@@ -32,23 +34,35 @@ fn png_size(bytes: &[u8]) -> Option<(u32, u32)> {
     Some((word(16), word(20)))
 }
 
-/// Checks an upload: a PNG no larger than [`MAX_HEIGHTMAP_SIDE`] a side that decodes as a
-/// 16-bit heightmap. Blocking (decoding).
+/// Checks an upload: an elevation model (GeoTIFF, SRTM .hgt, ESRI ASCII grid or 16-bit PNG)
+/// no larger than [`MAX_HEIGHTMAP_SIDE`] a side that decodes whole. Blocking (decoding).
 fn check(bytes: &[u8]) -> Result<(), ApiError> {
-    let (w, h) = png_size(bytes).ok_or_else(|| {
-        ApiError::bad_request("bad_heightmap", "a heightmap is a 16-bit grayscale PNG")
+    let bad = |m: String| ApiError::bad_request("bad_heightmap", m);
+    let format = upload_format(bytes).ok_or_else(|| {
+        bad(
+            "a heightmap is a GeoTIFF, an SRTM .hgt, an ESRI ASCII grid or a 16-bit grayscale PNG"
+                .into(),
+        )
     })?;
-    if w > MAX_HEIGHTMAP_SIDE || h > MAX_HEIGHTMAP_SIDE {
-        return Err(ApiError::bad_request(
-            "bad_heightmap",
-            format!("a {w} x {h} heightmap is larger than {MAX_HEIGHTMAP_SIDE} a side"),
-        ));
+    if let Some((w, h)) = png_size(bytes)
+        && (w > MAX_HEIGHTMAP_SIDE || h > MAX_HEIGHTMAP_SIDE)
+    {
+        return Err(bad(format!(
+            "a {w} x {h} heightmap is larger than {MAX_HEIGHTMAP_SIDE} a side"
+        )));
     }
-    // Decoding with a stand-in range and spacing proves the samples are whole; a world's
-    // own come from the file's sylva chunk or its description.
-    let stand_in = Some((HeightRange { min: 0.0, max: 1.0 }, 1.0));
-    Heightmap::read_png16(std::io::Cursor::new(bytes), stand_in)
-        .map_err(|e| ApiError::bad_request("bad_heightmap", format!("the heightmap: {e}")))?;
+    // A stand-in range for 16-bit samples proves they decode; a world's own comes from the
+    // file or its description.
+    let options = ReadOptions::default().with_height_range(0.0, 1.0);
+    let model = ElevationModel::parse(bytes, format, &options)
+        .map_err(|e| bad(format!("the heightmap: {e}")))?;
+    let side = model.width.max(model.height);
+    if side > MAX_HEIGHTMAP_SIDE as usize {
+        return Err(bad(format!(
+            "a {} x {} heightmap is larger than {MAX_HEIGHTMAP_SIDE} a side",
+            model.width, model.height
+        )));
+    }
     Ok(())
 }
 
@@ -84,6 +98,8 @@ mod tests {
         png.extend_from_slice(&100_000u32.to_be_bytes());
         let e = check(&png).unwrap_err();
         assert!(e.message.contains("100000 x 100000"), "{}", e.message);
+        let asc = b"ncols 3\nnrows 2\ncellsize 10\n1 2 3\n4 5 6\n";
+        check(asc).unwrap();
         assert_eq!(check(b"GIF89a").unwrap_err().code, "bad_heightmap");
         let mut good = Vec::new();
         sylva::presets::terrain(1, 100.0)

@@ -402,3 +402,43 @@ async fn a_world_of_an_inline_species_with_its_grammar() {
     assert_eq!(&tile.body[..4], b"glTF");
     server.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_world_on_a_real_elevation_model() {
+    let server = start(options(scratch("real-dem"))).await;
+    let dems = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../terrain/tests/data/dems");
+    let mut c = Client::connect(server.address).await;
+    for (file, tiles) in [
+        ("west_bijou_escarpment.asc", (7, 5)),
+        ("dem-hills.tiff", (6, 5)),
+    ] {
+        let bytes = std::fs::read(dems.join(file)).unwrap();
+        let up = c.post("/heightmaps", &bytes).await;
+        assert_eq!(
+            up.status,
+            StatusCode::CREATED,
+            "{file}: {}",
+            String::from_utf8_lossy(&up.body)
+        );
+        let heightmap = up.json()["id"].as_str().unwrap().to_owned();
+        let id = world(
+            server.address,
+            &format!(r#"{{"terrain": {{"heightmap": {{"id": "{heightmap}"}}}}, "tile_size": 450, "group": 2, "budget_mb": 4, "species": ["pine"]}}"#),
+        )
+        .await;
+        // The world is the model's own extent, longer east-west than north-south.
+        let (nx, nz) = tiles;
+        let last = c
+            .get(&format!("/worlds/{id}/tiles/f_{}_{}.glb", nx - 1, nz - 1))
+            .await;
+        assert_eq!(
+            last.status,
+            StatusCode::OK,
+            "{file}: {}",
+            String::from_utf8_lossy(&last.body)
+        );
+        let beyond = c.get(&format!("/worlds/{id}/tiles/f_{}_0.glb", nx)).await;
+        assert_eq!(beyond.status, StatusCode::NOT_FOUND, "{file}");
+    }
+    server.stop().await;
+}

@@ -6,12 +6,16 @@ use std::path::PathBuf;
 use sylva_terrain::dem::{ElevationModel, Georeference, ReadOptions};
 
 fn model(name: &str) -> ElevationModel {
-    let path: PathBuf = [env!("CARGO_MANIFEST_DIR"), "tests/data/dems", name].iter().collect();
+    let path: PathBuf = [env!("CARGO_MANIFEST_DIR"), "tests/data/dems", name]
+        .iter()
+        .collect();
     ElevationModel::read(&path, &ReadOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn range(m: &ElevationModel) -> (f32, f32) {
-    m.heights.iter().fold((f32::MAX, f32::MIN), |(lo, hi), &h| (lo.min(h), hi.max(h)))
+    m.heights
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(lo, hi), &h| (lo.min(h), hi.max(h)))
 }
 
 #[test]
@@ -21,8 +25,18 @@ fn srtm_hgt_white_mountains() {
     // Mount Washington is the tile's top.
     assert_eq!(range(&m), (115.0, 1908.0));
     // 3 arc-seconds at 44.5 degrees north.
-    assert!((m.spacing[0] - 66.2).abs() < 0.2 && (m.spacing[1] - 92.6).abs() < 0.2, "{:?}", m.spacing);
-    assert_eq!(m.georeference, Some(Georeference::Geographic { longitude: -72.0, latitude: 45.0 }));
+    assert!(
+        (m.spacing[0] - 66.2).abs() < 0.2 && (m.spacing[1] - 92.6).abs() < 0.2,
+        "{:?}",
+        m.spacing
+    );
+    assert_eq!(
+        m.georeference,
+        Some(Georeference::Geographic {
+            longitude: -72.0,
+            latitude: 45.0
+        })
+    );
     let (map, extent) = m.to_heightmap().unwrap();
     assert_eq!(map.size(), 2049);
     assert!((extent[1] - 1200.0 * m.spacing[1]).abs() < 1.0);
@@ -33,12 +47,18 @@ fn ascii_grids_of_nasadem_and_srtm() {
     let bijou = model("west_bijou_escarpment.asc");
     assert_eq!((bijou.width, bijou.height, bijou.nodata), (129, 67, 0));
     let (lo, hi) = range(&bijou);
-    assert!((1689.0..1691.0).contains(&lo) && (1806.0..1808.0).contains(&hi), "{lo} {hi}");
+    assert!(
+        (1689.0..1691.0).contains(&lo) && (1806.0..1808.0).contains(&hi),
+        "{lo} {hi}"
+    );
     assert!((bijou.spacing[1] - 30.8).abs() < 0.2, "{:?}", bijou.spacing);
     let front = model("front_range_srtmgl3.asc");
     assert_eq!((front.width, front.height), (144, 144));
     let (lo, hi) = range(&front);
-    assert!((2185.0..2187.0).contains(&lo) && (3344.0..3346.0).contains(&hi), "{lo} {hi}");
+    assert!(
+        (2185.0..2187.0).contains(&lo) && (3344.0..3346.0).contains(&hi),
+        "{lo} {hi}"
+    );
     let (map, _) = front.to_heightmap().unwrap();
     assert_eq!(map.size(), 257);
 }
@@ -51,12 +71,18 @@ fn a_float_geotiff_with_nodata_filled() {
     // Filled cells stay within the heights around them.
     assert!(lo >= 137.0 && hi <= 169.0, "{lo} {hi}");
     // 1/3 arc-second at 39.4 degrees north: about 7.9 m by 10.3 m.
-    assert!((m.spacing[0] - 7.95).abs() < 0.1 && (m.spacing[1] - 10.28).abs() < 0.1, "{:?}", m.spacing);
+    assert!(
+        (m.spacing[0] - 7.95).abs() < 0.1 && (m.spacing[1] - 10.28).abs() < 0.1,
+        "{:?}",
+        m.spacing
+    );
     let (map, extent) = m.to_heightmap().unwrap();
     assert_eq!(map.size(), 513);
     assert!(extent[0] > extent[1]);
     // --spacing overrides the file's.
-    let path: PathBuf = [env!("CARGO_MANIFEST_DIR"), "tests/data/dems/dem-hills.tiff"].iter().collect();
+    let path: PathBuf = [env!("CARGO_MANIFEST_DIR"), "tests/data/dems/dem-hills.tiff"]
+        .iter()
+        .collect();
     let flat = ElevationModel::read(&path, &ReadOptions::default().with_spacing(2.0)).unwrap();
     assert_eq!(flat.spacing, [2.0, 2.0]);
 }

@@ -79,7 +79,7 @@ pub(super) fn read_raw16(
 ) -> Result<ElevationModel, TerrainError> {
     let range = options.height_range.ok_or(TerrainError::NoHeightRange)?;
     check_range(range)?;
-    if bytes.len() % 2 != 0 {
+    if !bytes.len().is_multiple_of(2) {
         return Err(TerrainError::PartialSample {
             bytes: bytes.len(),
             sample_bytes: 2,

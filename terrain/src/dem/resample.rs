@@ -5,7 +5,10 @@
 
 use super::ElevationModel;
 use crate::error::TerrainError;
-use crate::heightmap::{Heightmap, MAX_LEVELS};
+use crate::heightmap::Heightmap;
+
+/// Most levels of a resampled model: 2^13 + 1 = 8193 samples a side.
+const MAX_RESAMPLED_LEVELS: u32 = 13;
 
 impl ElevationModel {
     /// Bilinear height at (x, z) metres from the north-west sample, clamped to the model.
@@ -22,15 +25,18 @@ impl ElevationModel {
     }
 
     /// The model on a square (2^n + 1) heightmap: the smallest size whose spacing is no
-    /// coarser than the model's finer axis over its longer extent, at most 2^14 + 1 a side;
+    /// coarser than the model's finer axis over its longer extent, at most 2^13 + 1 a side;
     /// and the model's own extent `[x, z]` in metres (the map covers the larger of the two
     /// on both axes). A model already square and 2^n + 1 keeps its samples exactly.
     pub fn to_heightmap(&self) -> Result<(Heightmap, [f32; 2]), TerrainError> {
         let extent = self.extent();
         let side = extent[0].max(extent[1]);
         let finest = self.spacing[0].min(self.spacing[1]);
-        let cells_needed = (side / finest).ceil().max(2.0) as u64;
-        let levels = (64 - (cells_needed - 1).leading_zeros()).clamp(1, MAX_LEVELS);
+        // As fine as the model's finer axis, but never more samples than twice its longer
+        // side nor more than 8193 a side (256 MiB), whatever its spacing claims.
+        let longest = self.width.max(self.height) as u64;
+        let cells_needed = ((side / finest).ceil() as u64).clamp(2, 2 * longest);
+        let levels = (64 - (cells_needed - 1).leading_zeros()).clamp(1, MAX_RESAMPLED_LEVELS);
         let size = (1usize << levels) + 1;
         let exact = self.width == size && self.height == size && self.spacing[0] == self.spacing[1];
         let heights = if exact {
@@ -98,5 +104,24 @@ mod tests {
         let (map, _) = m.to_heightmap().unwrap();
         assert_eq!((map.size(), map.spacing()), (257, 3.0));
         assert_eq!(map.heights(), m.heights.as_slice());
+    }
+}
+
+#[cfg(test)]
+mod bounds {
+    use super::*;
+
+    #[test]
+    fn a_strange_spacing_cannot_make_a_vast_grid() {
+        let m = ElevationModel {
+            width: 2,
+            height: 2,
+            heights: vec![0.0; 4],
+            spacing: [0.001, 1000.0],
+            nodata: 0,
+            georeference: None,
+            spacing_from_file: true,
+        };
+        assert_eq!(m.to_heightmap().unwrap().0.size(), 5);
     }
 }
