@@ -28,6 +28,7 @@
 //!
 //! - `serde`: `Serialize`/`Deserialize` for [`HeightRange`].
 
+pub mod analysis;
 pub mod dem;
 mod diamond_square;
 mod erosion;
@@ -40,6 +41,7 @@ mod io;
 mod mesh;
 mod raycast;
 mod smooth;
+mod spectral;
 
 pub use diamond_square::DiamondSquare;
 pub use erosion::{HydraulicErosion, ThermalErosion};
@@ -51,3 +53,4 @@ pub use io::HeightRange;
 pub use mesh::{TerrainMesh, TerrainVertex};
 pub use raycast::RayHit;
 pub use smooth::{EdgeMode, MAX_SIGMA};
+pub use spectral::SpectralSynthesis;
