@@ -1,5 +1,6 @@
-//! The succession's plots, as PNG: species shares of basal area over the years, and stem
-//! density against mean stem diameter on log axes beside Reineke's self-thinning line.
+//! Plots, as PNG: the succession's species shares of basal area over the years and stem
+//! density against mean stem diameter on log axes beside Reineke's self-thinning line; a
+//! terrain's variogram on log axes with its fractal fit and scale range.
 
 use std::io::Write;
 use std::path::Path;
@@ -9,6 +10,7 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 use sylva::base::file::AtomicFile;
 use sylva::forest::succession::YearStats;
+use sylva::terrain::analysis::FractalAnalysis;
 
 use crate::Failure;
 
@@ -232,6 +234,80 @@ pub(crate) fn self_thinning(
                 .map_err(|e| e.to_string())?
                 .label(format!("fitted over the thinning years: slope {s:.2}"))
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(3)));
+        }
+        legend(&mut chart)?;
+        root.present().map_err(|e| e.to_string())
+    })
+}
+
+/// The variogram on log axes: half the mean squared height difference against lag, along x,
+/// along z (light) and both (dark), the fitted line over the scale range (red, its ends
+/// marked), with H in the caption.
+pub(crate) fn variogram(
+    path: &Path,
+    analysis: &FractalAnalysis,
+    name: &str,
+) -> Result<(), Failure> {
+    let v = &analysis.variogram;
+    let fit = &analysis.variogram_fit;
+    write_png(path, |root| {
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let positive = v
+            .iter()
+            .flat_map(|p| [p[1], p[2], p[3]])
+            .filter(|g| *g > 0.0);
+        let (gmin, gmax) = positive.fold((f64::MAX, f64::MIN), |(a, b), g| (a.min(g), b.max(g)));
+        let (gmin, gmax) = if gmin < gmax {
+            (gmin * 0.7, gmax * 1.4)
+        } else {
+            (1e-3, 1.0)
+        };
+        let (lmin, lmax) = (
+            v.first().map_or(1.0, |p| p[0]) * 0.8,
+            v.last().map_or(10.0, |p| p[0]) * 1.25,
+        );
+        let caption = format!(
+            "{name}: H = {:.2} (D = {:.2}) from {:.0} to {:.0} m",
+            fit.hurst, analysis.dimension, fit.scale_range[0], fit.scale_range[1]
+        );
+        let mut chart = ChartBuilder::on(&root)
+            .caption(caption, ("sans-serif", 24))
+            .margin(16)
+            .x_label_area_size(44)
+            .y_label_area_size(80)
+            .build_cartesian_2d((lmin..lmax).log_scale(), (gmin..gmax).log_scale())
+            .map_err(|e| e.to_string())?;
+        axes(&mut chart, "lag (m)", "semivariance (m^2)")?;
+        for (column, label, colour) in [
+            (1, "along x", RGBColor(150, 180, 230)),
+            (2, "along z", RGBColor(150, 210, 160)),
+            (3, "both", RGBColor(20, 40, 120)),
+        ] {
+            chart
+                .draw_series(
+                    v.iter()
+                        .filter(|p| p[column] > 0.0)
+                        .map(|p| Circle::new((p[0], p[column]), 4, colour.filled())),
+                )
+                .map_err(|e| e.to_string())?
+                .label(label)
+                .legend(move |(x, y)| Circle::new((x + 10, y), 4, colour.filled()));
+        }
+        let [slope, intercept] = fit.line;
+        let [a, b] = fit.scale_range;
+        let line = [a, b].map(|l| (l, (slope * l.ln() + intercept).exp()));
+        chart
+            .draw_series(LineSeries::new(line, RED.stroke_width(3)))
+            .map_err(|e| e.to_string())?
+            .label(format!("fit: slope 2H = {slope:.2}"))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(3)));
+        for end in [a, b] {
+            chart
+                .draw_series(LineSeries::new(
+                    [(end, gmin), (end, gmax)],
+                    RGBColor(160, 160, 160).stroke_width(1),
+                ))
+                .map_err(|e| e.to_string())?;
         }
         legend(&mut chart)?;
         root.present().map_err(|e| e.to_string())

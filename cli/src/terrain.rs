@@ -1,5 +1,6 @@
 //! `sylva terrain`: a diamond-square heightmap, smoothed and optionally eroded, written as a
-//! 16-bit PNG (and optionally RAW).
+//! 16-bit PNG (and optionally RAW); or, with `--analyse`, a real elevation model's fractal
+//! character measured (JSON and a variogram plot).
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -26,9 +27,17 @@ pub(crate) struct TerrainArgs {
     /// Gaussian smoothing, sigma in samples.
     #[arg(long, value_name = "SIGMA", default_value_t = 2.0)]
     smooth: f32,
-    /// Metres between samples.
-    #[arg(long, value_name = "D", default_value_t = 1.0)]
-    spacing: f32,
+    /// Metres between samples (default 1; with --analyse, overrides the file's).
+    #[arg(long, value_name = "D")]
+    spacing: Option<f32>,
+    /// Measure an elevation model instead (GeoTIFF, .hgt, .asc, PNG16): its Hurst exponent
+    /// from the variogram and the power spectrum, the scale range of the fit, anisotropy and
+    /// the height distribution, as analysis.json and variogram.png in --report.
+    #[arg(long, value_name = "MODEL")]
+    analyse: Option<PathBuf>,
+    /// The folder --analyse writes to.
+    #[arg(long, value_name = "DIR", default_value = "analysis")]
+    report: PathBuf,
     /// Height amplitude in metres (default: the generator's).
     #[arg(long, value_name = "A")]
     amplitude: Option<f32>,
@@ -50,11 +59,14 @@ pub(crate) struct TerrainArgs {
 }
 
 pub(crate) fn run(args: TerrainArgs) -> Result<(), Failure> {
+    if let Some(model) = &args.analyse {
+        return analyse(model, &args);
+    }
     let start = Instant::now();
     let mut ds = DiamondSquare::new(args.size)
         .with_seed(args.seed)
         .with_roughness(args.roughness)
-        .with_spacing(args.spacing)
+        .with_spacing(args.spacing.unwrap_or(1.0))
         .with_wrap(args.wrap);
     if let Some(a) = args.amplitude {
         ds = ds.with_amplitude(a);
@@ -109,5 +121,64 @@ pub(crate) fn run(args: TerrainArgs) -> Result<(), Failure> {
         ms(smoothed - generated),
         ms(total)
     );
+    Ok(())
+}
+
+/// `--analyse`: measures a model and writes `analysis.json` and `variogram.png`.
+fn analyse(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
+    use sylva::terrain::analysis::FractalAnalysis;
+    use sylva::terrain::dem::{ElevationModel, ReadOptions};
+    let options = ReadOptions {
+        spacing: args.spacing,
+        ..ReadOptions::default()
+    };
+    let name = path.display().to_string();
+    let model =
+        ElevationModel::read(path, &options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    let a = FractalAnalysis::of_model(&model);
+    std::fs::create_dir_all(&args.report)
+        .map_err(sylva::base::file::FileError::at(&args.report))?;
+    let fit = |f: &sylva::terrain::analysis::HurstFit| serde_json::json!({"hurst": f.hurst, "scale_range_m": f.scale_range, "worst_residual": f.worst_residual, "line": f.line});
+    let h = &a.heights;
+    let json = serde_json::json!({
+        "model": name,
+        "samples": [model.width, model.height],
+        "spacing_m": model.spacing,
+        "nodata_filled": model.nodata,
+        "hurst": a.hurst,
+        "dimension": a.dimension,
+        "variogram_fit": fit(&a.variogram_fit),
+        "spectrum_fit": fit(&a.spectrum_fit),
+        "hurst_x_z": a.hurst_axes,
+        "anisotropy": a.anisotropy,
+        "heights": {
+            "min": h.min, "max": h.max, "mean": h.mean, "std_dev": h.std_dev,
+            "skewness": h.skewness, "kurtosis": h.kurtosis,
+            "percentiles": sylva::terrain::analysis::PERCENTILES.iter().zip(h.percentiles).map(|(p, v)| serde_json::json!([p, v])).collect::<Vec<_>>(),
+        },
+        "variogram": a.variogram,
+        "spectrum": a.spectrum,
+    });
+    let text = serde_json::to_string_pretty(&json).map_err(|e| Failure::job(e.to_string()))?;
+    let out = args.report.join("analysis.json");
+    sylva::base::file::write(&out, |w| std::io::Write::write_all(w, text.as_bytes()))?;
+    let label = path.file_name().and_then(|n| n.to_str()).unwrap_or("model");
+    crate::plots::variogram(&args.report.join("variogram.png"), &a, label)?;
+    if !args.quiet {
+        println!(
+            "{name}: H = {:.3} (dimension {:.3}) over {:.0} to {:.0} m; spectrum H = {:.3}; H along x, z = {:.3}, {:.3}; anisotropy {:.2}; heights {:.0} to {:.0} m; wrote {} and variogram.png",
+            a.hurst,
+            a.dimension,
+            a.variogram_fit.scale_range[0],
+            a.variogram_fit.scale_range[1],
+            a.spectrum_fit.hurst,
+            a.hurst_axes[0],
+            a.hurst_axes[1],
+            a.anisotropy,
+            h.min,
+            h.max,
+            out.display()
+        );
+    }
     Ok(())
 }

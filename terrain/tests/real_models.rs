@@ -86,3 +86,34 @@ fn a_float_geotiff_with_nodata_filled() {
     let flat = ElevationModel::read(&path, &ReadOptions::default().with_spacing(2.0)).unwrap();
     assert_eq!(flat.spacing, [2.0, 2.0]);
 }
+
+#[test]
+fn the_real_models_fractal_character() {
+    use sylva_terrain::analysis::FractalAnalysis;
+    for name in [
+        "N44W072.hgt",
+        "front_range_srtmgl3.asc",
+        "west_bijou_escarpment.asc",
+        "dem-hills.tiff",
+    ] {
+        let a = FractalAnalysis::of_model(&model(name));
+        println!(
+            "{name}: H {:.3} (spectrum {:.3}) over {:.0}..{:.0} m, axes {:.3?}, anisotropy {:.2}, heights {:.0}..{:.0}",
+            a.hurst,
+            a.spectrum_fit.hurst,
+            a.variogram_fit.scale_range[0],
+            a.variogram_fit.scale_range[1],
+            a.hurst_axes,
+            a.anisotropy,
+            a.heights.min,
+            a.heights.max
+        );
+        // Real land is rough but not noise: H between the extremes, over a range of scales.
+        assert!(a.hurst > 0.2 && a.hurst < 1.05, "{name}: H {}", a.hurst);
+        assert!(
+            a.variogram_fit.scale_range[1] > 3.0 * a.variogram_fit.scale_range[0],
+            "{name}: {:?}",
+            a.variogram_fit.scale_range
+        );
+    }
+}

@@ -28,7 +28,22 @@ pub const PERCENTILES: [f32; 7] = [1.0, 5.0, 25.0, 50.0, 75.0, 95.0, 99.0];
 impl HeightDistribution {
     /// The distribution of `map`'s heights.
     pub fn of(map: &Heightmap) -> HeightDistribution {
-        let h = map.heights();
+        Self::of_heights(map.heights())
+    }
+
+    /// The distribution of heights `h` (all zero for none).
+    pub fn of_heights(h: &[f32]) -> HeightDistribution {
+        if h.is_empty() {
+            return HeightDistribution {
+                min: 0.0,
+                max: 0.0,
+                mean: 0.0,
+                std_dev: 0.0,
+                skewness: 0.0,
+                kurtosis: 0.0,
+                percentiles: [0.0; 7],
+            };
+        }
         let n = h.len() as f64;
         let mean = h.iter().map(|&v| f64::from(v)).sum::<f64>() / n;
         let (m2, m3, m4) = h.iter().fold((0.0, 0.0, 0.0), |(a, b, c), &v| {

@@ -27,6 +27,7 @@ mod variogram;
 
 pub use heights::{HeightDistribution, PERCENTILES};
 
+use crate::dem::ElevationModel;
 use crate::heightmap::Heightmap;
 use fit::{Line, widest_straight_run};
 
@@ -98,12 +99,35 @@ fn hurst_fit(
 impl FractalAnalysis {
     /// Measures `map`.
     pub fn of(map: &Heightmap) -> FractalAnalysis {
-        let spacing = f64::from(map.spacing());
-        let lags = variogram::lags(map.size());
+        let s = f64::from(map.spacing());
+        Self::of_square(map.size(), map.heights(), [s, s])
+    }
+
+    /// Measures an elevation model as it was read: the largest square of its own samples
+    /// about its middle, so nothing resampled or padded enters the statistics. Lags and
+    /// wavelengths are in metres of the geometric mean of its two spacings (a fit's H does
+    /// not depend on them).
+    pub fn of_model(model: &ElevationModel) -> FractalAnalysis {
+        let side = model.width.min(model.height);
+        let (x0, z0) = ((model.width - side) / 2, (model.height - side) / 2);
+        let mut heights = Vec::with_capacity(side * side);
+        for z in z0..z0 + side {
+            heights.extend_from_slice(
+                &model.heights[z * model.width + x0..z * model.width + x0 + side],
+            );
+        }
+        let [dx, dz] = model.spacing.map(f64::from);
+        Self::of_square(side, &heights, [dx, dz])
+    }
+
+    /// Measures a square grid of `side` samples with the spacings along x and z.
+    fn of_square(side: usize, h: &[f32], [dx, dz]: [f64; 2]) -> FractalAnalysis {
+        let spacing = (dx * dz).sqrt();
+        let lags = variogram::lags(side);
         let variogram: Vec<[f64; 4]> = lags
             .iter()
             .map(|&lag| {
-                let (x, z) = variogram::semivariance(map, lag);
+                let (x, z) = variogram::semivariance(side, h, lag);
                 [lag as f64 * spacing, x, z, 0.5 * (x + z)]
             })
             .collect();
@@ -147,7 +171,7 @@ impl FractalAnalysis {
             1.0
         };
 
-        let spectrum: Vec<[f64; 2]> = spectrum::profile_spectrum(map)
+        let spectrum: Vec<[f64; 2]> = spectrum::profile_spectrum(side, h)
             .into_iter()
             .map(|(k, p)| [spacing / k, p])
             .collect();
@@ -183,7 +207,7 @@ impl FractalAnalysis {
             anisotropy,
             variogram,
             spectrum,
-            heights: HeightDistribution::of(map),
+            heights: HeightDistribution::of_heights(h),
         }
     }
 }

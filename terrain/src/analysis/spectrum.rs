@@ -6,11 +6,9 @@
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 
-use crate::heightmap::Heightmap;
-
-/// (frequency in cycles per sample, mean power) for each bin, lowest first.
-pub(crate) fn profile_spectrum(map: &Heightmap) -> Vec<(f64, f64)> {
-    let n = map.size();
+/// (frequency in cycles per sample, mean power) for each bin, lowest first, of a square grid
+/// of `n` samples a side.
+pub(crate) fn profile_spectrum(n: usize, h: &[f32]) -> Vec<(f64, f64)> {
     // The transform's length: the largest power of two in a side.
     let len = 1usize << (usize::BITS - 1 - n.leading_zeros());
     let fft = FftPlanner::<f64>::new().plan_fft_forward(len);
@@ -19,7 +17,6 @@ pub(crate) fn profile_spectrum(map: &Heightmap) -> Vec<(f64, f64)> {
         .collect();
     let mut power = vec![0.0f64; len / 2 + 1];
     let mut buffer = vec![Complex::new(0.0, 0.0); len];
-    let h = map.heights();
     let mut profiles = 0usize;
     for axis in 0..2 {
         for line in 0..n {

@@ -2,8 +2,6 @@
 //! both, at lags growing by a factor of about 1.4 from one sample to a quarter of the map.
 //! For fractional Brownian motion it grows as lag^(2H).
 
-use crate::heightmap::Heightmap;
-
 /// The lags measured, in samples: 1, then growing by about 1.4 up to a quarter of the side.
 pub(crate) fn lags(size: usize) -> Vec<usize> {
     let mut out = vec![1usize];
@@ -18,10 +16,9 @@ pub(crate) fn lags(size: usize) -> Vec<usize> {
     out
 }
 
-/// Half the mean squared difference at `lag` along x and along z.
-pub(crate) fn semivariance(map: &Heightmap, lag: usize) -> (f64, f64) {
-    let n = map.size();
-    let h = map.heights();
+/// Half the mean squared difference at `lag` along x and along z of a square grid of `n`
+/// samples a side.
+pub(crate) fn semivariance(n: usize, h: &[f32], lag: usize) -> (f64, f64) {
     let (mut sx, mut sz) = (0.0f64, 0.0f64);
     for z in 0..n {
         let row = &h[z * n..(z + 1) * n];
