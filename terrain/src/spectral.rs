@@ -36,6 +36,9 @@ pub struct SpectralSynthesis {
     /// Wavelengths longer than this many metres are left out (0: none), so the surface's
     /// largest hills can be set, as a measured scale range ends.
     pub longest_wavelength: f32,
+    /// Wavelengths shorter than about this many metres fade out (0: none), as real models
+    /// are smoother than fractal below the scale range their fit starts at.
+    pub shortest_wavelength: f32,
 }
 
 impl SpectralSynthesis {
@@ -48,6 +51,7 @@ impl SpectralSynthesis {
             amplitude: size as f32 / 16.0,
             seed: 0,
             longest_wavelength: 0.0,
+            shortest_wavelength: 0.0,
         }
     }
     /// Sets [`SpectralSynthesis::spacing`].
@@ -73,6 +77,12 @@ impl SpectralSynthesis {
     /// Sets [`SpectralSynthesis::longest_wavelength`].
     pub fn with_longest_wavelength(mut self, metres: f32) -> Self {
         self.longest_wavelength = metres;
+        self
+    }
+
+    /// Sets [`SpectralSynthesis::shortest_wavelength`].
+    pub fn with_shortest_wavelength(mut self, metres: f32) -> Self {
+        self.shortest_wavelength = metres;
         self
     }
 
@@ -112,6 +122,18 @@ impl SpectralSynthesis {
         } else {
             0.0
         };
+        check(
+            "shortest wavelength",
+            f64::from(self.shortest_wavelength),
+            self.shortest_wavelength >= 0.0,
+            "finite and not negative",
+        )?;
+        // The frequency (cycles over the transform) whose wavelength is the shortest kept.
+        let fade = if self.shortest_wavelength > 0.0 {
+            n as f64 * f64::from(self.spacing) / f64::from(self.shortest_wavelength)
+        } else {
+            f64::INFINITY
+        };
         let mut grid = vec![Complex::new(0.0f64, 0.0); n * n];
         for j in 0..n {
             for i in 0..n {
@@ -128,7 +150,8 @@ impl SpectralSynthesis {
                 );
                 let gaussian = (-2.0 * u1.ln()).sqrt();
                 let phase = 2.0 * std::f64::consts::PI * u2;
-                let a = gaussian * k.powf(-exponent);
+                // A Gaussian roll-off past the shortest wavelength, not a hard edge, which would ring.
+                let a = gaussian * k.powf(-exponent) * (-(k / fade).powi(2)).exp();
                 grid[j * n + i] = Complex::new(a * phase.cos(), a * phase.sin());
             }
         }

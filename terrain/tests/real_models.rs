@@ -117,3 +117,45 @@ fn the_real_models_fractal_character() {
         );
     }
 }
+
+#[test]
+fn terrain_made_to_match_real_land() {
+    use sylva_terrain::analysis::FractalAnalysis;
+    use sylva_terrain::{Heightmap, refine, synthesize_like};
+    for name in [
+        "front_range_srtmgl3.asc",
+        "west_bijou_escarpment.asc",
+        "dem-hills.tiff",
+    ] {
+        let m = model(name);
+        let real = FractalAnalysis::of_model(&m);
+        let map = m.square_heightmap().unwrap();
+        let made =
+            FractalAnalysis::of(&synthesize_like(&real, map.size(), map.spacing(), 1).unwrap());
+        let h = made.hurst_over(real.variogram_fit.scale_range).unwrap();
+        assert!(
+            (h - real.hurst).abs() < 0.15,
+            "{name}: made {h:.3}, real {:.3}",
+            real.hurst
+        );
+        assert!((made.heights.std_dev - real.heights.std_dev).abs() < 0.1 * real.heights.std_dev);
+        // Fractal interpolation from a quarter of the samples keeps every one of them.
+        let quarter = (map.size() - 1) / 4 + 1;
+        let coarse = Heightmap::from_heights(
+            quarter,
+            map.spacing() * 4.0,
+            (0..quarter * quarter)
+                .map(|i| map.get(i % quarter * 4, i / quarter * 4))
+                .collect(),
+        )
+        .unwrap();
+        let fine = refine(&coarse, 2, &FractalAnalysis::of(&coarse), 1).unwrap();
+        assert_eq!(fine.size(), map.size());
+        for i in 0..quarter * quarter {
+            assert_eq!(
+                fine.get(i % quarter * 4, i / quarter * 4),
+                coarse.get(i % quarter, i / quarter)
+            );
+        }
+    }
+}

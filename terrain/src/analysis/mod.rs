@@ -120,6 +120,19 @@ impl FractalAnalysis {
         Self::of_square(side, &heights, [dx, dz])
     }
 
+    /// H fitted from this surface's variogram (both axes) over the lags within `range`
+    /// metres: to compare a surface with another over the other's scale range. `None` for
+    /// fewer than two lags in it.
+    pub fn hurst_over(&self, range: [f64; 2]) -> Option<f64> {
+        let points: Vec<(f64, f64)> = self
+            .variogram
+            .iter()
+            .filter(|v| v[0] >= range[0] * 0.999 && v[0] <= range[1] * 1.001 && v[3] > 0.0)
+            .map(|v| (v[0].ln(), v[3].ln()))
+            .collect();
+        (points.len() >= 2).then(|| fit::line(&points, 0, points.len() - 1).slope / 2.0)
+    }
+
     /// Measures a square grid of `side` samples with the spacings along x and z.
     fn of_square(side: usize, h: &[f32], [dx, dz]: [f64; 2]) -> FractalAnalysis {
         let spacing = (dx * dz).sqrt();

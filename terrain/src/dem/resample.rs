@@ -24,6 +24,27 @@ impl ElevationModel {
         top + (bottom - top) * tz
     }
 
+    /// The largest square of the model's own land, about its middle, on a (2^n + 1) grid no
+    /// coarser than the model: nothing padded, for comparing statistics and pictures.
+    pub fn square_heightmap(&self) -> Result<Heightmap, TerrainError> {
+        let [ex, ez] = self.extent();
+        let side = ex.min(ez);
+        let finest = self.spacing[0].min(self.spacing[1]);
+        let cells =
+            ((side / finest).ceil() as u64).clamp(2, 2 * self.width.min(self.height) as u64);
+        let size =
+            (1usize << (64 - (cells - 1).leading_zeros()).clamp(1, MAX_RESAMPLED_LEVELS)) + 1;
+        let step = side / (size - 1) as f32;
+        let (x0, z0) = ((ex - side) / 2.0, (ez - side) / 2.0);
+        let mut heights = Vec::with_capacity(size * size);
+        for z in 0..size {
+            for x in 0..size {
+                heights.push(self.height_at(x0 + x as f32 * step, z0 + z as f32 * step));
+            }
+        }
+        Heightmap::from_heights(size, step, heights)
+    }
+
     /// The model on a square (2^n + 1) heightmap: the smallest size whose spacing is no
     /// coarser than the model's finer axis over its longer extent, at most 2^13 + 1 a side;
     /// and the model's own extent `[x, z]` in metres (the map covers the larger of the two
