@@ -38,6 +38,18 @@ pub(crate) struct TerrainArgs {
     /// The folder --analyse writes to.
     #[arg(long, value_name = "DIR", default_value = "analysis")]
     report: PathBuf,
+    /// Make terrain like an elevation model instead: spectral synthesis with its measured H
+    /// and scale range, its heights' distribution, --size samples at its own spacing (or
+    /// --spacing), written to --out.
+    #[arg(long, value_name = "MODEL", conflicts_with_all = ["analyse", "refine"])]
+    like: Option<PathBuf>,
+    /// Refine an elevation model by fractal interpolation instead: --levels halvings of its
+    /// spacing, every measured height kept, written to --out.
+    #[arg(long, value_name = "MODEL", conflicts_with = "analyse")]
+    refine: Option<PathBuf>,
+    /// Halvings of the spacing for --refine (1 to 8; 4 makes a 90 m model a 5.6 m one).
+    #[arg(long, value_name = "N", default_value_t = 2)]
+    levels: u32,
     /// Height amplitude in metres (default: the generator's).
     #[arg(long, value_name = "A")]
     amplitude: Option<f32>,
@@ -61,6 +73,12 @@ pub(crate) struct TerrainArgs {
 pub(crate) fn run(args: TerrainArgs) -> Result<(), Failure> {
     if let Some(model) = &args.analyse {
         return analyse(model, &args);
+    }
+    if let Some(model) = &args.like {
+        return like(model, &args);
+    }
+    if let Some(model) = &args.refine {
+        return refine(model, &args);
     }
     let start = Instant::now();
     let mut ds = DiamondSquare::new(args.size)
@@ -124,17 +142,81 @@ pub(crate) fn run(args: TerrainArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// `--analyse`: measures a model and writes `analysis.json` and `variogram.png`.
-fn analyse(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
-    use sylva::terrain::analysis::FractalAnalysis;
+/// Reads `--analyse`, `--like` or `--refine`'s model, `--spacing` overriding the file's.
+fn read_model(
+    path: &std::path::Path,
+    args: &TerrainArgs,
+) -> Result<sylva::terrain::dem::ElevationModel, Failure> {
     use sylva::terrain::dem::{ElevationModel, ReadOptions};
     let options = ReadOptions {
         spacing: args.spacing,
         ..ReadOptions::default()
     };
+    ElevationModel::read(path, &options)
+        .map_err(|e| Failure::job(format!("{}: {e}", path.display())))
+}
+
+/// `--like`: terrain statistically like a model.
+fn like(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
+    use sylva::terrain::analysis::FractalAnalysis;
+    let model = read_model(path, args)?;
+    let measured = FractalAnalysis::of_model(&model);
+    let spacing = args
+        .spacing
+        .unwrap_or(model.spacing[0].min(model.spacing[1]));
+    let map = sylva::terrain::synthesize_like(&measured, args.size, spacing, args.seed)?;
+    write_heightmap(&map, &args.out)?;
+    if !args.quiet {
+        let made = FractalAnalysis::of(&map);
+        let [lo, hi] = measured.variogram_fit.scale_range;
+        println!(
+            "wrote {}: {} x {} at {spacing:.2} m like {} (H {:.3} from {lo:.0} to {hi:.0} m); made: H {:.3} over that range, heights {:.0} to {:.0} m",
+            args.out.display(),
+            map.size(),
+            map.size(),
+            path.display(),
+            measured.hurst,
+            made.hurst_over([lo, hi]).unwrap_or(f64::NAN),
+            made.heights.min,
+            made.heights.max
+        );
+    }
+    Ok(())
+}
+
+/// `--refine`: a model made finer by fractal interpolation.
+fn refine(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
+    use sylva::terrain::analysis::FractalAnalysis;
+    let model = read_model(path, args)?;
+    let (coarse, _) = model.to_heightmap()?;
+    let fine = sylva::terrain::refine(
+        &coarse,
+        args.levels,
+        &FractalAnalysis::of(&coarse),
+        args.seed,
+    )?;
+    write_heightmap(&fine, &args.out)?;
+    if !args.quiet {
+        println!(
+            "wrote {}: {} x {} at {:.2} m, refined from {} x {} at {:.2} m ({}), every sample kept",
+            args.out.display(),
+            fine.size(),
+            fine.size(),
+            fine.spacing(),
+            coarse.size(),
+            coarse.size(),
+            coarse.spacing(),
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// `--analyse`: measures a model and writes `analysis.json` and `variogram.png`.
+fn analyse(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
+    use sylva::terrain::analysis::FractalAnalysis;
     let name = path.display().to_string();
-    let model =
-        ElevationModel::read(path, &options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    let model = read_model(path, args)?;
     let a = FractalAnalysis::of_model(&model);
     std::fs::create_dir_all(&args.report)
         .map_err(sylva::base::file::FileError::at(&args.report))?;
