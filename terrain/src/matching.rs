@@ -174,7 +174,11 @@ pub fn refine(
         // Square: edge midpoints from their two to four neighbours, step apart.
         let s = spread(step as f64 * f64::from(spacing));
         for z in (0..size).step_by(half) {
-            let start = if (z / half).is_multiple_of(2) { half } else { 0 };
+            let start = if (z / half).is_multiple_of(2) {
+                half
+            } else {
+                0
+            };
             for x in (start..size).step_by(step) {
                 let mut sum = 0.0f32;
                 let mut n = 0.0f32;
