@@ -4,37 +4,38 @@
 //! spectrum's fit agrees.
 
 use sylva_terrain::analysis::FractalAnalysis;
-use sylva_terrain::{DiamondSquare, SpectralSynthesis};
+use sylva_terrain::{DiamondSquare, Heightmap, SpectralSynthesis};
 
-fn mean(v: &[f64]) -> f64 {
-    v.iter().sum::<f64>() / v.len() as f64
+/// The mean variogram and spectrum fits of `make(h, seed)` over four seeds, for each H.
+fn fits(kind: &str, make: impl Fn(f32, u64) -> Heightmap) -> Vec<(f32, f64, f64)> {
+    [0.3f32, 0.5, 0.8]
+        .into_iter()
+        .map(|h| {
+            let all: Vec<FractalAnalysis> = (0..4u64)
+                .map(|seed| FractalAnalysis::of(&make(h, seed)))
+                .collect();
+            let mean = |f: &dyn Fn(&FractalAnalysis) -> f64| {
+                all.iter().map(f).sum::<f64>() / all.len() as f64
+            };
+            let (v, s) = (mean(&|a| a.hurst), mean(&|a| a.spectrum_fit.hurst));
+            println!(
+                "{kind} H {h}: variogram {v:.3}, spectrum {s:.3}, ranges {:?} {:?}",
+                all[0].variogram_fit.scale_range, all[0].spectrum_fit.scale_range
+            );
+            (h, v, s)
+        })
+        .collect()
 }
 
 #[test]
 fn spectral_synthesis_at_known_h() {
-    for h in [0.3f32, 0.5, 0.8] {
-        let fits: Vec<FractalAnalysis> = (0..4u64)
-            .map(|seed| {
-                FractalAnalysis::of(
-                    &SpectralSynthesis::new(513)
-                        .with_hurst(h)
-                        .with_seed(seed)
-                        .generate()
-                        .unwrap(),
-                )
-            })
-            .collect();
-        let v = mean(&fits.iter().map(|a| a.hurst).collect::<Vec<_>>());
-        let s = mean(
-            &fits
-                .iter()
-                .map(|a| a.spectrum_fit.hurst)
-                .collect::<Vec<_>>(),
-        );
-        println!(
-            "spectral H {h}: variogram {v:.3}, spectrum {s:.3}, ranges {:?} {:?}",
-            fits[0].variogram_fit.scale_range, fits[0].spectrum_fit.scale_range
-        );
+    for (h, v, s) in fits("spectral", |h, seed| {
+        SpectralSynthesis::new(513)
+            .with_hurst(h)
+            .with_seed(seed)
+            .generate()
+            .unwrap()
+    }) {
         assert!(
             (v - f64::from(h)).abs() <= 0.05,
             "spectral H {h}: variogram fit {v:.3}"
@@ -48,29 +49,13 @@ fn spectral_synthesis_at_known_h() {
 
 #[test]
 fn diamond_square_at_known_h() {
-    for h in [0.3f32, 0.5, 0.8] {
-        let fits: Vec<FractalAnalysis> = (0..4u64)
-            .map(|seed| {
-                FractalAnalysis::of(
-                    &DiamondSquare::new(513)
-                        .with_roughness(h)
-                        .with_seed(seed)
-                        .generate()
-                        .unwrap(),
-                )
-            })
-            .collect();
-        let v = mean(&fits.iter().map(|a| a.hurst).collect::<Vec<_>>());
-        let s = mean(
-            &fits
-                .iter()
-                .map(|a| a.spectrum_fit.hurst)
-                .collect::<Vec<_>>(),
-        );
-        println!(
-            "diamond-square H {h}: variogram {v:.3}, spectrum {s:.3}, ranges {:?} {:?}",
-            fits[0].variogram_fit.scale_range, fits[0].spectrum_fit.scale_range
-        );
+    for (h, v, _) in fits("diamond-square", |h, seed| {
+        DiamondSquare::new(513)
+            .with_roughness(h)
+            .with_seed(seed)
+            .generate()
+            .unwrap()
+    }) {
         assert!(
             (v - f64::from(h)).abs() <= 0.05,
             "diamond-square H {h}: variogram fit {v:.3}"
