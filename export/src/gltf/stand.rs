@@ -91,8 +91,8 @@ pub fn write_tree_glb(species: &Species, mesh: &Mesh, path: &Path) -> Result<usi
 /// without a file.
 ///
 /// ```
-/// let birch = sylva_forest::Species::from_preset("sylva-oak", 3)?;
-/// let glb = sylva_export::tree_glb(&birch, &birch.mesh(3, 1)?)?;
+/// let oak = sylva_forest::Species::from_preset("sylva-oak", 3)?;
+/// let glb = sylva_export::tree_glb(&oak, &oak.mesh(3, 1)?)?;
 /// assert_eq!(&glb[..4], b"glTF");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
