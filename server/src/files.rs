@@ -74,7 +74,7 @@ pub(crate) fn range(header: Option<&str>, len: u64) -> Range {
 }
 
 /// Whether `If-None-Match` names `etag` (or is `*`).
-fn matches(request: &HeaderMap, etag: &str) -> bool {
+pub(crate) fn matches(request: &HeaderMap, etag: &str) -> bool {
     request
         .get(header::IF_NONE_MATCH)
         .and_then(|v| v.to_str().ok())

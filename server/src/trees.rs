@@ -126,11 +126,7 @@ pub(crate) async fn tree(
             }
         }
     };
-    let mut response = if headers
-        .get(header::IF_NONE_MATCH)
-        .and_then(|v| v.to_str().ok())
-        .is_some_and(|v| v.split(',').any(|t| t.trim() == tag))
-    {
+    let mut response = if crate::files::matches(&headers, &tag) {
         StatusCode::NOT_MODIFIED.into_response()
     } else {
         let mut r = (StatusCode::OK, glb.as_ref().clone()).into_response();

@@ -61,6 +61,21 @@ fn unit_metres(unit: Option<u16>) -> f64 {
     }
 }
 
+/// A tag's values as numbers of `T`, if the file has it.
+fn tag<T>(
+    decoder: &mut Decoder<Cursor<&[u8]>>,
+    tag: Tag,
+    values: impl Fn(tiff::decoder::ifd::Value) -> tiff::TiffResult<Vec<T>>,
+) -> Result<Option<Vec<T>>, TerrainError> {
+    let tiff = |e: tiff::TiffError| bad(e.to_string());
+    decoder
+        .find_tag(tag)
+        .map_err(tiff)?
+        .map(values)
+        .transpose()
+        .map_err(tiff)
+}
+
 pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
     let tiff = |e: tiff::TiffError| bad(e.to_string());
     let mut limits = Limits::default();
@@ -72,24 +87,9 @@ pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
     let (w, h) = decoder.dimensions().map_err(tiff)?;
     // The header's claim is checked before a pixel is read.
     let (width, height) = check_size(u64::from(w), u64::from(h))?;
-    let scale = decoder
-        .find_tag(Tag::ModelPixelScaleTag)
-        .map_err(tiff)?
-        .map(|v| v.into_f64_vec())
-        .transpose()
-        .map_err(tiff)?;
-    let tie = decoder
-        .find_tag(Tag::ModelTiepointTag)
-        .map_err(tiff)?
-        .map(|v| v.into_f64_vec())
-        .transpose()
-        .map_err(tiff)?;
-    let directory = decoder
-        .find_tag(Tag::GeoKeyDirectoryTag)
-        .map_err(tiff)?
-        .map(|v| v.into_u16_vec())
-        .transpose()
-        .map_err(tiff)?;
+    let scale = tag(&mut decoder, Tag::ModelPixelScaleTag, |v| v.into_f64_vec())?;
+    let tie = tag(&mut decoder, Tag::ModelTiepointTag, |v| v.into_f64_vec())?;
+    let directory = tag(&mut decoder, Tag::GeoKeyDirectoryTag, |v| v.into_u16_vec())?;
     let nodata: Option<f64> = decoder
         .find_tag(Tag::GdalNodata)
         .map_err(tiff)?
