@@ -63,6 +63,9 @@ struct ForestFigures {
     placements_per_tree: f64,
     /// Share of the first 10,000 trees whose composition no other of them has.
     distinct_compositions: f64,
+    /// Spots the density model proposed, and those the terrain's constraints refused.
+    candidate_spots: u64,
+    refused_spots: u64,
     empty_placements: usize,
     instance_nodes: usize,
     hero_ms: f64,
@@ -171,6 +174,8 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
             placements: written.placements,
             placements_per_tree: m.placements as f64 / trees,
             distinct_compositions: m.distinct,
+            candidate_spots: world.siting.candidates,
+            refused_spots: world.siting.refused(),
             empty_placements: written.empty_placements,
             instance_nodes: written.instances,
             hero_ms: ms(world.hero_time),
@@ -210,6 +215,7 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         built.cache_bytes as f64 / (1 << 20) as f64,
         ms(world.hero_time)
     );
+    println!("  terrain: {}", world.siting);
     println!(
         "  {} instance placements of {} instances ({} more of branches with no geometry yet)",
         written.placements, written.instances, written.empty_placements

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use clap::Args;
-use sylva::forest::{ForestBuilder, ForestConfig, Rect, Species};
+use sylva::forest::{Constraints, ForestBuilder, ForestConfig, Rect, SitingReport, Species};
 use sylva::terrain::Heightmap;
 use sylva::terrain::dem::{ElevationModel, ReadOptions};
 use sylva::terrain::glam::Vec2;
@@ -36,6 +36,15 @@ pub(crate) struct WorldArgs {
     /// Heights of the samples 0 and 65535, in metres (for --terrain).
     #[arg(long, value_name = "LO,HI", value_parser = parse_pair::<f32>)]
     height_range: Option<(f32, f32)>,
+    /// Steepest ground with trees, in degrees.
+    #[arg(long, value_name = "DEGREES", default_value_t = 35.0)]
+    max_slope: f32,
+    /// No trees below this terrain height, in metres (a shore, a valley floor).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    min_height: Option<f32>,
+    /// No trees above this terrain height, in metres (a treeline).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    max_height: Option<f32>,
     /// Canopy trees per hectare (sets the patch size).
     #[arg(long, value_name = "TREES_PER_HA")]
     density: Option<f32>,
@@ -67,6 +76,8 @@ pub(crate) struct World {
     pub(crate) side: f32,
     pub(crate) seed: u64,
     pub(crate) hero_time: Duration,
+    /// What the terrain made of the candidate tree spots.
+    pub(crate) siting: SitingReport,
 }
 
 /// Most years one forest over time simulates (`--year`, `sylva succession --years`).
@@ -105,6 +116,19 @@ impl WorldArgs {
                 "--trees {n}: expected 1 to 10000000"
             )));
         }
+        if !(0.0..=90.0).contains(&self.max_slope) {
+            return Err(Failure::usage(format!(
+                "--max-slope {}: expected 0 to 90 degrees",
+                self.max_slope
+            )));
+        }
+        let lowest = self.min_height.unwrap_or(f32::NEG_INFINITY);
+        let highest = self.max_height.unwrap_or(f32::INFINITY);
+        if lowest.is_nan() || highest.is_nan() || lowest > highest {
+            return Err(Failure::usage(format!(
+                "--min-height {lowest} --max-height {highest}: expected the lower below the higher"
+            )));
+        }
         let budget = budget_bytes(self.budget_mb)?;
         let species = if self.species.is_empty() {
             sylva::presets::species()?
@@ -122,6 +146,9 @@ impl WorldArgs {
         config.seed = self.seed;
         config.budget = budget;
         config.all_ages = self.year.is_some();
+        config.constraints = Constraints::default()
+            .with_max_slope_degrees(self.max_slope)
+            .with_height_range(lowest, highest);
         let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
             ForestBuilder::new(config)
         });
@@ -152,6 +179,10 @@ impl WorldArgs {
         if let Some(year) = self.year {
             builder = builder_at_year(&builder, region, year, quiet)?;
         }
+        let siting = builder.siting(&map, region)?;
+        if !quiet && let Some(note) = siting_note(&siting, &builder.config().constraints) {
+            eprintln!("{note}");
+        }
         Ok(World {
             builder,
             map,
@@ -159,8 +190,49 @@ impl WorldArgs {
             side,
             seed: self.seed,
             hero_time,
+            siting,
         })
     }
+}
+
+/// Share of candidate spots refused above which a forest says why it is thin.
+const THIN_FOREST_SHARE: f64 = 0.25;
+
+/// Why a thin forest is thin: each constraint that refused spots, with its count, its limit
+/// and the flag that moves it; `None` when at most a quarter of the spots were refused.
+pub(crate) fn siting_note(report: &SitingReport, constraints: &Constraints) -> Option<String> {
+    if report.refused_share() <= THIN_FOREST_SHARE {
+        return None;
+    }
+    let share = |n: u64| 100.0 * n as f64 / report.candidates.max(1) as f64;
+    let mut lines = vec![format!(
+        "note: {:.0}% of {} candidate tree spots were refused ({} trees placed):",
+        100.0 * report.refused_share(),
+        report.candidates,
+        report.placed
+    )];
+    let reasons = [
+        (
+            report.too_steep,
+            format!(
+                "steeper than {:.0} degrees (--max-slope)",
+                constraints.max_slope_degrees
+            ),
+        ),
+        (
+            report.above_max_height,
+            format!("above {:.0} m (--max-height)", constraints.max_height),
+        ),
+        (
+            report.below_min_height,
+            format!("below {:.0} m (--min-height)", constraints.min_height),
+        ),
+        (report.masked, "refused by the density mask".to_owned()),
+    ];
+    for (n, why) in reasons.iter().filter(|(n, _)| *n > 0) {
+        lines.push(format!("  {n} ({:.0}%) {why}", share(*n)));
+    }
+    Some(lines.join("\n"))
 }
 
 /// Reads a user's elevation model of any size (GeoTIFF, SRTM .hgt, ESRI ASCII grid, 16-bit

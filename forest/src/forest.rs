@@ -15,6 +15,7 @@ use crate::error::ForestError;
 use crate::form::TreeForm;
 use crate::patch::Composition;
 use crate::patch::{PatchDensity, PatchSpecies};
+use crate::siting::SitingReport;
 use crate::species::{Canopy, Species};
 use crate::succession::Snapshot;
 use crate::variants::Variant;
@@ -41,25 +42,6 @@ impl std::fmt::Debug for Constraints {
             .field("max_slope_degrees", &self.max_slope_degrees)
             .field("mask", &self.mask.as_ref().map(|_| "fn"))
             .finish()
-    }
-}
-
-impl Constraints {
-    /// The ground's height at (x, z) of `terrain` where trees may stand there (within the
-    /// height range, no steeper than the slope limit), `None` elsewhere; the mask is the
-    /// caller's. The slope's cosine is worked out once, here, not per tree.
-    pub(crate) fn ground<'a>(
-        &'a self,
-        terrain: &'a dyn HeightField,
-    ) -> impl Fn(f32, f32) -> Option<f32> + 'a {
-        let min_up = self.max_slope_degrees.clamp(0.0, 90.0).to_radians().cos();
-        move |x, z| {
-            let height = terrain.height(x, z);
-            let allowed = height >= self.min_height
-                && height <= self.max_height
-                && terrain.normal(x, z).y >= min_up - 1e-6;
-            allowed.then_some(height)
-        }
     }
 }
 
@@ -429,16 +411,27 @@ impl ForestBuilder {
     /// seamless between adjacent regions, or the snapshot's there when the builder draws one
     /// ([`ForestBuilder::with_snapshot`]). Trees outside the terrain's bounds are dropped.
     pub fn trees(&self, terrain: &dyn HeightField, region: Rect) -> Vec<CompactTree> {
+        self.trees_sited(terrain, region, &mut SitingReport::default())
+    }
+
+    /// As [`ForestBuilder::trees`], counting every candidate spot's verdict into `report`.
+    pub(crate) fn trees_sited(
+        &self,
+        terrain: &dyn HeightField,
+        region: Rect,
+        report: &mut SitingReport,
+    ) -> Vec<CompactTree> {
         if let Some(snapshot) = &self.snapshot {
-            return self.snapshot_trees(snapshot, terrain, region);
+            return self.snapshot_trees_sited(snapshot, terrain, region, report);
         }
         match &self.config.composition {
-            Some(composition) => self.trees_with(
+            Some(composition) => self.trees_with_sited(
                 &self.density.composed(composition.as_ref()),
                 terrain,
                 region,
+                report,
             ),
-            None => self.trees_with(&self.density, terrain, region),
+            None => self.trees_with_sited(&self.density, terrain, region, report),
         }
     }
 
@@ -464,6 +457,18 @@ impl ForestBuilder {
         terrain: &dyn HeightField,
         region: Rect,
     ) -> Vec<CompactTree> {
+        self.trees_with_sited(density, terrain, region, &mut SitingReport::default())
+    }
+
+    /// As [`ForestBuilder::trees_with`], counting every candidate spot's verdict into
+    /// `report`.
+    fn trees_with_sited(
+        &self,
+        density: &dyn DensityModel,
+        terrain: &dyn HeightField,
+        region: Rect,
+        report: &mut SitingReport,
+    ) -> Vec<CompactTree> {
         let (lo, hi) = terrain.bounds();
         let region = region.intersect(&Rect::new(lo, hi));
         let mut candidates = Vec::new();
@@ -479,16 +484,19 @@ impl ForestBuilder {
             .fold(0.0f32, f32::max);
         let cell = (2.0 * widest).max(self.density.patch);
         let slots = self.config.seedlings_per_patch.min(MAX_SEEDLING_SLOTS);
-        let ground = c.ground(terrain);
-        candidates
+        let site = c.site(terrain);
+        let trees: Vec<CompactTree> = candidates
             .iter()
             .filter_map(|cand: &Candidate| {
                 let Vec2 { x, y: z } = cand.position;
-                let height = ground(x, z)?;
+                let sited = site(x, z);
+                report.count(sited.map(|_| ()));
+                let height = sited.ok()?;
                 // A NaN from the mask counts as no trees.
                 if let Some(mask) = &c.mask
                     && unit(mix(cand.key ^ 0x5eed)) >= mask(x, z).clamp(0.0, 1.0).max(0.0)
                 {
+                    report.masked += 1;
                     return None;
                 }
                 let variant = self
@@ -507,7 +515,9 @@ impl ForestBuilder {
                     crown_classes,
                 })
             })
-            .collect()
+            .collect();
+        report.placed += trees.len() as u64;
+        trees
     }
 
     /// Builds the forest of `region` on `terrain`.

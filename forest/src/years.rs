@@ -10,6 +10,7 @@ use std::sync::Arc;
 use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
+use crate::siting::SitingReport;
 use crate::succession::{Snapshot, State, Succession, SuccessionOptions};
 
 impl ForestBuilder {
@@ -37,15 +38,29 @@ impl ForestBuilder {
         terrain: &dyn HeightField,
         region: Rect,
     ) -> Vec<CompactTree> {
+        self.snapshot_trees_sited(snapshot, terrain, region, &mut SitingReport::default())
+    }
+
+    /// As [`ForestBuilder::snapshot_trees`], counting each tree's verdict into `report` (the
+    /// snapshot's trees are its candidates).
+    pub(crate) fn snapshot_trees_sited(
+        &self,
+        snapshot: &Snapshot,
+        terrain: &dyn HeightField,
+        region: Rect,
+        report: &mut SitingReport,
+    ) -> Vec<CompactTree> {
         let (lo, hi) = terrain.bounds();
         let region = region.intersect(&Rect::new(lo, hi));
-        let ground = self.config().constraints.ground(terrain);
-        snapshot
+        let site = self.config().constraints.site(terrain);
+        let trees: Vec<CompactTree> = snapshot
             .trees_in(region)
             .filter_map(|t| {
                 let species = usize::from(t.species);
                 let [x, z] = t.position;
-                let height = ground(x, z)?;
+                let sited = site(x, z);
+                report.count(sited.map(|_| ()));
+                let height = sited.ok()?;
                 let (form, scale) = match t.state.damaged_form() {
                     None => self.live_form(species, t.height)?,
                     Some(form) => {
@@ -71,6 +86,8 @@ impl ForestBuilder {
                     crown_classes: 0,
                 })
             })
-            .collect()
+            .collect();
+        report.placed += trees.len() as u64;
+        trees
     }
 }

@@ -22,7 +22,7 @@ pub struct HeightRange {
 const TEXT_KEY: &str = "sylva:heights";
 
 impl HeightRange {
-    fn validate(&self) -> Result<(), TerrainError> {
+    pub(crate) fn validate(&self) -> Result<(), TerrainError> {
         check("range min", f64::from(self.min), true, "finite")?;
         check(
             "range max",
@@ -37,7 +37,7 @@ impl HeightRange {
         (t * 65535.0).round().clamp(0.0, 65535.0) as u16
     }
 
-    fn dequantize(&self, q: u16) -> f32 {
+    pub(crate) fn dequantize(&self, q: u16) -> f32 {
         (f64::from(self.min) + f64::from(q) / 65535.0 * (f64::from(self.max) - f64::from(self.min)))
             as f32
     }
@@ -123,59 +123,82 @@ impl Heightmap {
         input: R,
         fallback: Option<(HeightRange, f32)>,
     ) -> Result<Heightmap, TerrainError> {
-        let decoder = png::Decoder::new(input);
-        let mut reader = decoder.read_info()?;
-        let info = reader.info();
-        if info.color_type != png::ColorType::Grayscale || info.bit_depth != png::BitDepth::Sixteen
-        {
-            return Err(TerrainError::NotGrayscale16 {
-                channels: info.color_type.samples() as u8,
-                bits: info.bit_depth as u8,
-            });
-        }
-        if info.width != info.height {
-            return Err(TerrainError::NotSquare {
-                width: info.width,
-                height: info.height,
-            });
-        }
-        let size = info.width as usize;
-        checked_len(size)?;
-        let stored = info
-            .uncompressed_latin1_text
-            .iter()
-            .find(|t| t.keyword == TEXT_KEY)
-            .and_then(|t| {
-                let v: Vec<f32> = t
-                    .text
-                    .split_whitespace()
-                    .filter_map(|s| s.parse().ok())
-                    .collect();
-                (v.len() == 3).then(|| {
-                    (
-                        HeightRange {
-                            min: v[0],
-                            max: v[1],
-                        },
-                        v[2],
-                    )
-                })
-            });
-        let (range, spacing) = stored.or(fallback).ok_or(TerrainError::NoHeightRange)?;
+        let png = decode_png16(input, |width, height| {
+            if width != height {
+                return Err(TerrainError::NotSquare { width, height });
+            }
+            checked_len(width as usize).map(|_| ())
+        })?;
+        let (range, spacing) = png.stored.or(fallback).ok_or(TerrainError::NoHeightRange)?;
         range.validate()?;
-        let mut buf = vec![
-            0u8;
-            reader
-                .output_buffer_size()
-                .ok_or(TerrainError::BadSize(size))?
-        ];
-        reader.next_frame(&mut buf)?;
-        let heights = buf[..size * size * 2]
-            .chunks_exact(2)
-            .map(|b| range.dequantize(u16::from_be_bytes([b[0], b[1]])))
-            .collect();
-        Heightmap::from_heights(size, spacing, heights)
+        let heights = png.samples.iter().map(|&q| range.dequantize(q)).collect();
+        Heightmap::from_heights(png.width, spacing, heights)
     }
+}
+
+/// A 16-bit grayscale PNG's samples, row-major, and the range and spacing of its
+/// `sylva:heights` chunk if it has one.
+pub(crate) struct Png16 {
+    pub(crate) width: usize,
+    pub(crate) height: usize,
+    pub(crate) samples: Vec<u16>,
+    pub(crate) stored: Option<(HeightRange, f32)>,
+}
+
+/// Decodes a 16-bit grayscale PNG, asking `check` about its width and height before its
+/// pixels are allocated (a header can claim any size).
+pub(crate) fn decode_png16<R: BufRead + Seek>(
+    input: R,
+    check: impl FnOnce(u32, u32) -> Result<(), TerrainError>,
+) -> Result<Png16, TerrainError> {
+    let mut reader = png::Decoder::new(input).read_info()?;
+    let info = reader.info();
+    if info.color_type != png::ColorType::Grayscale || info.bit_depth != png::BitDepth::Sixteen {
+        return Err(TerrainError::NotGrayscale16 {
+            channels: info.color_type.samples() as u8,
+            bits: info.bit_depth as u8,
+        });
+    }
+    let (width, height) = (info.width, info.height);
+    check(width, height)?;
+    let stored = info
+        .uncompressed_latin1_text
+        .iter()
+        .find(|t| t.keyword == TEXT_KEY)
+        .and_then(|t| {
+            let v: Vec<f32> = t
+                .text
+                .split_whitespace()
+                .filter_map(|s| s.parse().ok())
+                .collect();
+            (v.len() == 3).then(|| {
+                (
+                    HeightRange {
+                        min: v[0],
+                        max: v[1],
+                    },
+                    v[2],
+                )
+            })
+        });
+    let (width, height) = (width as usize, height as usize);
+    let mut buf = vec![
+        0u8;
+        reader
+            .output_buffer_size()
+            .ok_or(TerrainError::BadSize(width))?
+    ];
+    reader.next_frame(&mut buf)?;
+    let samples = buf[..width * height * 2]
+        .chunks_exact(2)
+        .map(|b| u16::from_be_bytes([b[0], b[1]]))
+        .collect();
+    Ok(Png16 {
+        width,
+        height,
+        samples,
+        stored,
+    })
 }
 
 /// Side of a square map stored in `len` bytes at `bytes_per_sample`.

@@ -19,11 +19,13 @@ fn bad(message: impl Into<String>) -> TerrainError {
     }
 }
 
-/// The GeoKeys that say how to read the pixel scale: the model type (1 projected,
-/// 2 geographic), the projected CRS's EPSG code and its linear unit.
+/// The GeoKeys that say how to read the pixel scale and tie point: the model type
+/// (1 projected, 2 geographic), the raster type (1 a pixel is an area, tied at its corner;
+/// 2 a pixel is a point, tied at itself), the projected CRS's EPSG code and its linear unit.
 #[derive(Debug, Default, Clone, Copy, PartialEq)]
 struct Keys {
     model: Option<u16>,
+    raster: Option<u16>,
     projection: Option<u16>,
     linear_unit: Option<u16>,
 }
@@ -44,6 +46,7 @@ fn keys(directory: &[u16]) -> Keys {
         }
         match id {
             1024 => k.model = Some(value),
+            1025 => k.raster = Some(value),
             3072 => k.projection = Some(value),
             3076 => k.linear_unit = Some(value),
             _ => {}
@@ -51,6 +54,9 @@ fn keys(directory: &[u16]) -> Keys {
     }
     k
 }
+
+/// GTRasterTypeGeoKey's value for rasters whose pixels are points.
+const PIXEL_IS_POINT: u16 = 2;
 
 /// Metres in one of the file's linear units (EPSG unit codes).
 fn unit_metres(unit: Option<u16>) -> f64 {
@@ -125,9 +131,16 @@ pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
     let k = directory.as_deref().map(keys).unwrap_or_default();
     let (spacing, georeference) = match (scale.as_deref(), tie.as_deref()) {
         (Some([sx, sy, ..]), tie) if *sx > 0.0 && *sy > 0.0 => {
-            // The tie point maps raster (i, j) to model (x, y); pixel centres are half a cell in.
+            // The tie point maps raster (i, j) to model (x, y). Where a pixel is an area (the
+            // default), (0, 0) is its north-west corner and its sample half a cell in; where
+            // a pixel is a point, (0, 0) is the sample itself.
+            let inset = if k.raster == Some(PIXEL_IS_POINT) {
+                0.0
+            } else {
+                0.5
+            };
             let (x0, y0) = match tie {
-                Some([i, j, _, x, y, ..]) => (x - i * sx + 0.5 * sx, y + j * sy - 0.5 * sy),
+                Some([i, j, _, x, y, ..]) => (x - i * sx + inset * sx, y + j * sy - inset * sy),
                 _ => (0.0, 0.0),
             };
             let geographic = k.model == Some(2)
@@ -257,6 +270,43 @@ mod tests {
             m.georeference,
             Some(Georeference::Geographic { .. })
         ));
+    }
+
+    /// A 3 x 3 geographic model tied at (8 E, 47 N) with the raster type `raster`.
+    fn tied(raster: u16) -> ElevationModel {
+        let mut buf = Cursor::new(Vec::new());
+        let mut enc = TiffEncoder::new(&mut buf).unwrap();
+        let mut image = enc.new_image::<colortype::GrayI16>(3, 3).unwrap();
+        let d = image.encoder();
+        d.write_tag(Tag::ModelPixelScaleTag, &[0.001f64, 0.001, 0.0][..])
+            .unwrap();
+        d.write_tag(
+            Tag::ModelTiepointTag,
+            &[0.0f64, 0.0, 0.0, 8.0, 47.0, 0.0][..],
+        )
+        .unwrap();
+        d.write_tag(
+            Tag::GeoKeyDirectoryTag,
+            &[1u16, 1, 0, 2, 1024, 0, 1, 2, 1025, 0, 1, raster][..],
+        )
+        .unwrap();
+        image.write_data(&[7i16; 9]).unwrap();
+        read(&buf.into_inner()).unwrap()
+    }
+
+    #[test]
+    fn a_point_is_tied_at_itself_and_an_area_at_its_corner() {
+        let at = |m: ElevationModel| match m.georeference {
+            Some(Georeference::Geographic {
+                longitude,
+                latitude,
+            }) => (longitude, latitude),
+            other => panic!("{other:?}"),
+        };
+        let (lon, lat) = at(tied(PIXEL_IS_POINT));
+        assert_eq!((lon, lat), (8.0, 47.0));
+        let (lon, lat) = at(tied(1));
+        assert!((lon - 8.0005).abs() < 1e-12 && (lat - 46.9995).abs() < 1e-12);
     }
 
     #[test]

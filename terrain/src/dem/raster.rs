@@ -4,67 +4,36 @@
 
 use super::{ElevationModel, ReadOptions, check_size};
 use crate::error::TerrainError;
+use crate::io::{HeightRange, decode_png16};
 
-/// Heights of `q` over `[low, high]`.
-fn height(q: u16, [low, high]: [f32; 2]) -> f32 {
-    (f64::from(low) + f64::from(q) / 65535.0 * (f64::from(high) - f64::from(low))) as f32
+/// The range that samples 0 and 65535 stand for, checked.
+fn range_of([min, max]: [f32; 2]) -> Result<HeightRange, TerrainError> {
+    let range = HeightRange { min, max };
+    range.validate()?;
+    Ok(range)
 }
 
-fn check_range([low, high]: [f32; 2]) -> Result<(), TerrainError> {
-    crate::error::check(
-        "height range",
-        f64::from(high - low),
-        low.is_finite() && high.is_finite() && high > low,
-        "low < high, both finite",
-    )
-}
-
+/// A 16-bit grayscale PNG of any size; the range (and spacing) from sylva's chunk, else
+/// `range`.
 pub(super) fn read_png16(
     bytes: &[u8],
     range: Option<[f32; 2]>,
 ) -> Result<ElevationModel, TerrainError> {
-    let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
-    let mut reader = decoder.read_info()?;
-    let info = reader.info();
-    if info.color_type != png::ColorType::Grayscale || info.bit_depth != png::BitDepth::Sixteen {
-        return Err(TerrainError::NotGrayscale16 {
-            channels: info.color_type.samples() as u8,
-            bits: info.bit_depth as u8,
-        });
-    }
-    let (width, height_rows) = check_size(u64::from(info.width), u64::from(info.height))?;
-    let stored: Option<([f32; 2], f32)> = info
-        .uncompressed_latin1_text
-        .iter()
-        .find(|t| t.keyword == "sylva:heights")
-        .and_then(|t| {
-            let v: Vec<f32> = t
-                .text
-                .split_whitespace()
-                .filter_map(|s| s.parse().ok())
-                .collect();
-            (v.len() == 3).then(|| ([v[0], v[1]], v[2]))
-        });
-    let range = stored
-        .map(|s| s.0)
-        .or(range)
-        .ok_or(TerrainError::NoHeightRange)?;
-    check_range(range)?;
-    let mut buf = vec![
-        0u8;
-        reader
-            .output_buffer_size()
-            .ok_or(TerrainError::BadSize(width))?
-    ];
-    reader.next_frame(&mut buf)?;
-    let heights = buf[..width * height_rows * 2]
-        .chunks_exact(2)
-        .map(|b| height(u16::from_be_bytes([b[0], b[1]]), range))
-        .collect();
-    let spacing = stored.map(|s| s.1);
+    let png = decode_png16(std::io::Cursor::new(bytes), |w, h| {
+        check_size(u64::from(w), u64::from(h)).map(|_| ())
+    })?;
+    let range = match png.stored {
+        Some((stored, _)) => {
+            stored.validate()?;
+            stored
+        }
+        None => range_of(range.ok_or(TerrainError::NoHeightRange)?)?,
+    };
+    let heights = png.samples.iter().map(|&q| range.dequantize(q)).collect();
+    let spacing = png.stored.map(|s| s.1);
     Ok(ElevationModel {
-        width,
-        height: height_rows,
+        width: png.width,
+        height: png.height,
         heights,
         spacing: [spacing.unwrap_or(1.0); 2],
         nodata: 0,
@@ -77,8 +46,7 @@ pub(super) fn read_raw16(
     bytes: &[u8],
     options: &ReadOptions,
 ) -> Result<ElevationModel, TerrainError> {
-    let range = options.height_range.ok_or(TerrainError::NoHeightRange)?;
-    check_range(range)?;
+    let range = range_of(options.height_range.ok_or(TerrainError::NoHeightRange)?)?;
     if !bytes.len().is_multiple_of(2) {
         return Err(TerrainError::PartialSample {
             bytes: bytes.len(),
@@ -105,7 +73,7 @@ pub(super) fn read_raw16(
     }
     let heights = bytes
         .chunks_exact(2)
-        .map(|b| height(u16::from_le_bytes([b[0], b[1]]), range))
+        .map(|b| range.dequantize(u16::from_le_bytes([b[0], b[1]])))
         .collect();
     Ok(ElevationModel {
         width,
