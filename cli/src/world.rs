@@ -7,7 +7,7 @@ use std::time::Duration;
 use clap::Args;
 use sylva::forest::{Constraints, ForestBuilder, ForestConfig, Rect, SitingReport, Species};
 use sylva::terrain::Heightmap;
-use sylva::terrain::dem::{ElevationModel, ReadOptions};
+use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::terrain::glam::Vec2;
 
 use crate::Failure;
@@ -33,6 +33,10 @@ pub(crate) struct WorldArgs {
     /// Width and height of a RAW model (for --terrain).
     #[arg(long, value_name = "W,H", value_parser = parse_pair::<usize>)]
     raw_size: Option<(usize, usize)>,
+    /// Use only this window of the model (for --terrain): its north-west sample's column
+    /// and row, then its width and height in samples. For models larger than a world.
+    #[arg(long, value_name = "COL,ROW,W,H")]
+    crop: Option<Window>,
     /// Heights of the samples 0 and 65535, in metres (for --terrain).
     #[arg(long, value_name = "LO,HI", value_parser = parse_pair::<f32>)]
     height_range: Option<(f32, f32)>,
@@ -80,6 +84,9 @@ pub(crate) struct World {
     pub(crate) siting: SitingReport,
 }
 
+/// Longest side of a world, metres (as `--area`'s limit).
+const MAX_WORLD_SIDE: f32 = 20_000.0;
+
 /// Most years one forest over time simulates (`--year`, `sylva succession --years`).
 pub(crate) const MAX_YEARS: u32 = 10_000;
 
@@ -106,9 +113,9 @@ impl WorldArgs {
                 "--density {d}: expected 0 < trees per hectare <= 10000"
             )));
         }
-        if let Some(a) = self.area.filter(|a| !(*a > 0.0 && *a <= 20_000.0)) {
+        if let Some(a) = self.area.filter(|a| !(*a > 0.0 && *a <= MAX_WORLD_SIDE)) {
             return Err(Failure::usage(format!(
-                "--area {a}: expected a side length from 0 to 20000 metres"
+                "--area {a}: expected a side length from 0 to {MAX_WORLD_SIDE} metres"
             )));
         }
         if let Some(n) = self.trees.filter(|n| *n == 0 || *n > 10_000_000) {
@@ -248,17 +255,39 @@ fn read_terrain(
         height_range: args.height_range.map(|(lo, hi)| [lo, hi]),
         raw_size: args.raw_size.map(|(w, h)| [w, h]),
     };
-    let model =
+    let mut model =
         ElevationModel::read(file, &options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    if let Some(window) = args.crop {
+        model = model
+            .crop(window)
+            .map_err(|e| Failure::usage(format!("--crop: {name}: {e}")))?;
+    }
     if !model.spacing_from_file && args.spacing.is_none() {
         return Err(Failure::usage(format!(
             "{name}: the file does not say how far apart its samples are: give --spacing M"
         )));
     }
     let [x, z] = model.extent();
-    if !(x > 10.0 && z > 10.0 && x <= 20_000.0 && z <= 20_000.0) {
+    if !(x > 10.0 && z > 10.0 && x <= MAX_WORLD_SIDE && z <= MAX_WORLD_SIDE) {
+        // The largest window a world holds, about the model's middle.
+        let fit = |n: usize, spacing: f32| n.min((MAX_WORLD_SIDE / spacing) as usize + 1);
+        let (w, h) = (
+            fit(model.width, model.spacing[0]),
+            fit(model.height, model.spacing[1]),
+        );
+        let hint = if x > MAX_WORLD_SIDE || z > MAX_WORLD_SIDE {
+            format!(
+                "; --crop {},{},{w},{h} takes the middle {:.0} x {:.0} m",
+                (model.width - w) / 2,
+                (model.height - h) / 2,
+                (w - 1) as f32 * model.spacing[0],
+                (h - 1) as f32 * model.spacing[1]
+            )
+        } else {
+            String::new()
+        };
         return Err(Failure::job(format!(
-            "{name}: {} x {} samples at {:.2} x {:.2} m cover {x:.0} x {z:.0} m; a world is 10 to 20000 m a side (--spacing sets the samples' distance)",
+            "{name}: {} x {} samples at {:.2} x {:.2} m cover {x:.0} x {z:.0} m; a world is 10 to {MAX_WORLD_SIDE:.0} m a side (--spacing sets the samples' distance){hint}",
             model.width, model.height, model.spacing[0], model.spacing[1]
         )));
     }

@@ -34,7 +34,8 @@ fn srtm_hgt_white_mountains() {
         m.georeference,
         Some(Georeference::Geographic {
             longitude: -72.0,
-            latitude: 45.0
+            latitude: 45.0,
+            step: [1.0 / 1200.0; 2]
         })
     );
     let (map, extent) = m.to_heightmap().unwrap();

@@ -44,6 +44,8 @@ fn default_scene() -> Scene {
         specimen: false,
         floor: true,
         year: None,
+        constraints: Default::default(),
+        terrain: None,
     })
     .expect("default scene builds")
 }
@@ -184,6 +186,8 @@ fn wind_sways_trees_and_still_air_does_not() {
         specimen: false,
         floor: true,
         year: None,
+        constraints: Default::default(),
+        terrain: None,
     })
     .expect("birch stand builds");
     let size = (160, 90);
@@ -234,6 +238,8 @@ fn a_view_streamed_again_is_the_same_picture() {
         specimen: false,
         floor: true,
         year: None,
+        constraints: Default::default(),
+        terrain: None,
     })
     .expect("world builds");
     let size = (160, 90);
@@ -282,6 +288,8 @@ fn a_turntable_frames_its_tree_from_every_side() {
         specimen: true,
         floor: false,
         year: None,
+        constraints: Default::default(),
+        terrain: None,
     })
     .expect("a turntable's world builds");
     let (builder, _) = scene.world.forest();

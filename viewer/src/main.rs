@@ -3,6 +3,7 @@
 //! ```text
 //! cargo run --release -p sylva-viewer -- [--grammar PRESET | --species FILE...] [--seed S]
 //!     [--area METRES | --trees N] [--budget-mb MB] [--paint MASKS_DIR] [--no-floor]
+//!     [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M]
 //!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--full-detail]
 //!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
 //!     [--wind S] [--time T]]
@@ -12,7 +13,9 @@
 //! (every branch) within 250 m and as whole-tree proxies to 1,500 m, so a world of millions
 //! of trees is walked like a small one. `--trees N` sizes the world as `sylva forest`
 //! does, for about N canopy trees (`--trees 1000000`: 7.7 km a side, 5 million trees with
-//! the seedlings).
+//! the seedlings). `--terrain` walks your own elevation model instead (GeoTIFF, SRTM `.hgt`,
+//! ESRI ASCII grid, 16-bit PNG; any size): the largest square of its land, `--crop` choosing
+//! a window of samples of a model larger than a world.
 //!
 //! Windowed: the camera stays at eye height (1.7 m) above the terrain; drag or move the mouse
 //! to look (click to capture the cursor, Escape to release), WASD to walk, Shift to run; the
@@ -83,7 +86,9 @@ use std::time::Instant;
 
 use error::ViewerError;
 use scene::{Camera, Scene};
-use world::SceneOptions;
+use sylva::forest::Constraints;
+use sylva::terrain::dem::Window;
+use world::{SceneOptions, TerrainFile};
 
 /// Where the forest's species come from.
 enum SpeciesSource {
@@ -138,7 +143,7 @@ struct Args {
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
-                     [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
+                     [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M] [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
                      [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]] \
                      [--year N | --years A..B [--every K] | --years Y1,Y2,...]";
 
@@ -167,6 +172,11 @@ fn parse() -> Result<Args, String> {
     let mut years: Option<Vec<u32>> = None;
     let mut every = 10u32;
     let mut span = false;
+    let mut terrain: Option<std::path::PathBuf> = None;
+    let mut spacing: Option<f32> = None;
+    let mut crop: Option<Window> = None;
+    let mut max_slope = 35.0f32;
+    let mut max_height = f32::INFINITY;
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
         match a.as_str() {
@@ -218,6 +228,11 @@ fn parse() -> Result<Args, String> {
                 span = s.contains("..");
             }
             "--every" => every = flags.value("--every")?,
+            "--terrain" => terrain = Some(flags.value::<String>("--terrain")?.into()),
+            "--spacing" => spacing = Some(flags.value("--spacing")?),
+            "--crop" => crop = Some(flags.value("--crop")?),
+            "--max-slope" => max_slope = flags.value("--max-slope")?,
+            "--max-height" => max_height = flags.value("--max-height")?,
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -265,6 +280,24 @@ fn parse() -> Result<Args, String> {
     }
     if !(side > 10.0 && side <= 20_000.0) {
         return Err(format!("--area {side}: expected 10 to 20000 metres"));
+    }
+    if spacing.is_some_and(|s: f32| !(s > 0.0 && s <= 100_000.0)) {
+        return Err("--spacing: expected metres between samples, above 0".to_owned());
+    }
+    if !(0.0..=90.0).contains(&max_slope) || max_height.is_nan() {
+        return Err(format!(
+            "--max-slope {max_slope} --max-height {max_height}: expected 0 to 90 degrees and a height in metres"
+        ));
+    }
+    if terrain.is_none() && (spacing.is_some() || crop.is_some()) {
+        return Err(format!(
+            "--spacing and --crop are for --terrain FILE\n{USAGE}"
+        ));
+    }
+    if terrain.is_some() && turntable > 0 {
+        return Err(format!(
+            "--turntable stands one tree on flat ground: not with --terrain\n{USAGE}"
+        ));
     }
     if year.is_some() && years.is_some() {
         return Err(format!("give --year or --years, not both\n{USAGE}"));
@@ -324,6 +357,14 @@ fn parse() -> Result<Args, String> {
             specimen: turntable > 0,
             floor: !no_floor,
             year: start_year,
+            constraints: Constraints::default()
+                .with_max_slope_degrees(max_slope)
+                .with_height_range(f32::NEG_INFINITY, max_height),
+            terrain: terrain.map(|path| TerrainFile {
+                path,
+                spacing,
+                crop,
+            }),
         },
         species,
         camera,

@@ -8,12 +8,13 @@ use rayon::prelude::*;
 use sylva::export::Texture;
 use sylva::export::lod::{CacheLods, Impostor, LodChain, VariantLods};
 use sylva::forest::{
-    BarkPattern, Composition, FloorOptions, ForestBuilder, ForestConfig, ForestError, ForestFloor,
-    GroundKind, LeafShape, Rect, Species,
+    BarkPattern, Composition, Constraints, FloorOptions, ForestBuilder, ForestConfig, ForestError,
+    ForestFloor, GroundKind, LeafShape, Rect, Species,
 };
 use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
 use sylva::terrain::Heightmap;
+use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::terrain::glam::{Quat, Vec2, Vec3};
 use sylva::turtle::Vertex;
 
@@ -127,6 +128,7 @@ pub(crate) struct World {
 }
 
 /// How to build a [`World`].
+#[derive(Debug, Clone)]
 pub(crate) struct SceneOptions {
     pub(crate) seed: u64,
     /// The world's side in metres, unless `trees` is given.
@@ -146,6 +148,54 @@ pub(crate) struct SceneOptions {
     /// Draw year N of a forest over time grown from bare ground (trees of every age, dead,
     /// broken and fallen ones) instead of the density model's forest.
     pub(crate) year: Option<u32>,
+    /// Where on the terrain trees may stand (slope limit, height range).
+    pub(crate) constraints: Constraints,
+    /// The user's elevation model instead of generated terrain (`side` and `trees` are not
+    /// used): the largest square of its own land.
+    pub(crate) terrain: Option<TerrainFile>,
+}
+
+/// An elevation model from a file, as `--terrain`, `--spacing` and `--crop` give it.
+#[derive(Debug, Clone)]
+pub(crate) struct TerrainFile {
+    pub(crate) path: std::path::PathBuf,
+    /// Metres between samples, overriding the file's.
+    pub(crate) spacing: Option<f32>,
+    /// The window of the model to use.
+    pub(crate) crop: Option<Window>,
+}
+
+impl TerrainFile {
+    /// The model's largest square of land as a heightmap, read, cropped and checked.
+    fn heightmap(&self) -> Result<Heightmap, ViewerError> {
+        let name = self.path.display();
+        let options = ReadOptions {
+            spacing: self.spacing,
+            ..ReadOptions::default()
+        };
+        let mut model = ElevationModel::read(&self.path, &options)?;
+        if !model.spacing_from_file && self.spacing.is_none() {
+            return Err(ViewerError::Usage(format!(
+                "{name}: the file does not say how far apart its samples are: give --spacing M"
+            )));
+        }
+        if let Some(window) = self.crop {
+            model = model.crop(window)?;
+        }
+        if model.nodata > 0 {
+            eprintln!(
+                "{name}: {} cells had no data and were filled from their neighbours",
+                model.nodata
+            );
+        }
+        let [x, z] = model.extent();
+        if x.max(z) > 20_000.0 {
+            return Err(ViewerError::Usage(format!(
+                "{name}: {x:.0} x {z:.0} m is larger than a world (20000 m a side): give --crop COL,ROW,W,H"
+            )));
+        }
+        Ok(model.square_heightmap()?)
+    }
 }
 
 #[cfg(test)]
@@ -163,6 +213,8 @@ impl SceneOptions {
             specimen: false,
             floor: true,
             year: None,
+            constraints: Constraints::default(),
+            terrain: None,
         }
     }
 }
@@ -183,12 +235,19 @@ impl World {
             config.seedlings_per_patch = 0;
         }
         config.all_ages = options.year.is_some();
+        config.constraints = options.constraints;
         let mut builder = ForestBuilder::new(config)?;
         let patch = builder.density().patch;
-        let side = match options.trees {
+        let user_map = options
+            .terrain
+            .as_ref()
+            .map(TerrainFile::heightmap)
+            .transpose()?;
+        let side = match (&user_map, options.trees) {
+            (Some(map), _) => (map.size() - 1) as f32 * map.spacing(),
             _ if options.specimen => crate::turntable::world_patches(patch) as f32 * patch,
-            Some(n) => builder.side_for_canopy_trees(n as usize),
-            None => options.side,
+            (None, Some(n)) => builder.side_for_canopy_trees(n as usize),
+            (None, None) => options.side,
         };
         if options.specimen {
             builder = builder.with_composition(Some(crate::turntable::specimen(patch)))?;
@@ -196,7 +255,10 @@ impl World {
         if !(side > 10.0 && side <= 20_000.0) {
             return Err(ViewerError::WorldSize { side });
         }
-        let heightmap = sylva::presets::terrain(options.seed, side)?;
+        let heightmap = match user_map {
+            Some(map) => map,
+            None => sylva::presets::terrain(options.seed, side)?,
+        };
         let mut layer = None;
         if let Some(dir) = &options.paint {
             let loaded = Arc::new(sylva::paint::load_masks_for(&builder, dir, &heightmap)?);
@@ -468,5 +530,79 @@ mod tests {
         ];
         let (c, r) = bounding_sphere(points.into_iter());
         assert!(points.iter().all(|p| p.distance(c) <= r + 1e-5));
+    }
+
+    /// A real elevation model of any size is walked: the world is its largest square of
+    /// land, at its heights, and a treeline keeps trees below it.
+    #[test]
+    fn a_real_model_is_the_world() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../terrain/tests/data/dems/west_bijou_escarpment.asc"
+        );
+        let model = ElevationModel::read(path, &ReadOptions::default()).unwrap();
+        let [x, z] = model.extent();
+        let cropped = Window {
+            column: 10,
+            row: 5,
+            width: 60,
+            height: 40,
+        };
+        let options = SceneOptions {
+            terrain: Some(TerrainFile {
+                path: path.into(),
+                spacing: None,
+                crop: Some(cropped),
+            }),
+            ..SceneOptions::small(2, 100.0)
+        };
+        let world = World::build(options.clone()).unwrap();
+        let part = model.crop(cropped).unwrap();
+        let side = part.extent()[0].min(part.extent()[1]);
+        assert!((world.side - side).abs() < 1e-2, "{} {side}", world.side);
+        assert!(world.side < x.min(z));
+        let map = &world.heightmap;
+        let stats = map.stats();
+        let (lo, hi) = part
+            .heights
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(a, b), &h| (a.min(h), b.max(h)));
+        assert!(stats.min >= lo - 0.01 && stats.max <= hi + 0.01);
+        // A treeline at the middle height: every tree stands below it.
+        let treeline = (stats.min + stats.max) / 2.0;
+        let below = World::build(SceneOptions {
+            constraints: Constraints::default().with_height_range(f32::NEG_INFINITY, treeline),
+            ..options
+        })
+        .unwrap();
+        let whole = Rect::new(Vec2::ZERO, Vec2::splat(below.side));
+        let trees = below.forest().0.trees(&below.heightmap, whole);
+        assert!(!trees.is_empty());
+        assert!(trees.iter().all(|t| t.position[1] <= treeline));
+    }
+
+    #[test]
+    fn a_model_larger_than_a_world_asks_for_a_crop() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../terrain/tests/data/dems/N44W072.hgt"
+        );
+        let file = |crop| TerrainFile {
+            path: path.into(),
+            spacing: None,
+            crop,
+        };
+        let message = file(None).heightmap().unwrap_err().to_string();
+        assert!(message.contains("--crop"), "{message}");
+        assert!(
+            file(Some(Window {
+                column: 0,
+                row: 0,
+                width: 100,
+                height: 100
+            }))
+            .heightmap()
+            .is_ok()
+        );
     }
 }

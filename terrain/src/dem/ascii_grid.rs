@@ -121,6 +121,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
             Georeference::Geographic {
                 longitude: west,
                 latitude: north,
+                step: [sx, sy],
             },
         )
     } else {
@@ -129,6 +130,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
             Georeference::Projected {
                 x: west,
                 y: north,
+                step: [sx, sy],
                 epsg: None,
             },
         )

@@ -153,6 +153,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
                     Some(Georeference::Geographic {
                         longitude: x0,
                         latitude: y0,
+                        step: [*sx, *sy],
                     }),
                 )
             } else {
@@ -162,6 +163,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<ElevationModel, TerrainError> {
                     Some(Georeference::Projected {
                         x: x0,
                         y: y0,
+                        step: [*sx, *sy],
                         epsg: k.projection,
                     }),
                 )
@@ -233,6 +235,7 @@ mod tests {
             Some(Georeference::Projected {
                 x: 500_015.0,
                 y: 3_999_985.0,
+                step: [30.0, 30.0],
                 epsg: Some(32633)
             })
         );
@@ -300,6 +303,7 @@ mod tests {
             Some(Georeference::Geographic {
                 longitude,
                 latitude,
+                ..
             }) => (longitude, latitude),
             other => panic!("{other:?}"),
         };

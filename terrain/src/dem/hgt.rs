@@ -61,6 +61,7 @@ pub(super) fn read(bytes: &[u8], name: Option<&str>) -> Result<ElevationModel, T
         georeference: place.map(|(lat, lon)| Georeference::Geographic {
             longitude: lon,
             latitude: lat + 1.0,
+            step: [degrees; 2],
         }),
         spacing_from_file: place.is_some(),
     })

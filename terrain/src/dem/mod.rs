@@ -22,11 +22,14 @@
 //! ```
 
 mod ascii_grid;
+mod crop;
 mod fill;
 mod geotiff;
 mod hgt;
 mod raster;
 mod resample;
+
+pub use crop::Window;
 
 use std::path::Path;
 
@@ -130,6 +133,8 @@ pub enum Georeference {
         longitude: f64,
         /// Degrees north.
         latitude: f64,
+        /// Degrees between samples: eastward along a row, southward down a column.
+        step: [f64; 2],
     },
     /// Projected coordinates of the north-west corner's sample, in the file's units.
     Projected {
@@ -137,6 +142,8 @@ pub enum Georeference {
         x: f64,
         /// Northing.
         y: f64,
+        /// The file's units between samples: eastward along a row, southward down a column.
+        step: [f64; 2],
         /// The EPSG code of the projection, where the file names one.
         epsg: Option<u16>,
     },
