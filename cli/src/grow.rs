@@ -1,7 +1,7 @@
 //! `sylva grow`: a stand of trees grown together around an obstacle, with light and collision
 //! (the voxel growth paper), written as a binary glTF.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
@@ -10,11 +10,13 @@ use sylva::base::hash::{mix, unit_f32};
 use sylva::export::write_stand_glb;
 use sylva::forest::{Planting, Species, StandOptions, grow_stand};
 use sylva::growth::{Response, read_obj};
+use sylva::terrain::dem::ReadOptions;
 use sylva::terrain::glam::{Vec2, Vec3};
-use sylva::terrain::{DiamondSquare, EdgeMode, HeightField};
+use sylva::terrain::{DiamondSquare, EdgeMode, HeightField, Heightmap};
 
 use crate::Failure;
 use crate::progress::{ms, peak_rss_mb, phase, print_stats};
+use crate::world::{parse_pair, read_model};
 
 /// `sylva grow`'s flags.
 #[derive(Debug, Args)]
@@ -41,6 +43,17 @@ pub(crate) struct GrowArgs {
     /// An obstacle as a Wavefront OBJ, in the stand's metres.
     #[arg(long, value_name = "FILE.obj")]
     obstacle: Option<PathBuf>,
+    /// Grow the stand on real ground: an elevation model in any format `sylva forest
+    /// --terrain` reads. The stand stands at its middle, or at --at.
+    #[arg(long, value_name = "HEIGHTS")]
+    terrain: Option<PathBuf>,
+    /// Metres between the model's samples (for --terrain): overrides the file's.
+    #[arg(long, value_name = "M")]
+    terrain_spacing: Option<f32>,
+    /// Where the stand's middle stands on the model (for --terrain): metres east and south
+    /// of its north-west sample.
+    #[arg(long, value_name = "X,Z", value_parser = parse_pair::<f32>)]
+    at: Option<(f32, f32)>,
     /// Seed of the ground, the plantings and the boulder.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -153,6 +166,33 @@ fn boulder(centre: Vec3, radius: f32, seed: u64) -> (Vec<Vec3>, Vec<u32>) {
     (rough, f.into_iter().flatten().collect())
 }
 
+/// The ground of a stand `side` metres square from an elevation model: its heights under
+/// the square about `--at` (the model's middle by default), sampled bilinearly onto 65 x 65.
+fn real_ground(args: &GrowArgs, file: &Path, side: f32, quiet: bool) -> Result<Heightmap, Failure> {
+    let options = ReadOptions {
+        spacing: args.terrain_spacing,
+        ..ReadOptions::default()
+    };
+    let model = read_model(file, &options, None, "--terrain-spacing", quiet)?;
+    let [ex, ez] = model.extent();
+    let (x, z) = args.at.unwrap_or((ex / 2.0, ez / 2.0));
+    let half = side / 2.0;
+    if !(x >= half && z >= half && x <= ex - half && z <= ez - half) {
+        return Err(Failure::usage(format!(
+            "--at {x},{z}: the stand's {side:.0} m square must lie inside the model's {ex:.0} x {ez:.0} m"
+        )));
+    }
+    const SAMPLES: usize = 65;
+    let step = side / (SAMPLES - 1) as f32;
+    let heights = (0..SAMPLES * SAMPLES)
+        .map(|i| {
+            let (col, row) = ((i % SAMPLES) as f32, (i / SAMPLES) as f32);
+            model.height_at(x - half + col * step, z - half + row * step)
+        })
+        .collect();
+    Ok(Heightmap::from_heights(SAMPLES, step, heights)?)
+}
+
 pub(crate) fn run(args: GrowArgs) -> Result<(), Failure> {
     if !(1..=400).contains(&args.trees) {
         return Err(Failure::usage(format!(
@@ -172,20 +212,26 @@ pub(crate) fn run(args: GrowArgs) -> Result<(), Failure> {
         Some(f) => Species::from_file(f)?,
         None => Species::parse_file(
             include_str!("../../examples/species/oak.species"),
-            std::path::Path::new("examples/species/oak.species"),
+            Path::new("examples/species/oak.species"),
         )?,
     };
     if let Some(g) = args.generations {
         species.generations = g;
     }
-    // A stand on gently rolling ground.
     let side = args.spacing * (args.trees as f32).sqrt().ceil() + 16.0;
-    let mut ground = DiamondSquare::new(65)
-        .with_seed(args.seed)
-        .with_spacing(side / 64.0)
-        .with_amplitude(side * 0.03)
-        .generate()?;
-    ground.smooth(2.0, EdgeMode::Mirror)?;
+    let ground = match &args.terrain {
+        Some(file) => real_ground(&args, file, side, hidden)?,
+        None => {
+            // A stand on gently rolling ground.
+            let mut ground = DiamondSquare::new(65)
+                .with_seed(args.seed)
+                .with_spacing(side / 64.0)
+                .with_amplitude(side * 0.03)
+                .generate()?;
+            ground.smooth(2.0, EdgeMode::Mirror)?;
+            ground
+        }
+    };
     let terrain_mesh = ground.mesh(1)?;
     let middle = Vec2::splat(side * 0.5);
     let obstacle = match &args.obstacle {

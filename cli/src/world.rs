@@ -255,18 +255,7 @@ fn read_terrain(
         height_range: args.height_range.map(|(lo, hi)| [lo, hi]),
         raw_size: args.raw_size.map(|(w, h)| [w, h]),
     };
-    let mut model =
-        ElevationModel::read(file, &options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
-    if let Some(window) = args.crop {
-        model = model
-            .crop(window)
-            .map_err(|e| Failure::usage(format!("--crop: {name}: {e}")))?;
-    }
-    if !model.spacing_from_file && args.spacing.is_none() {
-        return Err(Failure::usage(format!(
-            "{name}: the file does not say how far apart its samples are: give --spacing M"
-        )));
-    }
+    let model = read_model(file, &options, args.crop, "--spacing", quiet)?;
     let [x, z] = model.extent();
     if !(x > 10.0 && z > 10.0 && x <= MAX_WORLD_SIDE && z <= MAX_WORLD_SIDE) {
         // The largest window a world holds, about the model's middle.
@@ -291,6 +280,30 @@ fn read_terrain(
             model.width, model.height, model.spacing[0], model.spacing[1]
         )));
     }
+    let (map, extent) = model
+        .to_heightmap()
+        .map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    Ok((map, extent))
+}
+
+/// Reads an elevation model and takes `crop`'s window of it; an error when the spacing is
+/// neither in the file nor in `options` (it names `spacing_flag`). The count of cells without data is reported unless
+/// `quiet`.
+pub(crate) fn read_model(
+    file: &Path,
+    options: &ReadOptions,
+    crop: Option<Window>,
+    spacing_flag: &str,
+    quiet: bool,
+) -> Result<ElevationModel, Failure> {
+    let name = file.display();
+    let mut model =
+        ElevationModel::read(file, options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
+    if !model.spacing_from_file && options.spacing.is_none() {
+        return Err(Failure::usage(format!(
+            "{name}: the file does not say how far apart its samples are: give {spacing_flag} M"
+        )));
+    }
     if model.nodata > 0 && !quiet {
         eprintln!(
             "{name}: {} of {} cells had no data and were filled from their neighbours",
@@ -298,10 +311,12 @@ fn read_terrain(
             model.width * model.height
         );
     }
-    let (map, extent) = model
-        .to_heightmap()
-        .map_err(|e| Failure::job(format!("{name}: {e}")))?;
-    Ok((map, extent))
+    if let Some(window) = crop {
+        model = model
+            .crop(window)
+            .map_err(|e| Failure::usage(format!("--crop: {name}: {e}")))?;
+    }
+    Ok(model)
 }
 
 /// The builder drawing the forest over time of `region` in `year`, grown from bare ground

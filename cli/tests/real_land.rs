@@ -1,0 +1,115 @@
+//! `sylva` on real elevation models: a window of one too large for a world, the note that
+//! says why a forest is thin, and a stand grown on real ground.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const SYLVA: &str = env!("CARGO_BIN_EXE_sylva");
+
+/// A bundled real model's path.
+fn dem(name: &str) -> String {
+    format!(
+        "{}/../terrain/tests/data/dems/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+/// A scratch folder of this name, emptied.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sylva-cli-land-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn sylva(args: &[&str]) -> Output {
+    Command::new(SYLVA).args(args).output().expect("sylva runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn a_tile_larger_than_a_world_names_the_crop_that_fits() {
+    let hgt = dem("N44W072.hgt");
+    let out = sylva(&["forest", "--terrain", &hgt, "--out", "/nonexistent/x.glb"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let message = stderr(&out);
+    // The middle window: 302 x 216 samples of 66 x 93 m.
+    assert!(message.contains("--crop 449,492,302,216"), "{message}");
+    let out = sylva(&["forest", "--terrain", &hgt, "--crop", "1200,0,10,10"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("does not lie inside"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_thin_forest_says_which_constraint_thinned_it() {
+    let dir = scratch("thin");
+    let (glb, png) = (dir.join("f.glb"), dir.join("f.png"));
+    let out = sylva(&[
+        "forest",
+        "--terrain",
+        &dem("west_bijou_escarpment.asc"),
+        "--crop",
+        "40,10,30,30",
+        "--max-slope",
+        "3",
+        "--out",
+        glb.to_str().unwrap(),
+        "--heightmap",
+        png.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let message = stderr(&out);
+    assert!(
+        message.contains("candidate tree spots were refused"),
+        "{message}"
+    );
+    assert!(
+        message.contains("steeper than 3 degrees (--max-slope)"),
+        "{message}"
+    );
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(summary.contains("terrain: placed"), "{summary}");
+    assert!(std::fs::metadata(&glb).unwrap().len() > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_stand_grows_on_real_ground() {
+    let dir = scratch("stand");
+    let glb = dir.join("stand.glb");
+    let asc = dem("west_bijou_escarpment.asc");
+    let out = sylva(&[
+        "grow",
+        "--terrain",
+        &asc,
+        "--trees",
+        "4",
+        "--generations",
+        "4",
+        "--out",
+        glb.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(std::fs::metadata(&glb).unwrap().len() > 0);
+    // Off the model is an error, not a stand in the air.
+    let out = sylva(&[
+        "grow",
+        "--terrain",
+        &asc,
+        "--at",
+        "10,10",
+        "--out",
+        glb.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("must lie inside"), "{}", stderr(&out));
+    let _ = std::fs::remove_dir_all(&dir);
+}
