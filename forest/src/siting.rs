@@ -88,7 +88,7 @@ impl SitingReport {
         .into_iter()
         .filter(|&(_, n)| n > 0)
         .collect();
-        reasons.sort_by(|a, b| b.1.cmp(&a.1));
+        reasons.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
         reasons
     }
 }
