@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use sylva::terrain::{DiamondSquare, EdgeMode, HydraulicErosion, ThermalErosion};
+use sylva::terrain::{DiamondSquare, EdgeMode, Heightmap, HydraulicErosion, ThermalErosion};
 
 use crate::Failure;
 use crate::forest::write_heightmap;
@@ -53,7 +53,7 @@ pub(crate) struct TerrainArgs {
     /// Height amplitude in metres (default: the generator's).
     #[arg(long, value_name = "A")]
     amplitude: Option<f32>,
-    /// Apply thermal and hydraulic erosion.
+    /// Apply thermal and hydraulic erosion afterwards (also to --like and --refine terrain).
     #[arg(long)]
     erode: bool,
     /// Seamless: the map tiles with itself.
@@ -98,13 +98,7 @@ pub(crate) fn run(args: TerrainArgs) -> Result<(), Failure> {
     };
     map.smooth(args.smooth, edges)?;
     let smoothed = start.elapsed();
-    if args.erode {
-        let (eroded, _) = phase(args.quiet, "eroding", || {
-            ThermalErosion::default().apply(&mut map)?;
-            HydraulicErosion::new((args.size * args.size / 4) as u32, args.seed).apply(&mut map)
-        });
-        eroded?;
-    }
+    erode(&mut map, &args)?;
     let total = start.elapsed();
     write_heightmap(&map, &args.out)?;
     if args.raw {
@@ -156,6 +150,20 @@ fn read_model(
         .map_err(|e| Failure::job(format!("{}: {e}", path.display())))
 }
 
+/// With `--erode`, thermal then hydraulic erosion (a droplet per four samples) on `map`,
+/// whichever way it was made.
+fn erode(map: &mut Heightmap, args: &TerrainArgs) -> Result<(), Failure> {
+    if args.erode {
+        let droplets = (map.size() * map.size() / 4) as u32;
+        let (eroded, _) = phase(args.quiet, "eroding", || {
+            ThermalErosion::default().apply(map)?;
+            HydraulicErosion::new(droplets, args.seed).apply(map)
+        });
+        eroded?;
+    }
+    Ok(())
+}
+
 /// `--like`: terrain statistically like a model.
 fn like(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
     use sylva::terrain::analysis::FractalAnalysis;
@@ -164,7 +172,8 @@ fn like(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
     let spacing = args
         .spacing
         .unwrap_or(model.spacing[0].min(model.spacing[1]));
-    let map = sylva::terrain::synthesize_like(&measured, args.size, spacing, args.seed)?;
+    let mut map = sylva::terrain::synthesize_like(&measured, args.size, spacing, args.seed)?;
+    erode(&mut map, args)?;
     write_heightmap(&map, &args.out)?;
     if !args.quiet {
         let made = FractalAnalysis::of(&map);
@@ -189,16 +198,22 @@ fn refine(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
     use sylva::terrain::analysis::FractalAnalysis;
     let model = read_model(path, args)?;
     let (coarse, _) = model.to_heightmap()?;
-    let fine = sylva::terrain::refine(
+    let mut fine = sylva::terrain::refine(
         &coarse,
         args.levels,
         &FractalAnalysis::of(&coarse),
         args.seed,
     )?;
+    erode(&mut fine, args)?;
     write_heightmap(&fine, &args.out)?;
     if !args.quiet {
+        let kept = if args.erode {
+            "every sample kept, then eroded"
+        } else {
+            "every sample kept"
+        };
         println!(
-            "wrote {}: {} x {} at {:.2} m, refined from {} x {} at {:.2} m ({}), every sample kept",
+            "wrote {}: {} x {} at {:.2} m, refined from {} x {} at {:.2} m ({}), {kept}",
             args.out.display(),
             fine.size(),
             fine.size(),
