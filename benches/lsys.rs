@@ -7,7 +7,7 @@
 use std::hint::black_box;
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
-use sylva::lsys::LSystem;
+use sylva::lsys::{Dialect, LSystem};
 
 struct Case {
     name: &'static str,
@@ -142,5 +142,50 @@ fn rewriting(crit: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, rewriting);
+/// A cpfg grammar deriving F into FF, for wrapping in preprocessor text.
+const CPFG: &str = "lsystem: 1\nderivation length: 2\naxiom: F\nF --> FF\nendlsystem\n";
+
+/// Parsing megabyte cpfg files of one preprocessor construct each: linear in their length
+/// (the nested `#if 1` took 17 s before issue 28). Throughput is bytes.
+fn preprocess(crit: &mut Criterion) {
+    let mut group = crit.benchmark_group("preprocess");
+    group.sample_size(10);
+    let n = 100_000;
+    let inputs = [
+        (
+            "nested_if",
+            format!("{}{CPFG}{}", "#if 1\n".repeat(n), "#endif\n".repeat(n)),
+        ),
+        (
+            "defines",
+            (0..n)
+                .map(|k| format!("#define M{k} {k}\n"))
+                .collect::<String>()
+                + CPFG,
+        ),
+        (
+            "macro_uses",
+            format!(
+                "#define X F\nlsystem: 1\nderivation length: 1\naxiom: {}\nendlsystem\n",
+                "X ".repeat(400_000)
+            ),
+        ),
+        (
+            "function_macros",
+            format!(
+                "#define G(a,b) a b\nlsystem: 1\nderivation length: 1\naxiom: {}\nendlsystem\n",
+                "G(F,+) ".repeat(140_000)
+            ),
+        ),
+    ];
+    for (name, text) in &inputs {
+        group.throughput(Throughput::Bytes(text.len() as u64));
+        group.bench_function(*name, |b| {
+            b.iter(|| LSystem::parse_dialect(black_box(text), Dialect::Cpfg).expect("parses"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, rewriting, preprocess);
 criterion_main!(benches);

@@ -254,3 +254,64 @@ fn bare_dialect_keywords_do_not_panic() {
         }
     }
 }
+
+/// A cpfg grammar deriving F into FF twice, for wrapping in hostile preprocessor text.
+const CPFG: &str = "lsystem: 1\nderivation length: 2\naxiom: F\nF --> FF\nendlsystem\n";
+
+fn cpfg(text: &str) -> Result<LSystem, sylva_lsys::ParseError> {
+    LSystem::parse_dialect(text, sylva_lsys::Dialect::Cpfg)
+}
+
+/// Modules after two derivation steps.
+fn twice(g: LSystem) -> usize {
+    g.derive(2, 0).unwrap().len()
+}
+
+/// The preprocessor's constructs at a megabyte each: the report that opened this test
+/// (issue 28) was 100,000 nested `#if 1` taking 17 s, each line asking every open `#if`
+/// whether it was taken. Each is linear now; `cargo bench --bench lsys -- preprocess`
+/// measures them.
+#[test]
+fn megabyte_preprocessor_constructs_end_in_a_grammar_or_an_error() {
+    let n = 100_000;
+    let nested = format!("{}{CPFG}{}", "#if 1\n".repeat(n), "#endif\n".repeat(n));
+    assert_eq!(twice(cpfg(&nested).unwrap()), 4);
+    let skipped = format!("{}x\n{}{CPFG}", "#if 0\n".repeat(n), "#endif\n".repeat(n));
+    assert_eq!(twice(cpfg(&skipped).unwrap()), 4);
+    // Every #else flips a branch: n/2 pairs leave the grammar inside taken branches.
+    let flipped = format!(
+        "{}{CPFG}{}",
+        "#ifdef X\n#else\n".repeat(n / 2),
+        "#endif\n".repeat(n / 2)
+    );
+    assert!(cpfg(&flipped).is_ok());
+    let defines: String = (0..n).map(|k| format!("#define M{k} {k}\n")).collect();
+    assert!(cpfg(&format!("{defines}{CPFG}")).is_ok());
+    // 400,000 uses of a macro on one line expand whole.
+    let used = format!(
+        "#define X F\nlsystem: 1\nderivation length: 1\naxiom: {}\nendlsystem\n",
+        "X ".repeat(400_000)
+    );
+    assert_eq!(cpfg(&used).unwrap().axiom().len(), 400_000);
+    let calls = format!(
+        "#define G(a,b) a b\nlsystem: 1\nderivation length: 1\naxiom: {}\nendlsystem\n",
+        "G(F,+) ".repeat(140_000)
+    );
+    assert_eq!(cpfg(&calls).unwrap().axiom().len(), 280_000);
+    // A condition of 80,000 `defined(A)` is answered in one pass, then refused as too deep.
+    let defined = format!(
+        "#if {}\n#endif\n{CPFG}",
+        vec!["defined(A)"; 80_000].join(" || ")
+    );
+    let e = cpfg(&defined).unwrap_err();
+    assert_eq!(e.location.line, 1);
+    assert!(e.message.contains("deeper"), "{}", e.message);
+    // 300,000 spliced lines make one macro.
+    let spliced = format!("#define Q \\\n{}F\n{CPFG}", "F \\\n".repeat(300_000));
+    assert!(cpfg(&spliced).is_ok());
+    // Unclosed #if and stray #endif at a megabyte are errors with their place.
+    let open = format!("{}{CPFG}", "#if 1\n".repeat(n));
+    assert!(cpfg(&open).unwrap_err().message.contains("without #endif"));
+    let stray = format!("{CPFG}{}", "#endif\n".repeat(n));
+    assert_eq!(cpfg(&stray).unwrap_err().location.line, 6);
+}

@@ -6,9 +6,11 @@
 use std::collections::HashMap;
 
 use crate::error::ParseError;
+use crate::syntax::parser::MAX_GRAMMAR_BYTES;
 
-/// Most characters one line may expand to: macros that multiply themselves stop here.
-const MAX_EXPANDED_CHARS: usize = 1 << 16;
+/// Most characters macros may add to a file, all lines together: macros that multiply
+/// themselves stop here, and however many lines use them the work stays linear in this.
+const MAX_EXPANDED_TOTAL: usize = 4 * MAX_GRAMMAR_BYTES;
 /// Deepest nesting of macros within macros.
 const MAX_EXPANSION_DEPTH: usize = 64;
 
@@ -60,13 +62,16 @@ fn is_ident(c: char) -> bool {
 pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
     let mut macros: HashMap<String, Macro> = HashMap::new();
     let mut lines = Vec::new();
-    // Whether each open #if's branch is taken.
+    // Whether each open #if's branch is taken, and how many are not: a line is active when
+    // none is, known in constant time however deep the nesting.
     let mut conditions: Vec<bool> = Vec::new();
+    let mut not_taken = 0usize;
+    let mut budget = MAX_EXPANDED_TOTAL;
     for (k, raw) in spliced(src).iter().enumerate() {
         let n = k + 1;
         let raw = &raw[..];
         let indent = raw.iter().take_while(|c| c.is_whitespace()).count();
-        let active = conditions.iter().all(|&c| c);
+        let active = not_taken == 0;
         if is_directive(raw) {
             let text: String = raw[indent + 1..].iter().collect();
             let text = text.trim_start();
@@ -76,21 +81,30 @@ pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
             match word.as_str() {
                 "ifdef" | "ifndef" => {
                     let defined = macros.contains_key(rest);
-                    conditions.push(defined == (word == "ifdef"));
+                    let taken = defined == (word == "ifdef");
+                    not_taken += usize::from(!taken);
+                    conditions.push(taken);
                 }
                 "if" => {
-                    let taken = active && condition(rest, &macros).map_err(err)?;
+                    let taken = active && condition(rest, &macros, &mut budget).map_err(err)?;
+                    not_taken += usize::from(!taken);
                     conditions.push(taken);
                 }
                 "else" => match conditions.last_mut() {
-                    Some(c) => *c = !*c,
+                    Some(c) => {
+                        *c = !*c;
+                        if *c {
+                            not_taken -= 1;
+                        } else {
+                            not_taken += 1;
+                        }
+                    }
                     None => return Err(err("#else without #ifdef".into())),
                 },
-                "endif" => {
-                    if conditions.pop().is_none() {
-                        return Err(err("#endif without #ifdef".into()));
-                    }
-                }
+                "endif" => match conditions.pop() {
+                    Some(taken) => not_taken -= usize::from(!taken),
+                    None => return Err(err("#endif without #ifdef".into())),
+                },
                 "define" if active => {
                     let name: String = rest.chars().take_while(|c| is_ident(*c)).collect();
                     if name.is_empty() {
@@ -140,8 +154,8 @@ pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
             lines.push(Vec::new());
             continue;
         }
-        let expanded =
-            expand(raw, &macros, &mut Vec::new(), 0).map_err(|m| ParseError::new(n, 1, m))?;
+        let expanded = expand(raw, &macros, &mut Vec::new(), 0, &mut budget)
+            .map_err(|m| ParseError::new(n, 1, m))?;
         lines.push(expanded);
     }
     if !conditions.is_empty() {
@@ -186,23 +200,30 @@ fn spliced(src: &[char]) -> Vec<Vec<char>> {
 
 /// The value of an `#if` condition: its macros expanded, `defined(NAME)` answered, names
 /// left over read as 0 (as cpp reads them), and the rest evaluated as a constant expression.
-fn condition(text: &str, macros: &HashMap<String, Macro>) -> Result<bool, String> {
-    let mut text = text.to_string();
-    while let Some(at) = text.find("defined") {
-        let rest = text[at + "defined".len()..].trim_start();
-        let inner = rest.strip_prefix('(').unwrap_or(rest);
+fn condition(
+    text: &str,
+    macros: &HashMap<String, Macro>,
+    budget: &mut usize,
+) -> Result<bool, String> {
+    // `defined NAME` and `defined(NAME)` answered in one pass over the text.
+    let mut answered = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("defined") {
+        answered.push_str(&rest[..at]);
+        let after_word = rest[at + "defined".len()..].trim_start();
+        let inner = after_word.strip_prefix('(').unwrap_or(after_word);
         let name: String = inner.chars().take_while(|c| is_ident(*c)).collect();
         let after = &inner[name.len()..];
-        let after = if rest.starts_with('(') {
+        rest = if after_word.starts_with('(') {
             after.trim_start().strip_prefix(')').unwrap_or(after)
         } else {
             after
         };
-        let value = if macros.contains_key(&name) { "1" } else { "0" };
-        text = format!("{}{value}{after}", &text[..at]);
+        answered.push(if macros.contains_key(&name) { '1' } else { '0' });
     }
-    let chars: Vec<char> = text.chars().collect();
-    let expanded = expand(&chars, macros, &mut Vec::new(), 0)?;
+    answered.push_str(rest);
+    let chars: Vec<char> = answered.chars().collect();
+    let expanded = expand(&chars, macros, &mut Vec::new(), 0, budget)?;
     let zeroed = substitute_names(&expanded);
     let mut cur = crate::syntax::cursor::Cursor::new(&zeroed, 1);
     let value = crate::syntax::expr_parser::parse_expr(&mut cur, &NoNames)
@@ -242,12 +263,14 @@ impl crate::syntax::expr_parser::Scope for NoNames {
     }
 }
 
-/// `text` with every macro name (not among `hiding`, the macros being expanded) replaced.
+/// `text` with every macro name (not among `hiding`, the macros being expanded) replaced;
+/// each expansion's characters are taken from `budget`, an error once it runs out.
 fn expand(
     text: &[char],
     macros: &HashMap<String, Macro>,
     hiding: &mut Vec<String>,
     depth: usize,
+    budget: &mut usize,
 ) -> Result<Vec<char>, String> {
     if depth > MAX_EXPANSION_DEPTH {
         return Err(format!("macros nest more than {MAX_EXPANSION_DEPTH} deep"));
@@ -291,20 +314,18 @@ fn expand(
                 // Arguments are expanded first, then put in place of the parameters.
                 let mut bound = HashMap::new();
                 for (p, a) in params.iter().zip(&args) {
-                    bound.insert(p.clone(), expand(a, macros, hiding, depth + 1)?);
+                    bound.insert(p.clone(), expand(a, macros, hiding, depth + 1, budget)?);
                 }
                 (substitute(&m.body, &bound), after)
             }
         };
         hiding.push(name);
-        let expanded = expand(&body, macros, hiding, depth + 1)?;
+        let expanded = expand(&body, macros, hiding, depth + 1, budget)?;
         hiding.pop();
+        *budget = budget.checked_sub(expanded.len()).ok_or_else(|| {
+            format!("macros expand to more than {MAX_EXPANDED_TOTAL} characters in all")
+        })?;
         out.extend(expanded);
-        if out.len() > MAX_EXPANDED_CHARS {
-            return Err(format!(
-                "a line expands to more than {MAX_EXPANDED_CHARS} characters"
-            ));
-        }
         i = next;
     }
     Ok(out)
@@ -400,7 +421,23 @@ mod tests {
 
     #[test]
     fn runaway_macros_are_errors() {
-        let text: Vec<char> = "#define A B B\n#define B C C\n#define C D D\n#define D E E\n#define E F F\n#define F G G\n#define G H H\n#define H I I\n#define I J J\n#define J K K\n#define K L L\n#define L M M\n#define M N N\n#define N O O\n#define O P P\n#define P Q Q\nA\n".chars().collect();
-        assert!(preprocess(&text).is_err());
+        // Each macro doubles the one before: 2^25 copies of Z, beyond the budget, which
+        // stops the work after a bounded amount of it.
+        let letters: Vec<char> = ('A'..='Z').collect();
+        let mut text: String = letters
+            .windows(2)
+            .map(|w| format!("#define {} {} {}\n", w[0], w[1], w[1]))
+            .collect();
+        text.push_str("A\n");
+        let text: Vec<char> = text.chars().collect();
+        let e = preprocess(&text).err().expect("refused");
+        assert!(e.message.contains("in all"), "{}", e.message);
+        // Below the budget the same kind of chain expands whole, on one line or many.
+        let small: Vec<char> = "#define A B B\n#define B C C\n#define C F F\nA\nA A\n"
+            .chars()
+            .collect();
+        let lines = preprocess(&small).unwrap().lines;
+        assert_eq!(lines[3].iter().filter(|&&c| c == 'F').count(), 8);
+        assert_eq!(lines[4].iter().filter(|&&c| c == 'F').count(), 16);
     }
 }
