@@ -3,9 +3,10 @@
 //! Markdown table: model, result, reason.
 //!
 //! The virtual laboratory's models (AlgorithmicBotany/vlab, folder `oofs`) are the corpus
-//! this was made for. Models that need files beside them (function files for `func(...)`,
-//! surfaces for `~`, an environment program for `?E`, `#include`) are listed but counted
-//! apart: the question asked of the rest is whether they load, derive and mesh.
+//! this was made for. Each is read as a model folder (`LSystem::from_model_dir`): its
+//! `#include`s are the files beside it. Models that need files of other kinds (function
+//! files for `func(...)`, surfaces for `~`, an environment program for `?E`) are listed but
+//! counted apart: the question asked of the rest is whether they load, derive and mesh.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -45,8 +46,6 @@ fn external_files(text: &str) -> Option<&'static str> {
         Some("function files (func)")
     } else if code.contains("curve(") {
         Some("curve files (curve)")
-    } else if code.contains("#include") {
-        Some("#include")
     } else if code.contains("?E") {
         Some("an environment program (?E)")
     } else if code
@@ -61,7 +60,12 @@ fn external_files(text: &str) -> Option<&'static str> {
 
 /// The result of one model: `Ok` with the modules and triangles, or the reason it failed.
 fn try_model(path: &Path) -> Result<(u32, usize, usize), String> {
-    let grammar = LSystem::from_file(path).map_err(|e| match e {
+    let read = if path.extension().is_some_and(|e| e == "l") {
+        LSystem::from_model_dir(path)
+    } else {
+        LSystem::from_file(path)
+    };
+    let grammar = read.map_err(|e| match e {
         GrammarFileError::Parse { error, .. } => error.to_string(),
         other => other.to_string(),
     })?;

@@ -12,7 +12,8 @@ use crate::Failure;
 /// The grammar's flags.
 #[derive(Debug, Args)]
 pub(crate) struct GrammarArgs {
-    /// A grammar file (sylva's notation, cpfg's .l or L-Py's .lpy).
+    /// A grammar file (sylva's notation, cpfg's .l or L-Py's .lpy), or a vlab model folder
+    /// (its .l file reads the files beside it that it includes).
     #[arg(conflicts_with = "preset")]
     file: Option<PathBuf>,
     /// A bundled grammar (listed below; the command's own when neither is given).
@@ -44,7 +45,13 @@ impl GrammarArgs {
     /// The grammar the flags name, or the preset `fallback`.
     pub(crate) fn load(&self, fallback: &str) -> Result<Grammar, Failure> {
         if let Some(path) = &self.file {
-            let lsystem = LSystem::from_file(path)?;
+            // A vlab model is a folder: its .l file reads the files beside it.
+            let model = path.is_dir() || path.extension().is_some_and(|e| e == "l");
+            let lsystem = if model {
+                LSystem::from_model_dir(path)?
+            } else {
+                LSystem::from_file(path)?
+            };
             // cpfg models say how long to derive them.
             let steps = lsystem.derivation_length().unwrap_or(4);
             return Ok(Grammar {

@@ -200,6 +200,14 @@ pub enum GrammarFileError {
     /// [`MAX_GRAMMAR_BYTES`](crate::MAX_GRAMMAR_BYTES).
     #[error(transparent)]
     File(#[from] sylva_base::text_file::TextFileError),
+    /// A model folder without its model: no `.l` file, or several.
+    #[error("{}: {message}", path.display())]
+    Model {
+        /// The folder.
+        path: std::path::PathBuf,
+        /// What is wrong.
+        message: String,
+    },
     /// The text has an error at the location given.
     #[error("{}:{}:{}: {}", path.display(), error.location.line, error.location.column, error.message)]
     Parse {

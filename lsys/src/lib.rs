@@ -201,6 +201,37 @@ impl LSystem {
     }
 }
 
+impl LSystem {
+    /// Reads a vlab model: a folder holding one `.l` file, or a `.l` file inside its folder,
+    /// with the files beside it that the model includes (`#include "name"`, read from the
+    /// folder only, at most 16 deep). Errors name the file they are in, the model's or an
+    /// included one, with its line and column.
+    ///
+    /// ```
+    /// let dir = std::env::temp_dir().join(format!("sylva-model-doctest-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// std::fs::write(dir.join("constants.h"), "#define STEPS 3\n#define ANGLE 30\n").unwrap();
+    /// std::fs::write(
+    ///     dir.join("plant.l"),
+    ///     "#include \"constants.h\"\nLsystem: 1\nderivation length: STEPS\naxiom: A\n\
+    ///      A --> F[+(ANGLE)A]A\nendlsystem\n",
+    /// )
+    /// .unwrap();
+    /// let plant = sylva_lsys::LSystem::from_model_dir(&dir)?;
+    /// assert_eq!(plant.derivation_length(), Some(3));
+    /// assert_eq!(plant.derive(1, 0)?.to_string(), "F[+(30)A]A");
+    /// // A mistake in the included file is reported there.
+    /// std::fs::write(dir.join("constants.h"), "#define STEPS 3\n#if\n").unwrap();
+    /// let err = sylva_lsys::LSystem::from_model_dir(&dir).unwrap_err().to_string();
+    /// assert!(err.contains("constants.h"), "{err}");
+    /// # std::fs::remove_dir_all(&dir).ok();
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn from_model_dir(path: impl AsRef<std::path::Path>) -> Result<LSystem, GrammarFileError> {
+        syntax::model_folder::read_model(path.as_ref())
+    }
+}
+
 impl std::str::FromStr for LSystem {
     type Err = ParseError;
     fn from_str(text: &str) -> Result<LSystem, ParseError> {

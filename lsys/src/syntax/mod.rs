@@ -5,6 +5,7 @@ pub(crate) mod cpfg;
 pub(crate) mod cursor;
 pub(crate) mod expr_parser;
 pub(crate) mod lpy;
+pub(crate) mod model_folder;
 pub(crate) mod parser;
 pub(crate) mod preprocessor;
 pub(crate) mod print;

@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 
 use crate::error::ParseError;
+use crate::syntax::comments::{strip_block_comments, strip_line_comments};
 use crate::syntax::parser::MAX_GRAMMAR_BYTES;
 
 /// Most characters macros may add to a file, all lines together: macros that multiply
@@ -21,10 +22,32 @@ struct Macro {
     body: Vec<char>,
 }
 
-/// The preprocessed lines, each with its line number in the source.
+/// The preprocessed lines, each with where it came from: the file (0 the model's own, then
+/// the included files in the order they were first read, named in `files`) and its line
+/// there.
 pub(crate) struct Preprocessed {
     pub(crate) lines: Vec<Vec<char>>,
+    pub(crate) origins: Vec<Origin>,
+    pub(crate) files: Vec<String>,
 }
+
+/// Where a preprocessed line came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Origin {
+    /// Index into [`Preprocessed::files`], 0 for the model's own text.
+    pub(crate) file: usize,
+    /// 1-based line in that file.
+    pub(crate) line: usize,
+}
+
+/// The files `#include` names, as the model folder has them.
+pub(crate) trait Includes {
+    /// The text of the file `name` (as written between the quotes), or why not.
+    fn read(&mut self, name: &str) -> Result<String, String>;
+}
+
+/// Deepest nesting of included files: a file that includes itself stops here.
+pub(crate) const MAX_INCLUDE_DEPTH: usize = 16;
 
 /// The C preprocessor's directives: a line starting with `#` and one of these is a
 /// directive; any other `#` starts text (cpfg's `#` width module).
@@ -58,114 +81,201 @@ fn is_ident(c: char) -> bool {
 
 /// Runs the directives of `src` (comments already removed) and expands its macros. Directive
 /// lines become blank; `#define` of a plain constant is also left to the grammar parser,
-/// which reads the directive line as before expansion.
+/// which reads the directive line as before expansion. `#include` is left for the dialect to
+/// refuse.
+#[cfg(test)]
 pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
-    let mut macros: HashMap<String, Macro> = HashMap::new();
-    let mut lines = Vec::new();
-    // Whether each open #if's branch is taken, and how many are not: a line is active when
-    // none is, known in constant time however deep the nesting.
-    let mut conditions: Vec<bool> = Vec::new();
-    let mut not_taken = 0usize;
-    let mut budget = MAX_EXPANDED_TOTAL;
-    for (k, raw) in spliced(src).iter().enumerate() {
-        let n = k + 1;
-        let raw = &raw[..];
-        let indent = raw.iter().take_while(|c| c.is_whitespace()).count();
-        let active = not_taken == 0;
-        if is_directive(raw) {
-            let text: String = raw[indent + 1..].iter().collect();
-            let text = text.trim_start();
-            let word: String = text.chars().take_while(|c| is_ident(*c)).collect();
-            let rest = text[word.len()..].trim();
+    preprocess_with(src, None)
+}
+
+/// As [`preprocess`], with `#include "NAME"` replaced by the lines of the file `includes`
+/// reads (its comments removed, its directives run with the same macros), when given. An
+/// error in an included file is reported at its `#include` line, naming the file and place.
+pub(crate) fn preprocess_with(
+    src: &[char],
+    includes: Option<&mut dyn Includes>,
+) -> Result<Preprocessed, ParseError> {
+    let mut run = Run {
+        macros: HashMap::new(),
+        budget: MAX_EXPANDED_TOTAL,
+        includes,
+        out: Preprocessed {
+            lines: Vec::new(),
+            origins: Vec::new(),
+            files: vec![String::new()],
+        },
+    };
+    run.file(src, 0, 0)?;
+    Ok(run.out)
+}
+
+/// One preprocessing of a model and the files it includes.
+struct Run<'a> {
+    macros: HashMap<String, Macro>,
+    budget: usize,
+    includes: Option<&'a mut dyn Includes>,
+    out: Preprocessed,
+}
+
+impl Run<'_> {
+    fn push(&mut self, line: Vec<char>, file: usize, n: usize) {
+        self.out.lines.push(line);
+        self.out.origins.push(Origin { file, line: n });
+    }
+
+    /// Preprocesses the text of file `file`, included `depth` deep, onto the output.
+    fn file(&mut self, src: &[char], file: usize, depth: usize) -> Result<(), ParseError> {
+        // Whether each open #if's branch is taken, and how many are not: a line is active
+        // when none is, known in constant time however deep the nesting.
+        let mut conditions: Vec<bool> = Vec::new();
+        let mut not_taken = 0usize;
+        let lines = spliced(src);
+        for (k, raw) in lines.iter().enumerate() {
+            let n = k + 1;
+            let raw = &raw[..];
+            let indent = raw.iter().take_while(|c| c.is_whitespace()).count();
+            let active = not_taken == 0;
             let err = |m: String| ParseError::new(n, indent + 1, m);
-            match word.as_str() {
-                "ifdef" | "ifndef" => {
-                    let defined = macros.contains_key(rest);
-                    let taken = defined == (word == "ifdef");
-                    not_taken += usize::from(!taken);
-                    conditions.push(taken);
-                }
-                "if" => {
-                    let taken = active && condition(rest, &macros, &mut budget).map_err(err)?;
-                    not_taken += usize::from(!taken);
-                    conditions.push(taken);
-                }
-                "else" => match conditions.last_mut() {
-                    Some(c) => {
-                        *c = !*c;
-                        if *c {
-                            not_taken -= 1;
-                        } else {
-                            not_taken += 1;
+            if is_directive(raw) {
+                let text: String = raw[indent + 1..].iter().collect();
+                let text = text.trim_start();
+                let word: String = text.chars().take_while(|c| is_ident(*c)).collect();
+                let rest = text[word.len()..].trim();
+                match word.as_str() {
+                    "ifdef" | "ifndef" => {
+                        let defined = self.macros.contains_key(rest);
+                        let taken = defined == (word == "ifdef");
+                        not_taken += usize::from(!taken);
+                        conditions.push(taken);
+                    }
+                    "if" => {
+                        let taken = active
+                            && condition(rest, &self.macros, &mut self.budget).map_err(err)?;
+                        not_taken += usize::from(!taken);
+                        conditions.push(taken);
+                    }
+                    "else" => match conditions.last_mut() {
+                        Some(c) => {
+                            *c = !*c;
+                            if *c {
+                                not_taken -= 1;
+                            } else {
+                                not_taken += 1;
+                            }
                         }
+                        None => return Err(err("#else without #ifdef".into())),
+                    },
+                    "endif" => match conditions.pop() {
+                        Some(taken) => not_taken -= usize::from(!taken),
+                        None => return Err(err("#endif without #ifdef".into())),
+                    },
+                    "define" if active => {
+                        let (name, m) = definition(rest).map_err(err)?;
+                        self.macros.insert(name, m);
+                        // The line stays for the grammar parser only when it defines a
+                        // constant it can read; otherwise it is blank.
+                        self.push(raw.to_vec(), file, n);
+                        continue;
                     }
-                    None => return Err(err("#else without #ifdef".into())),
-                },
-                "endif" => match conditions.pop() {
-                    Some(taken) => not_taken -= usize::from(!taken),
-                    None => return Err(err("#endif without #ifdef".into())),
-                },
-                "define" if active => {
-                    let name: String = rest.chars().take_while(|c| is_ident(*c)).collect();
-                    if name.is_empty() {
-                        return Err(err("expected a macro name after #define".into()));
+                    "undef" if active => {
+                        self.macros.remove(rest);
                     }
-                    let after = &rest[name.len()..];
-                    let (params, body) = if let Some(list) = after.strip_prefix('(') {
-                        let close = list
-                            .find(')')
-                            .ok_or_else(|| err(format!("macro '{name}': ')' missing")))?;
-                        let params = list[..close]
-                            .split(',')
-                            .map(|p| p.trim().to_string())
-                            .filter(|p| !p.is_empty())
-                            .collect();
-                        (Some(params), list[close + 1..].trim())
-                    } else {
-                        (None, after.trim())
-                    };
-                    macros.insert(
-                        name,
-                        Macro {
-                            params,
-                            body: body.chars().collect(),
-                        },
-                    );
-                    // The line stays for the grammar parser only when it defines a
-                    // constant it can read; otherwise it is blank.
-                    lines.push(raw.to_vec());
-                    continue;
+                    "include" if active && self.includes.is_some() => {
+                        self.include(rest, depth).map_err(err)?;
+                        // The directive's own line stays, blank, where it was.
+                        self.push(Vec::new(), file, n);
+                        continue;
+                    }
+                    "define" | "undef" => {}
+                    _ if !active => {}
+                    // #include without a folder and the rest: left for the dialect to refuse
+                    // at their place.
+                    _ => {
+                        self.push(raw.to_vec(), file, n);
+                        continue;
+                    }
                 }
-                "undef" if active => {
-                    macros.remove(rest);
-                }
-                "define" | "undef" => {}
-                _ if !active => {}
-                // #include and the rest: left for the dialect to refuse at their place.
-                _ => {
-                    lines.push(raw.to_vec());
-                    continue;
-                }
+                self.push(Vec::new(), file, n);
+                continue;
             }
-            lines.push(Vec::new());
-            continue;
+            if !active {
+                self.push(Vec::new(), file, n);
+                continue;
+            }
+            let expanded = expand(raw, &self.macros, &mut Vec::new(), 0, &mut self.budget)
+                .map_err(|m| ParseError::new(n, 1, m))?;
+            self.push(expanded, file, n);
         }
-        if !active {
-            lines.push(Vec::new());
-            continue;
+        if !conditions.is_empty() {
+            return Err(ParseError::new(
+                lines.len().max(1),
+                1,
+                "#ifdef without #endif",
+            ));
         }
-        let expanded = expand(raw, &macros, &mut Vec::new(), 0, &mut budget)
-            .map_err(|m| ParseError::new(n, 1, m))?;
-        lines.push(expanded);
+        Ok(())
     }
-    if !conditions.is_empty() {
-        return Err(ParseError::new(
-            lines.len().max(1),
-            1,
-            "#ifdef without #endif",
-        ));
+
+    /// Reads the file an `#include "NAME"` (or `<NAME>`) names and preprocesses it in place.
+    fn include(&mut self, rest: &str, depth: usize) -> Result<(), String> {
+        let name = rest
+            .strip_prefix('"')
+            .and_then(|r| r.split_once('"'))
+            .or_else(|| rest.strip_prefix('<').and_then(|r| r.split_once('>')))
+            .map(|(name, _)| name.trim())
+            .filter(|name| !name.is_empty())
+            .ok_or_else(|| format!("#include {rest}: expected a file name in quotes"))?;
+        if depth >= MAX_INCLUDE_DEPTH {
+            return Err(format!(
+                "#include \"{name}\": included files nest more than {MAX_INCLUDE_DEPTH} deep"
+            ));
+        }
+        let includes = self.includes.as_mut().ok_or("no model folder")?;
+        let text = includes
+            .read(name)
+            .map_err(|why| format!("#include \"{name}\": {why}"))?;
+        let chars: Vec<char> = text
+            .strip_prefix('\u{feff}')
+            .unwrap_or(&text)
+            .chars()
+            .collect();
+        let file = self.out.files.len();
+        self.out.files.push(name.to_owned());
+        let src = strip_block_comments(&chars)
+            .map_err(|e| format!("in \"{name}\" at {}: {}", e.location, e.message))?;
+        let src = strip_line_comments(&src);
+        self.file(&src, file, depth + 1)
+            .map_err(|e| format!("in \"{name}\" at {}: {}", e.location, e.message))
     }
-    Ok(Preprocessed { lines })
+}
+
+/// A `#define`'s name and macro, from the text after the word.
+fn definition(rest: &str) -> Result<(String, Macro), String> {
+    let name: String = rest.chars().take_while(|c| is_ident(*c)).collect();
+    if name.is_empty() {
+        return Err("expected a macro name after #define".into());
+    }
+    let after = &rest[name.len()..];
+    let (params, body) = if let Some(list) = after.strip_prefix('(') {
+        let close = list
+            .find(')')
+            .ok_or_else(|| format!("macro '{name}': ')' missing"))?;
+        let params = list[..close]
+            .split(',')
+            .map(|p| p.trim().to_string())
+            .filter(|p| !p.is_empty())
+            .collect();
+        (Some(params), list[close + 1..].trim())
+    } else {
+        (None, after.trim())
+    };
+    Ok((
+        name,
+        Macro {
+            params,
+            body: body.chars().collect(),
+        },
+    ))
 }
 
 /// The source's lines with cpp's line splices joined: a line ending in `\\` continues on

@@ -8,6 +8,7 @@ use crate::model::dialect::Dialect;
 use crate::syntax::comments::{strip_block_comments, strip_line_comments};
 use crate::syntax::cursor::Cursor;
 use crate::syntax::parser::{CPFG_LONG_NAMES, GrammarParser, MAX_GRAMMAR_BYTES};
+use crate::syntax::preprocessor::{Includes, preprocess_with};
 use crate::syntax::statement_parser::assigned_names;
 
 /// Parses `text` in the dialect it declares ([`Dialect::declared_in`]).
@@ -17,12 +18,36 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
 
 /// Parses `text` as `dialect`.
 pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
+    parse_with(text, dialect, None).map_err(|e| e.error)
+}
+
+/// A parse error and the included file it is in (`None`: the model's own text).
+#[derive(Debug)]
+pub(crate) struct SourcedError {
+    pub(crate) file: Option<String>,
+    pub(crate) error: ParseError,
+}
+
+impl From<ParseError> for SourcedError {
+    fn from(error: ParseError) -> Self {
+        SourcedError { file: None, error }
+    }
+}
+
+/// Parses `text` as `dialect`, cpfg's `#include`s read by `includes` when given; errors in
+/// the lines of an included file name that file and its own line.
+pub(crate) fn parse_with(
+    text: &str,
+    dialect: Dialect,
+    includes: Option<&mut dyn Includes>,
+) -> Result<LSystem, SourcedError> {
     if text.len() > MAX_GRAMMAR_BYTES {
         return Err(ParseError::new(
             1,
             1,
             format!("grammar text longer than {MAX_GRAMMAR_BYTES} bytes"),
-        ));
+        )
+        .into());
     }
     // Editors on Windows may start the file with a byte-order mark; it is not text.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -40,11 +65,30 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
             // cpfg files go through the C preprocessor, which ends a line at '//' and
             // expands macros.
             let src = strip_line_comments(&src);
-            let lines = crate::syntax::preprocessor::preprocess(&src)?.lines;
-            let src = lines.join(&'\n');
+            let pre = preprocess_with(&src, includes)?;
+            let src = pre.lines.join(&'\n');
             p.globals = assigned_names(&src);
             p.add_long_names(CPFG_LONG_NAMES.iter().copied());
-            crate::syntax::cpfg::read(&src, &mut p)?;
+            // Lines of included files moved the model's own: each error goes back to the
+            // file and line it came from.
+            let place = |e: ParseError| {
+                let Some(origin) = e
+                    .location
+                    .line
+                    .checked_sub(1)
+                    .and_then(|k| pre.origins.get(k))
+                else {
+                    return SourcedError::from(e);
+                };
+                let mut error = e;
+                error.location.line = origin.line;
+                SourcedError {
+                    file: (origin.file > 0).then(|| pre.files[origin.file].clone()),
+                    error,
+                }
+            };
+            crate::syntax::cpfg::read(&src, &mut p).map_err(place)?;
+            return p.finish().map_err(place);
         }
         Dialect::LPy => {
             // The declarative subset has no statement blocks: a name assigned in Python
@@ -55,5 +99,5 @@ pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, Par
             crate::syntax::lpy::read(&src, &mut p)?
         }
     }
-    p.finish()
+    Ok(p.finish()?)
 }
