@@ -129,10 +129,14 @@ impl InstancingGrammar {
             }
             *slot = alphabet.intern(c).ok_or(InstancingError::MarkerInUse(c))?;
         }
+        // Every symbol a production rewrites, a string predecessor's later modules too.
         let nonterminals: BTreeSet<SymbolId> = grammar
             .productions()
             .iter()
-            .map(|p| p.predecessor.symbol)
+            .flat_map(|p| {
+                std::iter::once(p.predecessor.symbol)
+                    .chain(p.predecessor_rest.iter().map(|q| q.symbol))
+            })
             .collect();
         let mut by_text: HashMap<String, u32> = HashMap::new();
         let mut branches = Vec::new();

@@ -219,14 +219,19 @@ fn non_finite_parameters_are_reported() {
 fn parse_errors_name_line_column_and_expectation() {
     let cases: &[(&str, usize, usize, &str)] = &[
         ("A -> B", 1, 1, "no axiom"),
-        ("axiom: A\nA B -> C", 2, 1, "one predecessor"),
         ("axiom: A\nA -> B(", 2, 8, "expected a number"),
         ("axiom: A\nA(x) -> B(y)", 2, 11, "unknown name 'y'"),
         ("axiom: A\nA -> B(foo(1))", 2, 8, "unknown function"),
         ("axiom: A\nA -> B(sin(1,2))", 2, 8, "takes 1 argument"),
         ("axiom: A\n#bogus", 2, 2, "unknown directive"),
         ("axiom: A\naxiom: B", 2, 1, "second axiom"),
-        ("axiom: A\n  A  B", 2, 3, "one predecessor"),
+        (
+            "axiom: A\n  A  B",
+            2,
+            7,
+            "expected '->' after the predecessor",
+        ),
+        ("axiom: A\nA [B] -> C", 2, 1, "cannot contain '['"),
         ("axiom: A\nA : x > 1 -> B", 2, 5, "unknown name 'x'"),
         ("axiom: A /* never closed", 1, 10, "never closed"),
         ("axiom: A\nA(x,x) -> B", 2, 5, "named twice"),
@@ -593,4 +598,44 @@ endlsystem";
         again.derive(2, 0).unwrap().to_string(),
         g.derive(2, 0).unwrap().to_string()
     );
+}
+
+/// String predecessors (cpfg's `A B --> ...`), worked by hand: the modules must follow one
+/// another, are matched left to right, and are rewritten together.
+#[test]
+fn string_predecessors_rewrite_their_modules_together() {
+    let derive = |src: &str, n: u32| {
+        LSystem::parse(src)
+            .unwrap()
+            .derive(n, 0)
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(derive("axiom: A B A B\nA B -> C", 1), "CC");
+    // Left to right: the first two of three A are one match, the third stays.
+    assert_eq!(derive("axiom: A A A\nA A -> B", 1), "BA");
+    // Parameters bind in order: predecessor modules, then the right context.
+    assert_eq!(
+        derive("axiom: A(1) B(2) A(3)\nA(x) B(y) -> C(x+y)", 1),
+        "C(3)A(3)"
+    );
+    assert_eq!(
+        derive(
+            "axiom: X(1) A(2) B(3) Y(4)\nX(a) < A(b) B(c) > Y(d) -> Z(a*1000+b*100+c*10+d)",
+            1
+        ),
+        "X(1)Z(1234)Y(4)"
+    );
+    // Without its right context the string is left alone.
+    assert_eq!(derive("axiom: X A B\nX < A B > Y -> Z", 1), "XAB");
+    // Productions are tried in order: where the string does not follow, the next one fires.
+    assert_eq!(derive("axiom: A B A\nA B -> C\nA -> D", 1), "CD");
+    // cpfg's dialect reads them too, and printing gives a grammar that reads back the same.
+    let cpfg = "Lsystem: 1\nderivation length: 2\naxiom: A B\nA B --> B A B\nB --> A\nendlsystem\n";
+    let g = LSystem::parse_dialect(cpfg, sylva_lsys::Dialect::Cpfg).unwrap();
+    // A B -> B A B; then B -> A, and "A B" -> "B A B": A + B A B.
+    assert_eq!(g.derive(2, 0).unwrap().to_string(), "ABAB");
+    let printed = LSystem::parse(&g.to_string()).unwrap();
+    assert_eq!(printed.derive(2, 0).unwrap(), g.derive(2, 0).unwrap());
+    assert_eq!(g.productions()[0].predecessor_rest.len(), 1);
 }

@@ -29,6 +29,8 @@ pub(crate) struct CPattern {
 pub(crate) struct CProduction {
     pub(crate) left: Vec<CPattern>,
     pub(crate) arity: u8,
+    /// The modules after the first of a string predecessor.
+    pub(crate) rest: Vec<CPattern>,
     pub(crate) right: Vec<CPattern>,
     pub(crate) condition: Option<Span>,
     /// The blocks before the condition and on application, as spans of `blocks`.
@@ -111,6 +113,7 @@ impl Compiled {
             c.productions.push(CProduction {
                 left: pat(&p.left),
                 arity: p.predecessor.params.len() as u8,
+                rest: pat(&p.predecessor_rest),
                 right: pat(&p.right),
                 condition,
                 pre,
@@ -146,6 +149,7 @@ impl Compiled {
                     Some(p) if hi - lo == 1 => {
                         let q = &c.productions[p as usize];
                         let simple = q.left.is_empty()
+                            && q.rest.is_empty()
                             && q.right.is_empty()
                             && q.condition.is_none()
                             && q.weight.is_none()

@@ -393,7 +393,12 @@ fn check_productions(
                 "an expression is deeper than {MAX_EXPR_DEPTH} levels or choices nest deeper than {MAX_NESTING}"
             )));
         }
-        let patterns = p.left.iter().chain([&p.predecessor]).chain(&p.right);
+        let patterns = p
+            .left
+            .iter()
+            .chain([&p.predecessor])
+            .chain(&p.predecessor_rest)
+            .chain(&p.right);
         if patterns.clone().any(|pat| !known(pat.symbol)) {
             return Err(bad("unknown symbol"));
         }

@@ -48,6 +48,10 @@ pub struct Production {
     pub left: Vec<Pattern>,
     /// The module this production rewrites.
     pub predecessor: Pattern,
+    /// The modules after the first of a string predecessor (cpfg's `A B --> ...`): they must
+    /// follow it in order, with nothing between, and are rewritten with it. Empty when the
+    /// predecessor is one module.
+    pub predecessor_rest: Vec<Pattern>,
     /// Right context, may contain `[` and `]` to enter or leave branches. Empty when none.
     pub right: Vec<Pattern>,
     /// Statements run before the condition is tested (cpfg's block before the condition).
@@ -63,11 +67,13 @@ pub struct Production {
 }
 
 impl Production {
-    /// Number of parameters bound by the contexts and the predecessor together.
+    /// Number of parameters bound by the contexts and the predecessor together, in the order
+    /// left context, predecessor, the rest of a string predecessor, right context.
     pub fn binding_count(&self) -> usize {
         self.left
             .iter()
             .chain(std::iter::once(&self.predecessor))
+            .chain(&self.predecessor_rest)
             .chain(&self.right)
             .map(|p| p.params.len())
             .sum()

@@ -333,6 +333,9 @@ fn write_productions(
             "{}",
             PatternsDisplay(std::slice::from_ref(&p.predecessor), a)
         )?;
+        if !p.predecessor_rest.is_empty() {
+            write!(f, " {}", PatternsDisplay(&p.predecessor_rest, a))?;
+        }
         if !p.right.is_empty() {
             write!(f, " > {}", PatternsDisplay(&p.right, a))?;
         }

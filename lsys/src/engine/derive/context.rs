@@ -17,14 +17,27 @@ impl Deriver<'_> {
             return false;
         }
         self.matched.push(i as u32);
-        prod.right.is_empty() || self.match_right(cur, i, &prod.right)
+        // A string predecessor's other modules follow the first, in order, nothing between;
+        // the right context begins after the last of them.
+        let mut last = i;
+        for p in &prod.rest {
+            last += 1;
+            if last >= cur.len()
+                || cur.symbols[last] != p.symbol
+                || Self::arity_of(cur, last) != p.arity
+            {
+                return false;
+            }
+            self.matched.push(last as u32);
+        }
+        prod.right.is_empty() || self.match_right(cur, last, &prod.right)
     }
 
     /// Fills `vars` with the parameters of the modules `matches` found, in slot order.
     /// `matched` says whether the last `matches` call was for `prod`; if not, it is redone.
     pub(super) fn bind(&mut self, cur: &Word, i: usize, prod: &CProduction, matched: bool) {
         self.vars.clear();
-        if prod.left.is_empty() && prod.right.is_empty() {
+        if prod.left.is_empty() && prod.rest.is_empty() && prod.right.is_empty() {
             self.vars.extend_from_slice(cur.params(i));
             return;
         }

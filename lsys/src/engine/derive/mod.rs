@@ -252,6 +252,7 @@ impl<'g> Deriver<'g> {
             }
             let lo = c.by_symbol[s] as usize;
             let hi = c.by_symbol[s + 1] as usize;
+            let mut consumed = 1;
             let chosen = match c.simple[s] {
                 p if p != u32::MAX
                     && c.productions[p as usize].arity as usize == cur.params(i).len() =>
@@ -267,6 +268,8 @@ impl<'g> Deriver<'g> {
                     self.last_fired = Some(p);
                     let prod = &c.productions[p as usize];
                     self.check_room(out, prod, generation)?;
+                    // A string predecessor rewrites all its modules at once.
+                    consumed += prod.rest.len();
                     if let Some(((s0, s1), (p0, p1))) = prod.constant {
                         let syms = &c.const_symbols[s0 as usize..s1 as usize];
                         out.symbols.extend_from_slice(syms);
@@ -294,7 +297,7 @@ impl<'g> Deriver<'g> {
                     cut_seen |= sym == CUT;
                 }
             }
-            i += 1;
+            i += consumed;
         }
         self.sub = None;
         if out.len() > self.limits.max_modules {

@@ -493,24 +493,24 @@ impl GrammarParser {
 }
 
 impl GrammarParser {
-    /// The one module of a predecessor.
+    /// A predecessor's first module and the rest of a string predecessor (cpfg's
+    /// `A B --> ...`, read in every dialect); brackets cannot be part of one.
     fn single(
         &self,
         cur: &Cursor<'_>,
         mut patterns: Vec<Pattern>,
         at: usize,
-    ) -> Result<Pattern, ParseError> {
-        match patterns.len() {
-            1 => Ok(patterns.remove(0)),
-            0 => Err(cur.error_at(at, "expected a predecessor symbol")),
-            _ if self.dialect == Dialect::Cpfg => Err(cur.error_at(
-                at,
-                "unsupported: a predecessor of several modules (cpfg's string predecessors)",
-            )),
-            _ => Err(cur.error_at(
-                at,
-                "expected one predecessor module (use '<' and '>' for contexts)",
-            )),
+    ) -> Result<(Pattern, Vec<Pattern>), ParseError> {
+        if patterns.is_empty() {
+            return Err(cur.error_at(at, "expected a predecessor symbol"));
         }
+        if patterns.iter().any(|p| p.symbol == PUSH || p.symbol == POP) {
+            return Err(cur.error_at(
+                at,
+                "a predecessor cannot contain '[' or ']' (use '<' and '>' for contexts)",
+            ));
+        }
+        let first = patterns.remove(0);
+        Ok((first, patterns))
     }
 }

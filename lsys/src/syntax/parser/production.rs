@@ -146,9 +146,11 @@ impl GrammarParser {
                 cur.describe_next()
             )));
         }
+        let (predecessor, predecessor_rest) = predecessor;
         Ok(Production {
             left,
             predecessor,
+            predecessor_rest,
             right,
             pre,
             condition,
