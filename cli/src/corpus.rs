@@ -4,9 +4,9 @@
 //!
 //! The virtual laboratory's models (AlgorithmicBotany/vlab, folder `oofs`) are the corpus
 //! this was made for. Each is read as a model folder (`LSystem::from_model_dir`): its
-//! `#include`s are the files beside it. Models that need files of other kinds (function
-//! files for `func(...)`, surfaces for `~`, an environment program for `?E`) are listed but
-//! counted apart: the question asked of the rest is whether they load, derive and mesh.
+//! `#include`s and the function files its view file names are the files beside it. Models
+//! that need files of other kinds (curves, surfaces for `~`, an environment program for
+//! `?E`) are listed but counted apart: the question asked of the rest is whether they load, derive and mesh.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -42,9 +42,7 @@ fn external_files(text: &str) -> Option<&'static str> {
         .filter(|l| !l.trim_start().starts_with("//"))
         .collect::<Vec<_>>()
         .join("\n");
-    if code.contains("func(") || code.contains("func (") {
-        Some("function files (func)")
-    } else if code.contains("curve(") {
+    if code.contains("curve(") || code.contains("curveGAL") {
         Some("curve files (curve)")
     } else if code.contains("?E") {
         Some("an environment program (?E)")
@@ -88,8 +86,12 @@ fn try_model(path: &Path) -> Result<(u32, usize, usize), String> {
     }
     // Printed in sylva's notation, the model reads back and derives the same word.
     let printed = grammar.to_string();
-    let again =
-        LSystem::parse(&printed).map_err(|e| format!("printed back, it does not parse: {e}"))?;
+    let again = LSystem::parse_with_functions(
+        &printed,
+        sylva::lsys::Dialect::Sylva,
+        grammar.functions().to_vec(),
+    )
+    .map_err(|e| format!("printed back, it does not parse: {e}"))?;
     let word_again = again
         .derive_with(steps, 1, &limits)
         .and_then(|w| again.interpretation(&w, 1))

@@ -166,3 +166,89 @@ fn without_a_folder_an_include_is_refused_at_its_place() {
     assert_eq!(e.location.line, 1);
     assert!(e.message.contains("unsupported: #include"), "{}", e.message);
 }
+
+/// A straight function from (0, 0) to (1, 1) in the `fver 1 1` format, named `name`.
+fn ramp(name: &str) -> String {
+    format!(
+        "fver 1 1\nname: {name}\nsamples: 101\nflip: off\npoints: 4\n0 0\n0.333333 0.333333\n0.666667 0.666667\n1 1\n"
+    )
+}
+
+#[test]
+fn function_files_of_the_view_file_are_read_by_id_and_by_name() {
+    // Old style: `function:` lines, ids in their order; the second function is the constant 2.
+    let flat = "range: 0 1\npoints: 4\n0 2\n0.3 2\n0.6 2\n1 2\n";
+    let dir = folder(
+        "functions",
+        &[
+            (
+                "plant.l",
+                "Lsystem: 1\nderivation length: 1\naxiom: A(0.25)\nA(x) --> B(func(1, x)) C(func(2, x))\nendlsystem\n",
+            ),
+            (
+                "plant.v",
+                "scale factor: 0.9\nfunction: ramp.func 101\nfunction: flat.func 10\n",
+            ),
+            ("ramp.func", &ramp("ramp")),
+            ("flat.func", flat),
+        ],
+    );
+    let plant = LSystem::from_model_dir(&dir).unwrap();
+    let word = plant.derive(1, 0).unwrap();
+    let b = word.params(0)[0];
+    assert!((b - 0.25).abs() < 2e-3, "{b}");
+    assert_eq!(word.params(1), &[2.0]);
+    // A function set: each name is defined as its id, as cpfg defines it.
+    let set = format!(
+        "funcgalleryver 1 1\nitems: 2\n{}{}",
+        ramp("UP"),
+        ramp("ALSO_UP")
+    );
+    let dir = folder(
+        "function_set",
+        &[
+            (
+                "plant.l",
+                "Lsystem: 1\nderivation length: 1\naxiom: A(0.5)\nA(x) --> B(func(ALSO_UP, x), ALSO_UP)\nendlsystem\n",
+            ),
+            ("view.v", "function set: functions.fset\n"),
+            ("functions.fset", &set),
+        ],
+    );
+    let plant = LSystem::from_model_dir(&dir).unwrap();
+    assert_eq!(plant.functions().len(), 2);
+    let word = plant.derive(1, 0).unwrap();
+    assert!((word.params(0)[0] - 0.5).abs() < 2e-3 && word.params(0)[1] == 2.0);
+}
+
+#[test]
+fn func_without_its_files_or_past_them_is_refused_at_its_place() {
+    let text = "Lsystem: 1\naxiom: A\nA --> B(func(1, 0.5))\nendlsystem\n";
+    let e = LSystem::parse_dialect(text, sylva_lsys::Dialect::Cpfg).unwrap_err();
+    assert_eq!((e.location.line, e.location.column), (3, 9));
+    assert!(e.message.starts_with("unsupported: func"), "{}", e.message);
+    let dir = folder(
+        "past",
+        &[
+            (
+                "plant.l",
+                "Lsystem: 1\naxiom: A\nA --> B(func(3, 0.5))\nendlsystem\n",
+            ),
+            ("plant.v", "function: ramp.func\n"),
+            ("ramp.func", &ramp("ramp")),
+        ],
+    );
+    let (_, line, _, message) = error(&dir);
+    assert_eq!(line, 3);
+    assert!(message.contains("functions 1 to 1"), "{message}");
+    // A view file naming a missing or broken function file says which line.
+    let dir = folder(
+        "broken_view",
+        &[
+            ("plant.l", "Lsystem: 1\naxiom: A\nendlsystem\n"),
+            ("plant.v", "\nfunction: gone.func\n"),
+        ],
+    );
+    let e = LSystem::from_model_dir(&dir).unwrap_err().to_string();
+    assert!(e.contains("plant.v: line 2: gone.func"), "{e}");
+}

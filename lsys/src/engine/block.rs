@@ -3,6 +3,7 @@
 use crate::engine::eval::{Op, Span, eval};
 use crate::engine::random::Random;
 use crate::model::statement::Statement;
+use crate::spline::SplineFunction;
 
 /// Most statements one run of a block may execute: a loop that never ends stops here with
 /// an error instead of hanging the derivation.
@@ -102,7 +103,7 @@ fn emit(statements: &[Statement], ops: &mut Vec<Op>, out: &mut Vec<Instruction>,
 pub(crate) fn run(
     block: &[Instruction],
     ops: &[Op],
-    (vars, globals): (&mut [f64], &mut [f64]),
+    (vars, globals, functions): (&mut [f64], &mut [f64], &[SplineFunction]),
     generation: f64,
     rng: &mut Random,
     stack: &mut Vec<f64>,
@@ -114,7 +115,7 @@ pub(crate) fn run(
         |span: Span, vars: &[f64], globals: &[f64], rng: &mut Random, stack: &mut Vec<f64>| {
             eval(
                 &ops[span.0 as usize..span.1 as usize],
-                (vars, globals),
+                (vars, globals, functions),
                 generation,
                 rng,
                 stack,

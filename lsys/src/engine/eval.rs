@@ -2,6 +2,7 @@
 
 use crate::engine::random::Random;
 use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp};
+use crate::spline::SplineFunction;
 
 /// A range (start, end) into one of the compiled flat tables: ops, items, instructions.
 pub(crate) type Span = (u32, u32);
@@ -56,7 +57,7 @@ impl Expr {
         self.compile_raw(&mut ops);
         eval(
             &ops,
-            (&[], &[]),
+            (&[], &[], &[]),
             generation,
             &mut Random::new(rng_seed),
             &mut Vec::new(),
@@ -97,7 +98,8 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
             left && right
         }
         Expr::Call(f, args) => {
-            let mut constant = !f.is_random();
+            // A spline function's values are the model's, not known while compiling.
+            let mut constant = !f.is_random() && *f != Function::Func;
             for a in args {
                 constant &= compile_folding(a, out);
             }
@@ -108,7 +110,7 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
     if constant {
         let value = eval(
             &out[start..],
-            (&[], &[]),
+            (&[], &[], &[]),
             0.0,
             &mut Random::new(0),
             &mut Vec::new(),
@@ -124,7 +126,7 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
 #[inline]
 pub(crate) fn eval(
     ops: &[Op],
-    (vars, globals): (&[f64], &[f64]),
+    (vars, globals, functions): (&[f64], &[f64], &[SplineFunction]),
     generation: f64,
     rng: &mut Random,
     stack: &mut Vec<f64>,
@@ -162,7 +164,20 @@ pub(crate) fn eval(
                     *slot = *v;
                 }
                 stack.truncate(at);
-                stack.push(f.apply(&args[..n.max(1)], rng));
+                stack.push(match f {
+                    // func(id, x): the model's function `id` (from 1) at x; 0 for an id it
+                    // does not have, as cpfg gives (the parser refuses constant ones).
+                    Function::Func => {
+                        let id = args[0];
+                        let k = id as usize;
+                        if id >= 1.0 && id.fract() == 0.0 && k <= functions.len() {
+                            functions[k - 1].value(args[1])
+                        } else {
+                            0.0
+                        }
+                    }
+                    _ => f.apply(&args[..n.max(1)], rng),
+                });
             }
         }
     }
@@ -223,6 +238,8 @@ impl Function {
             Function::Nran => a + b * rng.normal(),
             Function::Bran => rng.beta(a, b),
             Function::Biran => rng.binomial(a, b),
+            // Evaluated by `eval`, which has the model's functions.
+            Function::Func => 0.0,
         }
     }
 }
@@ -248,7 +265,13 @@ mod tests {
         let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
         let mut ops = Vec::new();
         e.compile(&mut ops);
-        eval(&ops, (&[x], &[]), 3.0, &mut Random::new(0), &mut Vec::new())
+        eval(
+            &ops,
+            (&[x], &[], &[]),
+            3.0,
+            &mut Random::new(0),
+            &mut Vec::new(),
+        )
     }
 
     /// cpfg's bran(a, b) is a beta draw: its mean is a / (a + b).

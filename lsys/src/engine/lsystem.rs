@@ -11,6 +11,7 @@ use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
 use crate::model::statement::{Blocks, Statement, expressions};
 use crate::model::word::Word;
+use crate::spline::SplineFunction;
 
 /// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
 ///
@@ -51,6 +52,8 @@ pub struct LSystem {
     /// (start, start each, end each, end).
     pub(crate) blocks: Blocks,
     pub(crate) block_spans: [Span; 4],
+    /// The model's function files, for `func(id, x)` (id 1 is the first).
+    pub(crate) functions: Arc<[SplineFunction]>,
 }
 
 impl PartialEq for LSystem {
@@ -66,6 +69,7 @@ impl PartialEq for LSystem {
             && self.globals == other.globals
             && self.subsystems == other.subsystems
             && self.blocks == other.blocks
+            && self.functions == other.functions
     }
 }
 
@@ -150,6 +154,7 @@ impl LSystem {
             globals: Vec::new(),
             blocks: Blocks::default(),
             block_spans: [(0, 0); 4],
+            functions: Arc::new([]),
         })
     }
 
@@ -267,6 +272,18 @@ impl LSystem {
     pub(crate) fn with_locations(mut self, locations: Vec<Location>) -> LSystem {
         self.locations = locations;
         self
+    }
+
+    /// This system with the function files `func(id, x)` reads (id 1 is the first); a model
+    /// folder's are read by [`LSystem::from_model_dir`].
+    pub fn with_functions(mut self, functions: Vec<SplineFunction>) -> LSystem {
+        self.functions = functions.into();
+        self
+    }
+
+    /// The function files `func(id, x)` reads.
+    pub fn functions(&self) -> &[SplineFunction] {
+        &self.functions
     }
 
     /// This system marked as read from `dialect`.

@@ -104,6 +104,9 @@ pub enum Function {
     /// `select(c, a, b)`: `a` when `c` is non-zero, else `b` (C's and cpfg's `c ? a : b`;
     /// both are evaluated).
     Select,
+    /// `func(id, x)`: the model's function file `id` (from 1) at `x` in [0, 1] (cpfg; the
+    /// functions of a model folder, [`crate::spline`]).
+    Func,
 }
 
 pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
@@ -128,6 +131,7 @@ pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
     ("bran", Function::Bran, 2),
     ("biran", Function::Biran, 2),
     ("select", Function::Select, 3),
+    ("func", Function::Func, 2),
     // cpfg's C spelling of abs.
     ("fabs", Function::Abs, 1),
 ];
@@ -227,7 +231,7 @@ impl Expr {
         match self {
             Expr::Number(_) | Expr::Constant { .. } => true,
             Expr::Var { .. } | Expr::Global { .. } | Expr::Generation => false,
-            Expr::Call(f, _) if f.is_random() => false,
+            Expr::Call(f, _) if f.is_random() || *f == Function::Func => false,
             _ => self.children().all(Expr::is_constant),
         }
     }

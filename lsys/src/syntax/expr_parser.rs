@@ -25,6 +25,10 @@ pub(crate) trait Scope {
     fn global(&self, _name: &str) -> Option<u16> {
         None
     }
+    /// How many function files `func(id, x)` may read.
+    fn functions(&self) -> usize {
+        0
+    }
 }
 
 /// Parses one expression at the cursor. Stops before any character that cannot continue it.
@@ -312,10 +316,34 @@ impl ExprParser<'_, '_> {
                 ),
             ));
         }
+        if func == Function::Func {
+            self.check_function(&args[0], start)?;
+        }
         if self.scope.degrees() {
             return self.in_degrees(func, args, start, depth);
         }
         self.node(start, depth, || Expr::Call(func, args))
+    }
+
+    /// `func(id, x)` needs the model's function files, and a constant id one of them.
+    fn check_function(&self, id: &Expr, start: usize) -> Result<(), ParseError> {
+        let count = self.scope.functions();
+        if count == 0 {
+            return Err(self.cur.error_at(
+                start,
+                "unsupported: func(id, x) reads the model's function files: load the model's folder (LSystem::from_model_dir, or give sylva the folder or its .l file)",
+            ));
+        }
+        if id.is_constant() {
+            let k = id.eval_constant(0.0, 0);
+            if !(k >= 1.0 && k.fract() == 0.0 && k <= count as f64) {
+                return Err(self.cur.error_at(
+                    start,
+                    format!("func({k}, ...): the model has functions 1 to {count}"),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// A trigonometric call of a dialect that measures angles in degrees: its argument

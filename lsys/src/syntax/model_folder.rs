@@ -1,12 +1,13 @@
 //! vlab models are folders, not single files: a model's `.l` file and the files beside it
-//! that it reads. This finds the `.l` file of a folder and reads the files its `#include`s
-//! name, from inside the folder only.
+//! that it reads. This finds the `.l` file of a folder, reads the files its `#include`s name
+//! and the function files its view file (`.v`) names, from inside the folder only.
 
 use std::path::{Path, PathBuf};
 
 use crate::engine::lsystem::LSystem;
 use crate::error::GrammarFileError;
 use crate::model::dialect::Dialect;
+use crate::spline::{MAX_FUNCTIONS, SplineFunction};
 use crate::syntax::parser::MAX_GRAMMAR_BYTES;
 use crate::syntax::preprocessor::Includes;
 use crate::syntax::read::parse_with;
@@ -81,6 +82,71 @@ fn model_file(path: &Path) -> Result<PathBuf, GrammarFileError> {
     }
 }
 
+/// The view file of the model `file`: the `.v` beside it of the same name, else the only
+/// `.v` in its folder, else none.
+fn view_file(file: &Path, folder: &Path) -> Option<PathBuf> {
+    let same = file.with_extension("v");
+    if same.is_file() {
+        return Some(same);
+    }
+    let mut views = std::fs::read_dir(folder)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && p.extension().is_some_and(|e| e == "v"));
+    let only = views.next()?;
+    views.next().is_none().then_some(only)
+}
+
+/// The function files the model's view file names, in order: `function: FILE [SAMPLES]`
+/// lines (ids from 1 in their order) or a `function set: FILE` (its functions, named).
+fn functions(
+    file: &Path,
+    folder: &Path,
+    includes: &mut ModelFolder,
+) -> Result<Vec<SplineFunction>, GrammarFileError> {
+    let Some(view) = view_file(file, folder) else {
+        return Ok(Vec::new());
+    };
+    let text = sylva_base::text_file::read(&view, MAX_GRAMMAR_BYTES as u64)?;
+    let problem = |line: usize, message: String| GrammarFileError::Model {
+        path: view.clone(),
+        message: format!("line {line}: {message}"),
+    };
+    let mut out = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if let Some(rest) = line.strip_prefix("function set:") {
+            let name = rest.trim();
+            let set = includes
+                .read(name)
+                .map_err(|e| problem(k + 1, format!("{name}: {e}")))?;
+            out = SplineFunction::parse_set(&set)
+                .map_err(|e| problem(k + 1, format!("{name}: {e}")))?;
+        } else if let Some(rest) = line.strip_prefix("function:") {
+            let mut parts = rest.split_whitespace();
+            let name = parts.next().unwrap_or_default();
+            let samples = parts.next().and_then(|s| s.parse().ok());
+            let text = includes
+                .read(name)
+                .map_err(|e| problem(k + 1, format!("{name}: {e}")))?;
+            let mut function = SplineFunction::parse_func(&text, samples)
+                .map_err(|e| problem(k + 1, format!("{name}: {e}")))?;
+            // Only a set's names are defined as their ids: a file's name is its own (and
+            // often a variable's, `turn` for turn.func).
+            function.name = None;
+            out.push(function);
+        }
+        if out.len() > MAX_FUNCTIONS {
+            return Err(problem(
+                k + 1,
+                format!("more than {MAX_FUNCTIONS} functions"),
+            ));
+        }
+    }
+    Ok(out)
+}
+
 /// Reads the model at `path` (a folder or a `.l` file inside one) with the files beside it
 /// that it includes.
 pub(crate) fn read_model(path: &Path) -> Result<LSystem, GrammarFileError> {
@@ -95,15 +161,18 @@ pub(crate) fn read_model(path: &Path) -> Result<LSystem, GrammarFileError> {
         message: e.to_string(),
     })?;
     let mut includes = ModelFolder { root, read: 0 };
+    let functions = functions(&file, &folder, &mut includes)?;
     let dialect = match Dialect::of_path(&file) {
         Dialect::Sylva => Dialect::declared_in(&text),
         named => named,
     };
-    parse_with(&text, dialect, Some(&mut includes)).map_err(|e| GrammarFileError::Parse {
-        path: match e.file {
-            Some(name) => folder.join(name),
-            None => file.clone(),
-        },
-        error: e.error,
+    parse_with(&text, dialect, Some(&mut includes), functions).map_err(|e| {
+        GrammarFileError::Parse {
+            path: match e.file {
+                Some(name) => folder.join(name),
+                None => file.clone(),
+            },
+            error: e.error,
+        }
     })
 }

@@ -85,18 +85,27 @@ fn is_ident(c: char) -> bool {
 /// refuse.
 #[cfg(test)]
 pub(crate) fn preprocess(src: &[char]) -> Result<Preprocessed, ParseError> {
-    preprocess_with(src, None)
+    preprocess_with(src, None, &[])
 }
 
 /// As [`preprocess`], with `#include "NAME"` replaced by the lines of the file `includes`
 /// reads (its comments removed, its directives run with the same macros), when given. An
 /// error in an included file is reported at its `#include` line, naming the file and place.
+/// `predefined` macros (name, body) are defined before the first line, as `cpp -D` does.
 pub(crate) fn preprocess_with(
     src: &[char],
     includes: Option<&mut dyn Includes>,
+    predefined: &[(String, String)],
 ) -> Result<Preprocessed, ParseError> {
+    let macros = predefined
+        .iter()
+        .map(|(name, body)| {
+            let body = body.chars().collect();
+            (name.clone(), Macro { params: None, body })
+        })
+        .collect();
     let mut run = Run {
-        macros: HashMap::new(),
+        macros,
         budget: MAX_EXPANDED_TOTAL,
         includes,
         out: Preprocessed {
@@ -290,7 +299,13 @@ fn spliced(src: &[char]) -> Vec<Vec<char>> {
         let mut line = pending.take().unwrap_or_default();
         let trimmed_end = raw.len() - raw.iter().rev().take_while(|c| c.is_whitespace()).count();
         if raw[..trimmed_end].last() == Some(&'\\') {
-            line.extend_from_slice(&raw[..trimmed_end - 1]);
+            // vlab's models end some spliced lines with two backslashes (`\\`), which
+            // cpfg reads as one splice: every backslash at the end goes.
+            let kept = raw[..trimmed_end]
+                .iter()
+                .rposition(|&c| c != '\\')
+                .map_or(0, |k| k + 1);
+            line.extend_from_slice(&raw[..kept]);
             line.push(' ');
             pending = Some(line);
             blanks += 1;

@@ -5,6 +5,7 @@
 use crate::engine::lsystem::LSystem;
 use crate::error::ParseError;
 use crate::model::dialect::Dialect;
+use crate::spline::SplineFunction;
 use crate::syntax::comments::{strip_block_comments, strip_line_comments};
 use crate::syntax::cursor::Cursor;
 use crate::syntax::parser::{CPFG_LONG_NAMES, GrammarParser, MAX_GRAMMAR_BYTES};
@@ -18,7 +19,7 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
 
 /// Parses `text` as `dialect`.
 pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
-    parse_with(text, dialect, None).map_err(|e| e.error)
+    parse_with(text, dialect, None, Vec::new()).map_err(|e| e.error)
 }
 
 /// A parse error and the included file it is in (`None`: the model's own text).
@@ -34,12 +35,15 @@ impl From<ParseError> for SourcedError {
     }
 }
 
-/// Parses `text` as `dialect`, cpfg's `#include`s read by `includes` when given; errors in
-/// the lines of an included file name that file and its own line.
+/// Parses `text` as `dialect`, cpfg's `#include`s read by `includes` when given, `func(id,
+/// x)` reading `functions` (the names of a function set's functions are defined as their
+/// ids, as cpfg defines them); errors in the lines of an included file name that file and
+/// its own line.
 pub(crate) fn parse_with(
     text: &str,
     dialect: Dialect,
     includes: Option<&mut dyn Includes>,
+    functions: Vec<SplineFunction>,
 ) -> Result<LSystem, SourcedError> {
     if text.len() > MAX_GRAMMAR_BYTES {
         return Err(ParseError::new(
@@ -54,6 +58,7 @@ pub(crate) fn parse_with(
     let src: Vec<char> = text.chars().collect();
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser::new(dialect, assigned_names(&src));
+    p.functions = functions.len();
     match dialect {
         Dialect::Sylva => {
             for (n, line) in src.split(|&c| c == '\n').enumerate() {
@@ -65,7 +70,12 @@ pub(crate) fn parse_with(
             // cpfg files go through the C preprocessor, which ends a line at '//' and
             // expands macros.
             let src = strip_line_comments(&src);
-            let pre = preprocess_with(&src, includes)?;
+            let named: Vec<(String, String)> = functions
+                .iter()
+                .enumerate()
+                .filter_map(|(k, f)| Some((f.name.clone()?, (k + 1).to_string())))
+                .collect();
+            let pre = preprocess_with(&src, includes, &named)?;
             let src = pre.lines.join(&'\n');
             p.globals = assigned_names(&src);
             p.add_long_names(CPFG_LONG_NAMES.iter().copied());
@@ -88,7 +98,7 @@ pub(crate) fn parse_with(
                 }
             };
             crate::syntax::cpfg::read(&src, &mut p).map_err(place)?;
-            return p.finish().map_err(place);
+            return Ok(p.finish().map_err(place)?.with_functions(functions));
         }
         Dialect::LPy => {
             // The declarative subset has no statement blocks: a name assigned in Python
@@ -99,5 +109,5 @@ pub(crate) fn parse_with(
             crate::syntax::lpy::read(&src, &mut p)?
         }
     }
-    Ok(p.finish()?)
+    Ok(p.finish()?.with_functions(functions))
 }

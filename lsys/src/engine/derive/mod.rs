@@ -369,7 +369,7 @@ impl<'g> Deriver<'g> {
                 }
                 let v = eval(
                     &c.ops[a as usize..b as usize],
-                    (&self.vars, &self.globals),
+                    (&self.vars, &self.globals, &self.grammar.functions),
                     generation,
                     &mut self.rng,
                     &mut self.stack,
@@ -426,7 +426,7 @@ impl<'g> Deriver<'g> {
         let run = block::run(
             &compiled.blocks[span.0 as usize..span.1 as usize],
             &compiled.ops,
-            (&mut self.vars, &mut self.globals),
+            (&mut self.vars, &mut self.globals, &self.grammar.functions),
             generation,
             &mut self.rng,
             &mut self.stack,

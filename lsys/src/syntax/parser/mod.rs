@@ -35,6 +35,8 @@ struct Names<'a> {
     degrees: bool,
     /// The grammar's block variables, by slot.
     globals: &'a [String],
+    /// How many function files the model has.
+    functions: usize,
 }
 
 impl Scope for Names<'_> {
@@ -46,6 +48,9 @@ impl Scope for Names<'_> {
     }
     fn degrees(&self) -> bool {
         self.degrees
+    }
+    fn functions(&self) -> usize {
+        self.functions
     }
     fn global(&self, name: &str) -> Option<u16> {
         self.globals
@@ -64,6 +69,7 @@ impl GrammarParser {
             vars,
             degrees: self.dialect == Dialect::Cpfg,
             globals: &self.globals,
+            functions: self.functions,
         }
     }
 }
@@ -119,6 +125,7 @@ impl GrammarParser {
             values: HashMap::new(),
             constant_at: Vec::new(),
             ignore: Vec::new(),
+            functions: 0,
             axiom: None,
             productions: Vec::new(),
         }
@@ -234,6 +241,7 @@ pub(crate) fn parse_modules(
         vars: no_vars(),
         degrees: false,
         globals: &[],
+        functions: 0,
     };
     let mut params = Vec::new();
     for (n, line) in chars.split(|&c| c == '\n').enumerate() {
@@ -358,6 +366,8 @@ pub(crate) struct GrammarParser {
     /// Where each constant was defined, for errors found after parsing.
     constant_at: Vec<(String, Location)>,
     pub(crate) ignore: Vec<SymbolId>,
+    /// How many function files `func(id, x)` may read (a model folder's).
+    pub(crate) functions: usize,
     /// The axiom and where each of its modules starts.
     axiom: Option<(Vec<ModuleTemplate>, Vec<Location>)>,
     /// The productions, where each starts and its section.
