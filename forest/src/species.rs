@@ -312,7 +312,14 @@ impl Species {
             }
             None => {
                 let gpath: PathBuf = path.parent().unwrap_or(Path::new(".")).join(grammar_ref);
-                let g = LSystem::from_file(&gpath).map_err(|e| match e {
+                // A vlab model (a folder, or a .l file in one) reads the files beside it.
+                let model = gpath.is_dir() || gpath.extension().is_some_and(|e| e == "l");
+                let read = if model {
+                    LSystem::from_model_dir(&gpath)
+                } else {
+                    LSystem::from_file(&gpath)
+                };
+                let g = read.map_err(|e| match e {
                     GrammarFileError::Parse { path, error } => ForestError::SpeciesFile {
                         file: path,
                         line: error.location.line,
