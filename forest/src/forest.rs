@@ -15,7 +15,7 @@ use crate::error::ForestError;
 use crate::form::TreeForm;
 use crate::patch::Composition;
 use crate::patch::{PatchDensity, PatchSpecies};
-use crate::siting::SitingReport;
+use crate::siting_report::SitingReport;
 use crate::species::{Canopy, Species};
 use crate::succession::Snapshot;
 use crate::variants::Variant;

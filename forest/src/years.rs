@@ -10,7 +10,7 @@ use std::sync::Arc;
 use crate::density::Rect;
 use crate::error::ForestError;
 use crate::forest::ForestBuilder;
-use crate::siting::SitingReport;
+use crate::siting_report::SitingReport;
 use crate::succession::{Snapshot, State, Succession, SuccessionOptions};
 
 impl ForestBuilder {
