@@ -69,6 +69,28 @@ fn cases() -> Vec<Case> {
             generations: 18,
         },
         Case {
+            name: "stochastic_bush_three",
+            defines: &[],
+            axiom: "A".into(),
+            rules: &[
+                "A -> F [ + A ] A : 0.4",
+                "A -> F [ - A ] A : 0.35",
+                "A -> F [ & A ] [ ^ A ] : 0.25",
+            ],
+            generations: 17,
+        },
+        Case {
+            // A signal entering a long word of B: the B after an A turns into one. (With
+            // `B -> B B` beside it, symbios 1.5 and sylva disagree on the length: sylva's
+            // 393,235 after 16 steps from A and eight B is the count worked by hand,
+            // a + b with a = 1 + n and b = 6 * 2^n + 2.)
+            name: "context_signal_plain",
+            defines: &[],
+            axiom: format!("A {}", "B ".repeat(300_000)),
+            rules: &["A < B -> A"],
+            generations: 1,
+        },
+        Case {
             name: "context_signal",
             defines: &[],
             axiom: "A(1) B(1) C(1) ".repeat(100_000),

@@ -16,7 +16,9 @@ pub enum Refusal {
 /// What became of the candidate spots of a region: how many the density model (or the
 /// snapshot of a forest over time) proposed, how many got a tree, and how many each
 /// constraint refused. A spot is counted under the first constraint it fails, in the order
-/// height range, slope, mask.
+/// height range, slope, mask. Placed and refused add up to the candidates but for spots the
+/// builder has no form to draw (a forest over time's tree of a height no generation
+/// reaches), which are neither.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct SitingReport {
