@@ -139,3 +139,80 @@ fn stochastic_choice_is_among_matching_productions() {
     let ys = w.iter().filter(|m| m.symbol == 'Y').count();
     assert!((1350..1650).contains(&ys), "{ys}");
 }
+
+/// A bracketed word over `A B C + [ ]` with balanced brackets.
+fn signal_word() -> impl Strategy<Value = String> {
+    prop::collection::vec(0u8..7, 0..60).prop_map(|picks| {
+        let mut text = String::new();
+        let mut depth = 0;
+        for p in picks {
+            match p {
+                0 | 1 => text.push('B'),
+                2 => text.push('A'),
+                3 => text.push('C'),
+                4 => text.push('+'),
+                5 => {
+                    text.push('[');
+                    depth += 1;
+                }
+                _ if depth > 0 => {
+                    text.push(']');
+                    depth -= 1;
+                }
+                _ => text.push('B'),
+            }
+        }
+        text.push_str(&"]".repeat(depth));
+        text
+    })
+}
+
+/// ABOP 1.8's left context, walked by hand over characters: the nearest module to the left
+/// of `i`, skipping ignored `+`, stepping out of a branch at `[` and over a whole branch at `]`.
+fn left_neighbour(word: &[char], i: usize) -> Option<char> {
+    let mut j = i;
+    while j > 0 {
+        j -= 1;
+        match word[j] {
+            '+' | '[' => {}
+            ']' => {
+                let mut depth = 0;
+                loop {
+                    match word[j] {
+                        ']' => depth += 1,
+                        '[' => depth -= 1,
+                        _ => {}
+                    }
+                    if depth == 0 {
+                        break;
+                    }
+                    j -= 1;
+                }
+            }
+            c => return Some(c),
+        }
+    }
+    None
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// Signals in a bracketed word with an ignore set: the engine (which copies runs of B
+    /// after a B in bulk) agrees with a walk done module by module.
+    #[test]
+    fn left_context_signals_agree_with_a_walk_by_hand(word in signal_word()) {
+        let g = LSystem::parse(&format!("#ignore: +\naxiom: {word}\nA < B -> A\nC < B -> CC")).unwrap();
+        let chars: Vec<char> = word.chars().collect();
+        let expected: String = chars
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| match (c, left_neighbour(&chars, i)) {
+                ('B', Some('A')) => "A".to_string(),
+                ('B', Some('C')) => "CC".to_string(),
+                _ => c.to_string(),
+            })
+            .collect();
+        prop_assert_eq!(g.derive(1, 0).unwrap().to_string(), expected);
+    }
+}

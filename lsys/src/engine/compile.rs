@@ -2,7 +2,7 @@
 
 use crate::engine::block::{self, Instruction};
 use crate::engine::eval::{Op, Span};
-use crate::model::alphabet::{Alphabet, SymbolId};
+use crate::model::alphabet::{Alphabet, PUSH, SymbolId};
 use crate::model::grammar::{Pattern, Production, SuccessorItem};
 use crate::model::statement::Statement;
 
@@ -65,6 +65,15 @@ pub(crate) struct Compiled {
     pub(crate) simple: Vec<u32>,
     /// Whether any production rewrites the symbol.
     pub(crate) rewritten: Vec<bool>,
+    /// For each symbol: whether its productions are a weighted draw and nothing else (each
+    /// weighted, no context, no condition, no block, one arity), so a module of it takes a
+    /// draw without matching any of them.
+    pub(crate) drawn: Vec<bool>,
+    /// For each symbol: whether a module of it whose left context is a module of the same
+    /// symbol never fires (every production names a nearest left context of another
+    /// symbol). Runs of such modules, with ignored modules and whole branches between them,
+    /// are copied in bulk after the first (the signal walking down a long word of ABOP 1.8).
+    pub(crate) stays_after_itself: Vec<bool>,
     pub(crate) const_symbols: Vec<SymbolId>,
     /// Parameter end offsets of the pre-evaluated modules, relative to their successor.
     pub(crate) const_ends: Vec<u32>,
@@ -168,7 +177,44 @@ impl Compiled {
         for s in ignore {
             c.ignored[s.index()] = true;
         }
+        c.drawn = (0..n).map(|s| c.is_drawn(s)).collect();
+        c.stays_after_itself = (0..n)
+            .map(|s| {
+                c.rewritten[s]
+                    && !c.ignored[s]
+                    && c.of_symbol(s).all(|q| {
+                        q.left
+                            .last()
+                            .is_some_and(|l| l.symbol.index() != s && l.symbol != PUSH)
+                    })
+            })
+            .collect();
         c
+    }
+
+    /// The productions of symbol `s`, in the order they are tried.
+    pub(crate) fn of_symbol(&self, s: usize) -> impl Iterator<Item = &CProduction> {
+        let (lo, hi) = (self.by_symbol[s] as usize, self.by_symbol[s + 1] as usize);
+        self.order[lo..hi]
+            .iter()
+            .map(|&p| &self.productions[p as usize])
+    }
+
+    /// Whether symbol `s` is rewritten by a weighted draw alone (see [`Compiled::drawn`]).
+    fn is_drawn(&self, s: usize) -> bool {
+        let mut all = self.of_symbol(s).peekable();
+        let Some(arity) = all.peek().map(|q| q.arity) else {
+            return false;
+        };
+        all.all(|q| {
+            q.weight.is_some()
+                && q.arity == arity
+                && q.left.is_empty()
+                && q.rest.is_empty()
+                && q.right.is_empty()
+                && q.condition.is_none()
+                && q.pre.0 == q.pre.1
+        })
     }
 
     /// Evaluates a successor once if nothing in it varies, so emitting it is a copy.

@@ -122,7 +122,7 @@ impl Word {
     /// Appends a module. The id must belong to this word's alphabet.
     pub fn push(&mut self, symbol: SymbolId, params: &[f64]) {
         self.symbols.push(symbol);
-        self.params.extend_from_slice(params);
+        extend_short(&mut self.params, params);
         self.offsets.push(self.params.len() as u32);
     }
 
@@ -137,5 +137,18 @@ impl Word {
     /// Bytes of heap memory held by the word's buffers.
     pub fn heap_bytes(&self) -> usize {
         self.symbols.capacity() * 2 + self.offsets.capacity() * 4 + self.params.capacity() * 8
+    }
+}
+
+/// `dst.extend_from_slice(src)`, for the few values a module has: a copy that short is
+/// cheaper as a loop than as a call to `memcpy`, and rewriting makes one per module.
+#[inline]
+pub(crate) fn extend_short<T: Copy>(dst: &mut Vec<T>, src: &[T]) {
+    if src.len() <= 4 {
+        for &v in src {
+            dst.push(v);
+        }
+    } else {
+        dst.extend_from_slice(src);
     }
 }

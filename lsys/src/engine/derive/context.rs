@@ -55,6 +55,21 @@ impl Deriver<'_> {
 
     /// ABOP 1.8: walking left, a whole branch `[...]` is skipped and a `[` leads to the parent.
     fn match_left(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
+        if let [p] = pattern {
+            // One module of context, as most productions have: the walk is the same for
+            // every production tried on module `i`, so it is made once.
+            if self.near_left.0 != i as u32 {
+                self.near_left = (i as u32, self.walk_left(cur, i));
+            }
+            let j = self.near_left.1;
+            let found = j != u32::MAX
+                && cur.symbols[j as usize] == p.symbol
+                && Self::arity_of(cur, j as usize) == p.arity;
+            if found {
+                self.matched.push(j);
+            }
+            return found;
+        }
         let ignored = &self.compiled().ignored;
         let mut j = i;
         let start = self.matched.len();
@@ -86,9 +101,70 @@ impl Deriver<'_> {
         true
     }
 
+    /// The nearest module left of `i` a left context can name (`u32::MAX` for none): ignored
+    /// modules and `[` are stepped over, a branch `[...]` is skipped from its `]`.
+    fn walk_left(&self, cur: &Word, i: usize) -> u32 {
+        let ignored = &self.compiled().ignored;
+        let mut j = i;
+        while j > 0 {
+            j -= 1;
+            let s = cur.symbols[j];
+            if s == POP {
+                match self.partner[j] {
+                    u32::MAX => return u32::MAX,
+                    open => j = open as usize,
+                }
+            } else if s != PUSH && !ignored[s.index()] {
+                return j as u32;
+            }
+        }
+        u32::MAX
+    }
+
+    /// The nearest module right of `i` a right context of one module can name (`u32::MAX`
+    /// for none): ignored modules and whole branches are stepped over; the end of the
+    /// current branch ends the walk.
+    fn walk_right(&self, cur: &Word, i: usize) -> u32 {
+        let ignored = &self.compiled().ignored;
+        let mut j = i + 1;
+        while j < cur.len() {
+            let s = cur.symbols[j];
+            if s == PUSH {
+                match self.partner[j] {
+                    u32::MAX => return u32::MAX,
+                    close => j = close as usize + 1,
+                }
+            } else if s == POP {
+                return u32::MAX;
+            } else if ignored[s.index()] {
+                j += 1;
+            } else {
+                return j as u32;
+            }
+        }
+        u32::MAX
+    }
+
     /// ABOP 1.8: walking right, branches not named by the pattern are skipped; `[` in the
     /// pattern enters a branch and `]` skips to the end of the current one.
     fn match_right(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
+        if let [p] = pattern
+            && p.symbol != PUSH
+            && p.symbol != POP
+        {
+            // As for the left: one walk for every production tried on module `i`.
+            if self.near_right.0 != i as u32 {
+                self.near_right = (i as u32, self.walk_right(cur, i));
+            }
+            let j = self.near_right.1;
+            let found = j != u32::MAX
+                && cur.symbols[j as usize] == p.symbol
+                && Self::arity_of(cur, j as usize) == p.arity;
+            if found {
+                self.matched.push(j);
+            }
+            return found;
+        }
         let ignored = &self.compiled().ignored;
         let n = cur.len();
         let mut j = i + 1;
@@ -153,6 +229,9 @@ impl Deriver<'_> {
     }
 
     pub(super) fn link_brackets(&mut self, cur: &Word) {
+        // The walks remembered belong to the word before.
+        self.near_left = (u32::MAX, u32::MAX);
+        self.near_right = (u32::MAX, u32::MAX);
         self.partner.clear();
         self.partner.resize(cur.len(), u32::MAX);
         let mut open = Vec::new();

@@ -7,7 +7,7 @@ use crate::engine::eval::Span;
 use crate::engine::eval::eval;
 use crate::error::DeriveError;
 use crate::model::alphabet::{CUT, POP, PUSH};
-use crate::model::word::Word;
+use crate::model::word::{Word, extend_short};
 
 impl Deriver<'_> {
     /// Emits the items of `span`; returns whether a cut symbol was produced.
@@ -75,11 +75,10 @@ pub(super) fn copy_run(cur: &Word, i: usize, j: usize, out: &mut Word) -> bool {
         return cur.symbols[i] == CUT;
     }
     let syms = &cur.symbols[i..j];
-    out.symbols.extend_from_slice(syms);
+    extend_short(&mut out.symbols, syms);
     let (p0, p1) = (cur.offsets[i], cur.offsets[j]);
     let shift = out.params.len() as i64 - i64::from(p0);
-    out.params
-        .extend_from_slice(&cur.params[p0 as usize..p1 as usize]);
+    extend_short(&mut out.params, &cur.params[p0 as usize..p1 as usize]);
     out.offsets.extend(
         cur.offsets[i + 1..=j]
             .iter()

@@ -34,8 +34,16 @@ impl LSystem {
     ) -> Result<Word, DeriveError> {
         let mut d = Deriver::new(self, seed, *limits);
         d.run_derivation_block(0, 0)?;
-        let axiom = d.decompose(self.axiom_word(), 0)?;
-        let word = d.derive_from(axiom, 0, generations)?;
+        let word = if self.decomposition.is_empty() && generations > 0 {
+            // The first step reads the axiom where it is: a large axiom (a forest's seeds, a
+            // long signal) is not copied first.
+            d.check_generations(generations)?;
+            let first = d.step(&self.axiom_word, 1)?;
+            d.derive_from(first, 1, generations - 1)?
+        } else {
+            let axiom = d.decompose(self.axiom_word(), 0)?;
+            d.derive_from(axiom, 0, generations)?
+        };
         d.run_derivation_block(3, generations)?;
         Ok(word)
     }

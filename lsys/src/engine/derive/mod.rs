@@ -7,7 +7,7 @@ use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
 use crate::engine::random::Random;
 use crate::error::DeriveError;
-use crate::model::alphabet::{CUT, SymbolId};
+use crate::model::alphabet::{CUT, POP, PUSH, SymbolId};
 use crate::model::word::Word;
 
 mod context;
@@ -38,6 +38,12 @@ pub struct Deriver<'g> {
     candidates: Vec<(u32, f64)>,
     /// For `]`: index of its `[`; for `[`: index of its `]`. `u32::MAX` when unmatched.
     partner: Vec<u32>,
+    /// The module a one-module left context of module `.0` names (`.1`, `u32::MAX` for
+    /// none), remembered while the productions of `.0` are tried; `.0` is `u32::MAX` when
+    /// nothing is remembered.
+    near_left: (u32, u32),
+    /// The same for a one-module right context.
+    near_right: (u32, u32),
     /// The values of the grammar's block variables (cpfg's global variables).
     globals: Vec<f64>,
     /// The productions rewrites use.
@@ -67,6 +73,8 @@ impl<'g> Deriver<'g> {
             matched: Vec::new(),
             candidates: Vec::new(),
             partner: Vec::new(),
+            near_left: (u32::MAX, u32::MAX),
+            near_right: (u32::MAX, u32::MAX),
             globals: vec![0.0; grammar.globals.len()],
             table: Table::Main,
             fired: 0,
@@ -160,12 +168,7 @@ impl<'g> Deriver<'g> {
         generation: u32,
         generations: u32,
     ) -> Result<Word, DeriveError> {
-        if generations > self.limits.max_generations {
-            return Err(DeriveError::TooManyGenerations {
-                requested: generations,
-                limit: self.limits.max_generations,
-            });
-        }
+        self.check_generations(generations)?;
         let mut current = word;
         let mut next = Word::empty(current.alphabet.clone());
         let decomposed = !self.grammar.decomposition.is_empty();
@@ -180,6 +183,29 @@ impl<'g> Deriver<'g> {
             self.run_derivation_block(2, produced)?;
         }
         Ok(current)
+    }
+
+    /// An error when `generations` is over the limits' maximum.
+    fn check_generations(&self, generations: u32) -> Result<(), DeriveError> {
+        if generations > self.limits.max_generations {
+            return Err(DeriveError::TooManyGenerations {
+                requested: generations,
+                limit: self.limits.max_generations,
+            });
+        }
+        Ok(())
+    }
+
+    /// One whole derivation step from `word` to generation `produced`, as
+    /// [`Deriver::derive_from`] makes each, into a new word: its blocks, the rewrite and the
+    /// decomposition.
+    fn step(&mut self, word: &Word, produced: u32) -> Result<Word, DeriveError> {
+        self.run_derivation_block(1, produced)?;
+        let mut next = Word::empty(word.alphabet.clone());
+        self.rewrite(word, &mut next, produced)?;
+        let next = self.decompose(next, produced)?;
+        self.run_derivation_block(2, produced)?;
+        Ok(next)
     }
 
     /// One parallel rewrite of `cur` into `out` (cleared first), producing generation
@@ -260,6 +286,7 @@ impl<'g> Deriver<'g> {
                     // A simple production has no context: nothing was matched, nothing needs to be.
                     Some((p, true))
                 }
+                _ if c.drawn[s] => self.draw(cur, i, &c.order[lo..hi]),
                 _ => self.select(cur, i, &c.order[lo..hi], gen_f)?,
             };
             match chosen {
@@ -298,6 +325,13 @@ impl<'g> Deriver<'g> {
                 }
             }
             i += consumed;
+            if consumed == 1 && c.stays_after_itself[s] && markers.is_none() {
+                // The modules of this symbol that follow, each with one of them as its left
+                // context, stay as they are: copied with what stands between them.
+                let j = self.run_after(cur, i - 1, c);
+                cut_seen |= copy_run(cur, i, j, out);
+                i = j;
+            }
         }
         self.sub = None;
         if out.len() > self.limits.max_modules {
@@ -409,6 +443,60 @@ impl<'g> Deriver<'g> {
             .rev()
             .find(|c| c.1 > 0.0)
             .map(|c| (c.0, false)))
+    }
+
+    /// For a module `i` whose symbol stays after itself ([`Compiled::stays_after_itself`]):
+    /// the end of the run after it whose every module of that symbol has its left context
+    /// in the run, so stays. The run holds modules of the symbol, ignored symbols and
+    /// brackets that nothing rewrites; a `]` only when its `[` is in the run, since a left
+    /// context walks from `]` to its `[` and on.
+    fn run_after(&self, cur: &Word, i: usize, c: &Compiled) -> usize {
+        let symbol = cur.symbols[i];
+        let mut j = i + 1;
+        while j < cur.len() {
+            let t = cur.symbols[j];
+            let stays = t == symbol
+                || !c.rewritten[t.index()]
+                    && (c.ignored[t.index()]
+                        || t == PUSH
+                        || t == POP && self.partner[j] != u32::MAX && self.partner[j] as usize > i);
+            if !stays {
+                break;
+            }
+            j += 1;
+        }
+        j
+    }
+
+    /// Picks the production of a symbol rewritten by a weighted draw alone
+    /// ([`Compiled::drawn`]): the draw [`Deriver::select`] makes, without matching.
+    fn draw(&mut self, cur: &Word, i: usize, order: &[u32]) -> Option<(u32, bool)> {
+        let c = self.compiled();
+        self.bound_for = None;
+        if c.productions[order[0] as usize].arity as usize != cur.params(i).len() {
+            return None;
+        }
+        let weight = |p: u32| c.productions[p as usize].weight.unwrap_or(0.0);
+        let mut total = 0.0;
+        for &p in order {
+            total += weight(p);
+        }
+        if total <= 0.0 {
+            return None;
+        }
+        let mut u = self.rng.unit() * total;
+        for &p in order {
+            let w = weight(p);
+            if u < w {
+                return Some((p, false));
+            }
+            u -= w;
+        }
+        order
+            .iter()
+            .rev()
+            .find(|&&p| weight(p) > 0.0)
+            .map(|&p| (p, false))
     }
 
     /// Runs a block of `compiled` (span into its instructions) on the bound parameters and
