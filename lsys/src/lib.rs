@@ -59,7 +59,9 @@
 //! (splitting a module into its parts); the homomorphism is applied the same way by
 //! [`LSystem::interpretation`] to the word the turtle draws, and never changes development.
 //! Each pass rewrites all modules in parallel; more than `N` passes that still fire (default
-//! 1, at most [`MAX_RULE_DEPTH`]) is a [`DeriveError::TooDeep`].
+//! 1, at most [`MAX_RULE_DEPTH`]) is a [`DeriveError::TooDeep`], or with
+//! `#homomorphism depth N stop` the end of the rewriting, the modules still rewritable kept as
+//! they are (cpfg's way, and the cpfg dialect's: its `maximum depth:` keeps them).
 //!
 //! **Statement blocks** (cpfg): `A(x) : { x = x + 1; n = n + 1; } x < 5 { y = x * 2; } -> B(y)`.
 //! A block before the condition runs when the production is tried (it may change the

@@ -83,14 +83,19 @@ impl Production {
 /// Productions applied outside the derivation steps, recursively: a decomposition (after
 /// every step and to the axiom, splitting modules into their parts) or a homomorphism (only
 /// for interpretation: what the turtle draws for each module). Each pass rewrites every
-/// module in parallel, as a step does; passes repeat until none fires, and a pass beyond
-/// `max_depth` that would still fire is an error.
+/// module in parallel, as a step does; passes repeat until none fires. A pass beyond
+/// `max_depth` that would still fire is an error, or with `stops_at_depth` the end of the
+/// rewriting.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct RuleSet {
     /// The productions, tried in order as in a step.
     pub productions: Vec<Production>,
     /// Most passes that may fire (cpfg's `maximum depth`).
     pub max_depth: u32,
+    /// Whether the modules still rewritable after `max_depth` passes are kept as they are
+    /// (cpfg's way: a module at the maximum depth is drawn or kept unchanged) rather than
+    /// the rewriting being an error ([`DeriveError::TooDeep`](crate::DeriveError)).
+    pub stops_at_depth: bool,
 }
 
 impl RuleSet {

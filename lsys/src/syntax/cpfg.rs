@@ -204,7 +204,8 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                         ));
                     }
                 }
-                // Whether cpfg reports passes beyond the maximum depth; here they are errors.
+                // Whether cpfg reports modules kept at the maximum depth; they are kept here
+                // as in cpfg, without a report.
                 "warnings" | "no warnings" => {}
                 // The derivation's seed is the caller's choice here (`derive`'s `seed`).
                 "seed:" => {}

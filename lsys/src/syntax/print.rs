@@ -266,7 +266,8 @@ impl fmt::Display for LSystem {
             ("homomorphism", &self.homomorphism),
         ] {
             if !set.is_empty() {
-                writeln!(f, "#{name} depth {}", set.max_depth)?;
+                let stop = if set.stops_at_depth { " stop" } else { "" };
+                writeln!(f, "#{name} depth {}{stop}", set.max_depth)?;
                 write_productions(f, &set.productions, a)?;
             }
         }

@@ -143,6 +143,10 @@ impl<'g> Deriver<'g> {
             if self.fired == 0 {
                 break Ok(current);
             }
+            if passes == set.max_depth && set.stops_at_depth {
+                // The pass just made went beyond the depth: its word is not taken.
+                break Ok(current);
+            }
             if passes == set.max_depth {
                 break Err(DeriveError::TooDeep {
                     section,

@@ -136,9 +136,20 @@ impl GrammarParser {
                             "expected 'depth N' or end of line after #{name}"
                         )));
                     }
-                    self.depth(cur)?
+                    self.leading_depth(cur)?
                 };
                 self.set_max_depth(depth);
+                cur.skip_ws();
+                if !cur.at_end() {
+                    let at = cur.pos();
+                    if cur.ident().as_deref() != Some("stop") {
+                        return Err(cur.error_at(
+                            at,
+                            format!("expected 'stop' or end of line after #{name} depth N"),
+                        ));
+                    }
+                    self.set_stops_at_depth();
+                }
                 Ok(())
             }
             _ => Err(cur.error_at(
@@ -161,16 +172,22 @@ impl GrammarParser {
 
     /// A constant expression (numbers and `#define`s), then the end of the line.
     pub(crate) fn constant_value(&mut self, cur: &mut Cursor<'_>) -> Result<f64, ParseError> {
-        cur.skip_ws();
-        let at = cur.pos();
-        let scope = self.names(no_vars());
-        let value = parse_expr(cur, &scope)?;
+        let number = self.leading_constant(cur)?;
         if !cur.at_end() {
             return Err(cur.error(format!(
                 "expected end of line after the value, found {}",
                 cur.describe_next()
             )));
         }
+        Ok(number)
+    }
+
+    /// A constant, finite value at the cursor, with anything after it left to read.
+    fn leading_constant(&mut self, cur: &mut Cursor<'_>) -> Result<f64, ParseError> {
+        cur.skip_ws();
+        let at = cur.pos();
+        let scope = self.names(no_vars());
+        let value = parse_expr(cur, &scope)?;
         let number = value.eval_constant(0.0, 0);
         if !value.is_constant() || !number.is_finite() {
             return Err(cur.error_at(at, "expected a constant, finite value"));
@@ -181,9 +198,22 @@ impl GrammarParser {
     /// A maximum depth: a constant expression with a whole value from 0 to [`MAX_RULE_DEPTH`],
     /// then the end of the line.
     pub(crate) fn depth(&mut self, cur: &mut Cursor<'_>) -> Result<u32, ParseError> {
+        let depth = self.leading_depth(cur)?;
+        if !cur.at_end() {
+            return Err(cur.error(format!(
+                "expected end of line after the depth, found {}",
+                cur.describe_next()
+            )));
+        }
+        Ok(depth)
+    }
+
+    /// A maximum depth as [`GrammarParser::depth`] reads it, with anything after it left to
+    /// read.
+    fn leading_depth(&mut self, cur: &mut Cursor<'_>) -> Result<u32, ParseError> {
         cur.skip_ws();
         let at = cur.pos();
-        let depth = self.constant_value(cur)?;
+        let depth = self.leading_constant(cur)?;
         if !(depth.fract() == 0.0 && (0.0..=f64::from(MAX_RULE_DEPTH)).contains(&depth)) {
             return Err(cur.error_at(
                 at,
@@ -191,6 +221,15 @@ impl GrammarParser {
             ));
         }
         Ok(depth as u32)
+    }
+
+    /// Makes the section being read keep the modules beyond its depth (`#... depth N stop`).
+    pub(crate) fn set_stops_at_depth(&mut self) {
+        match self.section {
+            Section::Decomposition => self.rule_sets[0].stops_at_depth = true,
+            Section::Homomorphism => self.rule_sets[1].stops_at_depth = true,
+            Section::Main => {}
+        }
     }
 
     /// Sets the maximum depth of the section being read (a decomposition or homomorphism);

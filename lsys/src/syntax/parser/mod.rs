@@ -118,6 +118,8 @@ impl GrammarParser {
             section: Section::Main,
             rule_sets: [RuleSet::default(), RuleSet::default()].map(|mut set| {
                 set.max_depth = DEFAULT_MAX_DEPTH;
+                // cpfg keeps a module at its section's maximum depth as it is.
+                set.stops_at_depth = dialect == Dialect::Cpfg;
                 set
             }),
             alphabet: Alphabet::new(),
@@ -504,7 +506,9 @@ impl GrammarParser {
 
 impl GrammarParser {
     /// A predecessor's first module and the rest of a string predecessor (cpfg's
-    /// `A B --> ...`, read in every dialect); brackets cannot be part of one.
+    /// `A B --> ...`, read in every dialect). Brackets in a string predecessor are matched
+    /// as they stand, as cpfg matches them (`[f P(r)] : r > 9 --> *` removes a whole
+    /// branch); a bracket alone is no predecessor.
     fn single(
         &self,
         cur: &Cursor<'_>,
@@ -514,10 +518,10 @@ impl GrammarParser {
         if patterns.is_empty() {
             return Err(cur.error_at(at, "expected a predecessor symbol"));
         }
-        if patterns.iter().any(|p| p.symbol == PUSH || p.symbol == POP) {
+        if patterns.len() == 1 && (patterns[0].symbol == PUSH || patterns[0].symbol == POP) {
             return Err(cur.error_at(
                 at,
-                "a predecessor cannot contain '[' or ']' (use '<' and '>' for contexts)",
+                "a predecessor cannot be '[' or ']' alone (use '<' and '>' for contexts)",
             ));
         }
         let first = patterns.remove(0);

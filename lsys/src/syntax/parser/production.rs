@@ -62,6 +62,29 @@ impl GrammarParser {
         Ok(out)
     }
 
+    /// A cpfg right context with its `=` read: "skip to the end of the current branch".
+    /// `=]` is then what `]` alone means in a right context here (the rest of the branch
+    /// skipped, its `]` passed), and a `=` that ends the context asks for nothing.
+    fn branch_ends(&self, right: Vec<Pattern>) -> Result<Vec<Pattern>, String> {
+        let Some(skip) = self.alphabet.id('=') else {
+            return Ok(right);
+        };
+        let mut out: Vec<Pattern> = Vec::with_capacity(right.len());
+        let mut pending = false;
+        for p in right {
+            if pending && p.symbol != POP {
+                return Err("unsupported: '=' in a right context not followed by ']' \
+                            (the end of the branch it skips to)"
+                    .into());
+            }
+            pending = p.symbol == skip && p.params.is_empty();
+            if !pending {
+                out.push(p);
+            }
+        }
+        Ok(out)
+    }
+
     /// A whole production at the cursor: contexts, predecessor, blocks, condition, arrow,
     /// successor and weight.
     pub(crate) fn production(&mut self, cur: &mut Cursor<'_>) -> Result<Production, ParseError> {
@@ -89,7 +112,14 @@ impl GrammarParser {
             (Vec::new(), self.single(cur, first, head_at)?)
         };
         let right = if cur.eat('>') {
-            self.patterns(cur, &mut names)?
+            let at = cur.pos();
+            let right = self.patterns(cur, &mut names)?;
+            if self.dialect == Dialect::Cpfg {
+                self.branch_ends(right)
+                    .map_err(|message| cur.error_at(at, message))?
+            } else {
+                right
+            }
         } else {
             Vec::new()
         };
