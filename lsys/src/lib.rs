@@ -136,7 +136,7 @@ pub use model::alphabet::{Alphabet, CUT, MAX_NAME_CHARS, POP, PUSH, RESERVED, Sy
 pub use model::dialect::Dialect;
 pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
-pub use model::statement::{Blocks, Statement};
+pub use model::statement::{Array, Blocks, Statement};
 pub use model::word::{Module, Word};
 pub use presets::{PRESETS, Preset, preset};
 pub use syntax::parser::{MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};

@@ -698,3 +698,59 @@ fn brackets_in_a_string_predecessor_are_matched_as_they_stand() {
     let again = LSystem::parse(&g.to_string()).unwrap();
     assert_eq!(again.derive(1, 0).unwrap(), g.derive(1, 0).unwrap());
 }
+
+/// cpfg's `define:` arrays: values row-major with zeros after them, indices clamped to each
+/// dimension, elements assigned in blocks; printed as `#array` and read back.
+#[test]
+fn cpfg_arrays_read_row_major_clamp_and_assign() {
+    let src = "#define N 3\nLsystem: 1\nDefine: {\n\tarray len[2][N] = {1, 2, 3,\n\t\t4, 5}, w[2];\n}\n\
+               Start: { w[1] = len[1][0] * 10; }\nderivation length: 1\nAxiom: A(1,1) A(0,2) A(1,7) A(-3,0) B\n\
+               A(o,i) --> F(len[o][i])\nB --> F(w[1]) F(w[0])\nendlsystem";
+    let g = LSystem::parse_dialect(src, sylva_lsys::Dialect::Cpfg).unwrap();
+    // By hand: len is [[1,2,3],[4,5,0]]. len[1][1] = 5, len[0][2] = 3, len[1][7] clamps
+    // to len[1][2] = 0 (no value given), len[-3][0] clamps to len[0][0] = 1; w[1] = 40.
+    assert_eq!(
+        g.derive(1, 0).unwrap().to_string(),
+        "F(5)F(3)F(0)F(1)F(40)F(0)"
+    );
+    let printed = g.to_string();
+    assert!(
+        printed.contains("#array len[2][3] = {1, 2, 3, 4, 5}"),
+        "{printed}"
+    );
+    let again = LSystem::parse(&printed).unwrap();
+    assert_eq!(again.derive(1, 0).unwrap(), g.derive(1, 0).unwrap());
+    // Wrong numbers of indices and sizes are errors at their place.
+    let two = src.replace("F(len[o][i])", "F(len[o])");
+    let err = LSystem::parse_dialect(&two, sylva_lsys::Dialect::Cpfg).unwrap_err();
+    assert!(err.to_string().contains("takes 2 index(es)"), "{err}");
+    let huge = src.replace("len[2][N]", "len[100000][N]");
+    let err = LSystem::parse_dialect(&huge, sylva_lsys::Dialect::Cpfg).unwrap_err();
+    assert!(err.to_string().contains("a constant from 1 to"), "{err}");
+    assert_eq!(err.location.line, 4, "{err}");
+}
+
+/// cpfg's `stop(n)` ends the derivation after the step under way, unless `n` is 1;
+/// its file functions are refused at their place, not mistaken for unknown names.
+#[test]
+fn cpfg_stop_ends_the_derivation_and_file_functions_are_refused() {
+    let src = "Lsystem: 1\nderivation length: 10\nAxiom: A(0)\n\
+               A(n) --> A(n+1) B(stop(n >= 3 ? 0 : 1))\nendlsystem";
+    let g = LSystem::parse_dialect(src, sylva_lsys::Dialect::Cpfg).unwrap();
+    // By hand: steps 1 to 3 call stop(1) (n = 0, 1, 2); step 4 calls stop(0) with n = 3
+    // and is the last of the ten asked for.
+    assert_eq!(g.derive(10, 0).unwrap().to_string(), "A(4)B(0)B(1)B(1)B(1)");
+    // A stop in the first step ends there too.
+    let first = LSystem::parse_dialect(&src.replace("n >= 3", "n >= 0"), sylva_lsys::Dialect::Cpfg)
+        .unwrap();
+    assert_eq!(first.derive(10, 0).unwrap().to_string(), "A(1)B(0)");
+    let files = "Lsystem: 1\nStart: { f = fopen(\"out.txt\", \"w\"); }\nderivation length: 1\n\
+                 Axiom: A\nendlsystem";
+    let err = LSystem::parse_dialect(files, sylva_lsys::Dialect::Cpfg).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("unsupported: cpfg's file function 'fopen'"),
+        "{err}"
+    );
+    assert_eq!((err.location.line, err.location.column), (2, 14), "{err}");
+}

@@ -1,7 +1,8 @@
 //! Statement blocks compiled to flat programs with jumps, and their runner.
 
-use crate::engine::eval::{Op, Span, eval};
+use crate::engine::eval::{Op, Span, element_at, eval, offset};
 use crate::engine::random::Random;
+use crate::model::expr::elements;
 use crate::model::statement::Statement;
 use crate::spline::SplineFunction;
 
@@ -14,6 +15,9 @@ pub const MAX_BLOCK_STATEMENTS: u64 = 1_000_000;
 pub(crate) enum Instruction {
     /// Evaluate the program and store it in a block variable.
     Store(u16, Span),
+    /// Evaluate the second program and store it in the element of the array (first slot,
+    /// length) at the offset the first program gives.
+    StoreElement(u16, u32, Span, Span),
     /// Evaluate the program and store it in a bound parameter.
     StoreParameter(u16, Span),
     /// Evaluate the program; go to the target when it is zero.
@@ -45,6 +49,24 @@ fn emit(statements: &[Statement], ops: &mut Vec<Op>, out: &mut Vec<Instruction>,
             Statement::Assign { slot, value, .. } => {
                 let p = program(value, ops);
                 out.push(Instruction::Store(*slot, p));
+            }
+            Statement::AssignElement {
+                slot,
+                dims,
+                indices,
+                value,
+                ..
+            } => {
+                let start = ops.len() as u32;
+                offset(dims, indices, ops);
+                let at = (start, ops.len() as u32);
+                let p = program(value, ops);
+                out.push(Instruction::StoreElement(
+                    *slot,
+                    elements(dims) as u32,
+                    at,
+                    p,
+                ));
             }
             Statement::SetParameter { slot, value, .. } => {
                 let p = program(value, ops);
@@ -131,6 +153,13 @@ pub(crate) fn run(
             Instruction::Store(slot, span) => {
                 let v = value(span, vars, globals, rng, stack);
                 if let Some(g) = globals.get_mut(slot as usize) {
+                    *g = v;
+                }
+            }
+            Instruction::StoreElement(slot, len, at, span) => {
+                let offset = value(at, vars, globals, rng, stack);
+                let v = value(span, vars, globals, rng, stack);
+                if let Some(g) = globals.get_mut(slot as usize + element_at(offset, len)) {
                     *g = v;
                 }
             }

@@ -1,7 +1,7 @@
 //! Compiled expressions: postfix programs with constant subtrees folded, and their evaluator.
 
 use crate::engine::random::Random;
-use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp};
+use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp, elements};
 use crate::spline::SplineFunction;
 
 /// A range (start, end) into one of the compiled flat tables: ops, items, instructions.
@@ -13,6 +13,8 @@ pub(crate) enum Op {
     Num(f64),
     Var(u16),
     Global(u16),
+    /// Pops a flat offset into the array of block variables at the slot, of the length.
+    Element(u16, u32),
     Gen,
     Unary(UnaryOp),
     Binary(BinaryOp),
@@ -33,6 +35,15 @@ impl Expr {
             Expr::Var { slot, .. } => out.push(Op::Var(*slot)),
             Expr::Global { slot, .. } => out.push(Op::Global(*slot)),
             Expr::Generation => out.push(Op::Gen),
+            Expr::Element {
+                slot,
+                dims,
+                indices,
+                ..
+            } => {
+                offset(dims, indices, out);
+                out.push(Op::Element(*slot, elements(dims) as u32));
+            }
             Expr::Unary(op, e) => {
                 e.compile_raw(out);
                 out.push(Op::Unary(*op));
@@ -86,6 +97,16 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
             out.push(Op::Gen);
             return false;
         }
+        Expr::Element {
+            slot,
+            dims,
+            indices,
+            ..
+        } => {
+            offset(dims, indices, out);
+            out.push(Op::Element(*slot, elements(dims) as u32));
+            return false;
+        }
         Expr::Unary(op, a) => {
             let constant = compile_folding(a, out);
             out.push(Op::Unary(*op));
@@ -99,7 +120,7 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
         }
         Expr::Call(f, args) => {
             // A spline function's values are the model's, not known while compiling.
-            let mut constant = !f.is_random() && *f != Function::Func;
+            let mut constant = !f.is_random() && !matches!(f, Function::Func | Function::Stop);
             for a in args {
                 constant &= compile_folding(a, out);
             }
@@ -119,6 +140,41 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
         out.push(Op::Num(value));
     }
     constant
+}
+
+/// Compiles the flat offset of an element: row-major, each index clamped to its dimension
+/// as cpfg clamps it.
+pub(crate) fn offset(dims: &[u32], indices: &[Expr], out: &mut Vec<Op>) {
+    for (k, (index, &d)) in indices.iter().zip(dims).enumerate() {
+        if k > 0 {
+            out.extend([Op::Num(f64::from(d)), Op::Binary(BinaryOp::Mul)]);
+        }
+        compile_folding(index, out);
+        clamp_index(d, out);
+        if k > 0 {
+            out.push(Op::Binary(BinaryOp::Add));
+        }
+    }
+}
+
+/// Clamps the index on the stack to `0..=dimension - 1`.
+fn clamp_index(dimension: u32, out: &mut Vec<Op>) {
+    out.extend([
+        Op::Num(0.0),
+        Op::Call(Function::Max),
+        Op::Num(f64::from(dimension.saturating_sub(1))),
+        Op::Call(Function::Min),
+    ]);
+}
+
+/// The element an offset names in an array of `len` elements: the offset truncated (as cpfg
+/// truncates it) and kept inside the array.
+pub(crate) fn element_at(offset: f64, len: u32) -> usize {
+    if offset.is_finite() && offset > 0.0 {
+        (offset as usize).min(len.saturating_sub(1) as usize)
+    } else {
+        0
+    }
 }
 
 /// Runs a compiled program over the bound parameters and the block variables (`vars`,
@@ -143,6 +199,11 @@ pub(crate) fn eval(
             Op::Num(v) => stack.push(v),
             Op::Var(k) => stack.push(vars.get(k as usize).copied().unwrap_or(0.0)),
             Op::Global(k) => stack.push(globals.get(k as usize).copied().unwrap_or(0.0)),
+            Op::Element(slot, len) => {
+                let offset = stack.pop().unwrap_or(0.0);
+                let k = slot as usize + element_at(offset, len);
+                stack.push(globals.get(k).copied().unwrap_or(0.0));
+            }
             Op::Gen => stack.push(generation),
             Op::Unary(u) => {
                 let a = stack.pop().unwrap_or(0.0);
@@ -226,6 +287,10 @@ impl Function {
             Function::Ceil => a.ceil(),
             Function::Min => a.min(b),
             Function::Max => a.max(b),
+            Function::Stop => {
+                rng.stop |= a != 1.0;
+                a
+            }
             Function::Select => {
                 if a != 0.0 && !a.is_nan() {
                     b

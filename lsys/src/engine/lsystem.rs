@@ -186,6 +186,16 @@ impl LSystem {
                 });
             }
         }
+        if blocks
+            .arrays
+            .iter()
+            .any(|a| a.slot as usize + a.len() > n || a.values.len() > a.len())
+        {
+            return Err(GrammarError::InvalidBlock(
+                "an array reaches past the block variables or has more values than elements"
+                    .to_string(),
+            ));
+        }
         for block in [
             &blocks.start,
             &blocks.start_each,
@@ -456,6 +466,11 @@ fn check_productions(
 fn assigned_slots(statements: &[Statement]) -> impl Iterator<Item = u16> + '_ {
     flatten(statements).filter_map(|s| match s {
         Statement::Assign { slot, .. } => Some(*slot),
+        // An element's slot is its array's first and at most its last.
+        Statement::AssignElement { slot, dims, .. } => {
+            let last = crate::model::expr::elements(dims).saturating_sub(1);
+            Some(slot.saturating_add(u16::try_from(last).unwrap_or(u16::MAX)))
+        }
         _ => None,
     })
 }

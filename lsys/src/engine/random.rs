@@ -3,19 +3,28 @@
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-/// A seeded PCG stream with the two draws the engine needs.
+/// A seeded PCG stream with the draws the engine needs. It travels with every evaluation,
+/// so it also carries the one other thing an expression can change beyond its value:
+/// whether cpfg's `stop(n)` asked the derivation to end after the step under way.
 #[derive(Debug, Clone)]
-pub(crate) struct Random(Pcg64Mcg);
+pub(crate) struct Random {
+    stream: Pcg64Mcg,
+    /// Set by `stop(n)` with `n` other than 1.
+    pub(crate) stop: bool,
+}
 
 impl Random {
     pub(crate) fn new(seed: u64) -> Self {
-        Random(Pcg64Mcg::seed_from_u64(seed))
+        Random {
+            stream: Pcg64Mcg::seed_from_u64(seed),
+            stop: false,
+        }
     }
 
     /// Uniform in `[0, 1)` with 53 random bits.
     #[inline]
     pub(crate) fn unit(&mut self) -> f64 {
-        (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+        (self.stream.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 
     /// Standard normal by Box–Muller (one draw per call keeps the stream simple to reason about).

@@ -107,6 +107,9 @@ pub enum Function {
     /// `func(id, x)`: the model's function file `id` (from 1) at `x` in [0, 1] (cpfg; the
     /// functions of a model folder, [`crate::spline`]).
     Func,
+    /// `stop(n)`: `n`, and unless `n` is 1 the derivation ends after the step under way
+    /// (cpfg; `stop(1)` only asks cpfg's window to draw the word, which means nothing here).
+    Stop,
 }
 
 pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
@@ -132,6 +135,7 @@ pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
     ("biran", Function::Biran, 2),
     ("select", Function::Select, 3),
     ("func", Function::Func, 2),
+    ("stop", Function::Stop, 1),
     // cpfg's C spelling of abs.
     ("fabs", Function::Abs, 1),
 ];
@@ -189,6 +193,19 @@ pub enum Expr {
         /// Its index among the grammar's variables.
         slot: u16,
     },
+    /// An element of an array of block variables (cpfg's `len[o][i]`): the array's variables
+    /// are the slots `slot..slot + dims.product()`, row-major. Each index is clamped to its
+    /// dimension (as cpfg clamps, with a warning there), so a read never leaves the array.
+    Element {
+        /// The array's name.
+        name: String,
+        /// The slot of its first element among the grammar's variables.
+        slot: u16,
+        /// Its dimensions, outermost first.
+        dims: Vec<u32>,
+        /// One index per dimension.
+        indices: Vec<Expr>,
+    },
     /// `#`: the generation being produced (1 in the first derivation step; 0 in the axiom).
     Generation,
     /// A unary operation.
@@ -220,6 +237,7 @@ impl Expr {
             Expr::Unary(_, e) => ([Some(e), None], &[]),
             Expr::Binary(_, a, b) => ([Some(a), Some(b)], &[]),
             Expr::Call(_, args) => ([None, None], args),
+            Expr::Element { indices, .. } => ([None, None], indices),
             _ => ([None, None], &[]),
         };
         pair.into_iter().flatten().chain(args)
@@ -230,8 +248,12 @@ impl Expr {
     pub(crate) fn is_constant(&self) -> bool {
         match self {
             Expr::Number(_) | Expr::Constant { .. } => true,
-            Expr::Var { .. } | Expr::Global { .. } | Expr::Generation => false,
-            Expr::Call(f, _) if f.is_random() || *f == Function::Func => false,
+            Expr::Var { .. } | Expr::Global { .. } | Expr::Element { .. } | Expr::Generation => {
+                false
+            }
+            Expr::Call(f, _) if f.is_random() || matches!(f, Function::Func | Function::Stop) => {
+                false
+            }
             _ => self.children().all(Expr::is_constant),
         }
     }
@@ -240,6 +262,15 @@ impl Expr {
     pub(crate) fn globals_used(&self) -> usize {
         match self {
             Expr::Global { slot, .. } => *slot as usize + 1,
+            Expr::Element {
+                slot,
+                dims,
+                indices,
+                ..
+            } => indices
+                .iter()
+                .map(Expr::globals_used)
+                .fold(*slot as usize + elements(dims), usize::max),
             _ => self.children().map(Expr::globals_used).max().unwrap_or(0),
         }
     }
@@ -251,6 +282,12 @@ impl Expr {
             _ => self.children().map(Expr::slots_used).max().unwrap_or(0),
         }
     }
+}
+
+/// How many elements an array of dimensions `dims` has (saturating: the parser bounds it).
+pub(crate) fn elements(dims: &[u32]) -> usize {
+    dims.iter()
+        .fold(1usize, |n, &d| n.saturating_mul(d as usize))
 }
 
 impl Drop for Expr {
@@ -265,7 +302,7 @@ impl Drop for Expr {
                     out.push(std::mem::replace(&mut **a, Expr::Generation));
                     out.push(std::mem::replace(&mut **b, Expr::Generation));
                 }
-                Expr::Call(_, args) => out.append(args),
+                Expr::Call(_, args) | Expr::Element { indices: args, .. } => out.append(args),
                 _ => {}
             }
         }

@@ -17,6 +17,20 @@ pub enum Statement {
         /// The value given to it.
         value: Expr,
     },
+    /// `name[i][j] = value;`: a new value for an element of an array of block variables
+    /// (cpfg's `define:` arrays), its indices clamped as reads clamp them.
+    AssignElement {
+        /// The array's name.
+        name: String,
+        /// The slot of its first element.
+        slot: u16,
+        /// Its dimensions, outermost first.
+        dims: Vec<u32>,
+        /// One index per dimension.
+        indices: Vec<Expr>,
+        /// The value given to the element.
+        value: Expr,
+    },
     /// `parameter = value;`: a new value for one of the production's own parameters, seen by
     /// the rest of the block, the condition and the successor.
     SetParameter {
@@ -56,10 +70,39 @@ pub enum Statement {
     Seed(Expr),
 }
 
+/// An array of block variables (cpfg's `define: { array len[4][13] = {...}; }`): its
+/// elements are the variables from `slot` on, row-major, set to `values` (zeros after them)
+/// before the `start` block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Array {
+    /// The array's name.
+    pub name: String,
+    /// The slot of its first element among the grammar's variables.
+    pub slot: u16,
+    /// Its dimensions, outermost first.
+    pub dims: Vec<u32>,
+    /// Its first values, row-major; at most as many as it has elements.
+    pub values: Vec<f64>,
+}
+
+impl Array {
+    /// How many elements it has.
+    pub fn len(&self) -> usize {
+        crate::model::expr::elements(&self.dims)
+    }
+
+    /// Whether it has no elements (never, for an array the parser read).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
 /// The blocks a grammar runs around its derivation (cpfg's `Start:`, `StartEach:`,
-/// `EndEach:` and `End:`).
+/// `EndEach:` and `End:`), and the arrays set before them (cpfg's `define:`).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Blocks {
+    /// Arrays of block variables, set to their values before `start`.
+    pub arrays: Vec<Array>,
     /// Before the first step (and before the axiom is decomposed).
     pub start: Vec<Statement>,
     /// Before every step.
@@ -73,7 +116,8 @@ pub struct Blocks {
 impl Blocks {
     /// Whether there are no statements at all.
     pub fn is_empty(&self) -> bool {
-        self.start.is_empty()
+        self.arrays.is_empty()
+            && self.start.is_empty()
             && self.start_each.is_empty()
             && self.end_each.is_empty()
             && self.end.is_empty()
@@ -90,6 +134,10 @@ pub(crate) fn expressions(statements: &[Statement]) -> Vec<&Expr> {
             | Statement::SetParameter { value, .. }
             | Statement::Eval(value)
             | Statement::Seed(value) => out.push(value),
+            Statement::AssignElement { indices, value, .. } => {
+                out.extend(indices);
+                out.push(value);
+            }
             Statement::If {
                 condition,
                 then,

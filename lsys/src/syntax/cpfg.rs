@@ -235,11 +235,15 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                     continue;
                 }
                 _ => {
-                    return Err(unsupported(
-                        n,
-                        indent,
-                        "'define:' blocks (arrays and global variables)",
-                    ));
+                    // 'define:': arrays of block variables, over as many lines as its braces
+                    // take.
+                    let end = braces_close(&lines, i);
+                    let joined = Joined::new(&lines[i..end], n);
+                    let mut cur = Cursor::new(&joined.chars, n);
+                    cur.set_pos(after);
+                    p.define_block(&mut cur).map_err(|e| joined.locate(e))?;
+                    i = end;
+                    continue;
                 }
             }
             i += 1;

@@ -25,6 +25,10 @@ pub(crate) trait Scope {
     fn global(&self, _name: &str) -> Option<u16> {
         None
     }
+    /// The array of block variables named `name`: its first slot and dimensions.
+    fn array(&self, _name: &str) -> Option<(u16, Vec<u32>)> {
+        None
+    }
     /// How many function files `func(id, x)` may read.
     fn functions(&self) -> usize {
         0
@@ -260,6 +264,9 @@ impl ExprParser<'_, '_> {
                 if self.cur.eat('(') {
                     return self.call(name, start);
                 }
+                if let Some((slot, dims)) = self.scope.array(&name) {
+                    return self.element(name, slot, dims, start);
+                }
                 if let Some(slot) = self.scope.var(&name) {
                     Ok(Parsed::leaf(Expr::Var { name, slot }))
                 } else if let Some(value) = self.scope.constant(&name) {
@@ -280,7 +287,53 @@ impl ExprParser<'_, '_> {
         }
     }
 
+    /// An element of array `name` (first slot `slot`): its indices, `[i][j]`, one per
+    /// dimension.
+    fn element(
+        &mut self,
+        name: String,
+        slot: u16,
+        dims: Vec<u32>,
+        start: usize,
+    ) -> Result<Parsed, ParseError> {
+        self.nest()?;
+        let mut indices = Vec::with_capacity(dims.len());
+        let mut depth = 0;
+        for _ in 0..dims.len() {
+            self.cur.skip_ws();
+            if !self.cur.eat('[') {
+                return Err(self.cur.error_at(
+                    start,
+                    format!(
+                        "array '{name}' takes {} index(es) in brackets, as '{name}[i]'",
+                        dims.len()
+                    ),
+                ));
+            }
+            let index = self.ternary()?;
+            depth = depth.max(index.depth);
+            indices.push(index.expr);
+            self.cur.expect(']', "']' after the index")?;
+        }
+        self.nesting -= 1;
+        self.node(start, depth, || Expr::Element {
+            name,
+            slot,
+            dims,
+            indices,
+        })
+    }
+
     fn call(&mut self, name: String, start: usize) -> Result<Parsed, ParseError> {
+        if matches!(name.as_str(), "fopen" | "fclose" | "fflush" | "fscanf") {
+            return Err(self.cur.error_at(
+                start,
+                format!(
+                    "unsupported: cpfg's file function '{name}' (a model here neither reads nor \
+                     writes files of its own)"
+                ),
+            ));
+        }
         let Some(&(_, func, arity)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
             return Err(self
                 .cur

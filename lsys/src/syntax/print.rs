@@ -88,6 +88,10 @@ impl fmt::Display for Expr {
                 f.write_str(name)
             }
             Expr::Generation => f.write_str("#"),
+            Expr::Element { name, indices, .. } => {
+                f.write_str(name)?;
+                indices.iter().try_for_each(|i| write!(f, "[{i}]"))
+            }
             Expr::Unary(op, e) => {
                 let sign = if *op == UnaryOp::Neg { "-" } else { "!" };
                 write!(f, "{sign}{}", Child(e, e.precedence() < UNARY))
@@ -250,6 +254,19 @@ impl fmt::Display for LSystem {
             previous = Some(m);
         }
         writeln!(f)?;
+        for array in &self.blocks.arrays {
+            write!(f, "#array {}", array.name)?;
+            array.dims.iter().try_for_each(|d| write!(f, "[{d}]"))?;
+            if !array.values.is_empty() {
+                f.write_str(" = {")?;
+                for (k, v) in array.values.iter().enumerate() {
+                    let sep = if k > 0 { ", " } else { "" };
+                    write!(f, "{sep}{}", Expr::Number(*v))?;
+                }
+                f.write_str("}")?;
+            }
+            writeln!(f)?;
+        }
         for (name, block) in [
             ("start", &self.blocks.start),
             ("starteach", &self.blocks.start_each),
@@ -290,6 +307,16 @@ impl fmt::Display for BlockDisplay<'_> {
             match s {
                 Statement::Assign { name, value, .. }
                 | Statement::SetParameter { name, value, .. } => write!(f, "{name} = {value};")?,
+                Statement::AssignElement {
+                    name,
+                    indices,
+                    value,
+                    ..
+                } => {
+                    f.write_str(name)?;
+                    indices.iter().try_for_each(|i| write!(f, "[{i}]"))?;
+                    write!(f, " = {value};")?
+                }
                 Statement::Eval(e) => write!(f, "{e};")?,
                 Statement::Seed(e) => write!(f, "srand({e});")?,
                 Statement::If {

@@ -90,6 +90,33 @@ impl StatementParser<'_, '_> {
         Ok(out)
     }
 
+    /// Whether the statement at the cursor, after the name just read, assigns an element of
+    /// array `name` (`name[i] = ...;`) rather than reading one in an expression.
+    fn assigns_element(&mut self, name: &str) -> bool {
+        if self.scope.array(name).is_none() {
+            return false;
+        }
+        let at = self.cur.pos();
+        let mut depth = 0usize;
+        let mut assigns = false;
+        // Past the indices' brackets, a lone '=' makes it an assignment.
+        while let Some(c) = self.cur.bump() {
+            match c {
+                '[' => depth += 1,
+                ']' => depth = depth.saturating_sub(1),
+                '=' if depth == 0 => {
+                    assigns = self.cur.peek() != Some('=');
+                    break;
+                }
+                ';' | '{' | '}' => break,
+                _ if depth == 0 && !c.is_whitespace() => break,
+                _ => {}
+            }
+        }
+        self.cur.set_pos(at);
+        assigns
+    }
+
     /// One statement, appended to `out` (a nested block's statements are appended flat).
     fn statement(&mut self, out: &mut Vec<Statement>) -> Result<(), ParseError> {
         self.cur.skip_ws();
@@ -146,6 +173,29 @@ impl StatementParser<'_, '_> {
             Some("printf" | "fprintf") => {
                 self.skip_call()?;
                 self.cur.expect(';', "';' after the call")?;
+            }
+            Some(name) if self.assigns_element(name) => {
+                let name = name.to_string();
+                let (slot, dims) = self.scope.array(&name).unwrap_or_default();
+                let mut indices = Vec::with_capacity(dims.len());
+                for _ in 0..dims.len() {
+                    self.cur.skip_ws();
+                    self.cur
+                        .expect('[', "'[' and an index for each of the array's dimensions")?;
+                    indices.push(parse_expr(self.cur, self.scope)?);
+                    self.cur.expect(']', "']' after the index")?;
+                }
+                self.cur.skip_ws();
+                self.cur.expect('=', "'=' after the array's element")?;
+                let value = parse_expr(self.cur, self.scope)?;
+                self.cur.expect(';', "';' after the assignment")?;
+                out.push(Statement::AssignElement {
+                    name,
+                    slot,
+                    dims,
+                    indices,
+                    value,
+                });
             }
             Some(name) => {
                 let name = name.to_string();

@@ -101,6 +101,9 @@ impl LSystem {
         for k in 1..=generations {
             word = d.derive_from(word, k - 1, 1)?;
             ask(&mut word, k, environment)?;
+            if d.rng.stop {
+                break;
+            }
         }
         d.run_derivation_block(3, generations)?;
         Ok(word)

@@ -61,6 +61,18 @@ pub struct Deriver<'g> {
     sub: Option<usize>,
 }
 
+/// The block variables as a derivation starts: zero, but for the arrays' values.
+fn initial_globals(grammar: &LSystem) -> Vec<f64> {
+    let mut globals = vec![0.0; grammar.globals.len()];
+    for array in &grammar.blocks.arrays {
+        let from = array.slot as usize;
+        if let Some(slots) = globals.get_mut(from..from + array.values.len()) {
+            slots.copy_from_slice(&array.values);
+        }
+    }
+    globals
+}
+
 impl<'g> Deriver<'g> {
     /// A deriver whose random stream starts from `seed`.
     pub fn new(grammar: &'g LSystem, seed: u64, limits: Limits) -> Self {
@@ -75,7 +87,7 @@ impl<'g> Deriver<'g> {
             partner: Vec::new(),
             near_left: (u32::MAX, u32::MAX),
             near_right: (u32::MAX, u32::MAX),
-            globals: vec![0.0; grammar.globals.len()],
+            globals: initial_globals(grammar),
             table: Table::Main,
             fired: 0,
             bound_for: None,
@@ -177,6 +189,10 @@ impl<'g> Deriver<'g> {
         let mut next = Word::empty(current.alphabet.clone());
         let decomposed = !self.grammar.decomposition.is_empty();
         for k in 1..=generations {
+            if self.rng.stop {
+                // cpfg's stop(n): the step that called it was the last.
+                break;
+            }
             let produced = generation.saturating_add(k);
             self.run_derivation_block(1, produced)?;
             self.rewrite(&current, &mut next, produced)?;

@@ -38,6 +38,16 @@ impl GrammarParser {
                 self.constants.push((name, value));
                 Ok(())
             }
+            Some("array") => {
+                self.array_declaration(cur)?;
+                if !cur.at_end() {
+                    return Err(cur.error(format!(
+                        "expected end of line after the array, found {}",
+                        cur.describe_next()
+                    )));
+                }
+                Ok(())
+            }
             Some("ignore") => {
                 cur.eat(':');
                 while !cur.at_end() {
@@ -154,7 +164,7 @@ impl GrammarParser {
             }
             _ => Err(cur.error_at(
                 at,
-                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#start { ... }' (or #starteach, #endeach, #end), '#decomposition [depth N]' or '#homomorphism [depth N]'",
+                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#start { ... }' (or #starteach, #endeach, #end), '#array name[n] = {...}', '#decomposition [depth N]' or '#homomorphism [depth N]'",
             )),
         }
     }

@@ -1,6 +1,7 @@
 //! The grammar text parser (ABOP / cpfg notation): dialects, lines, axioms and symbols here;
 //! directives and productions in the child modules.
 
+mod arrays;
 mod directive;
 mod production;
 
@@ -12,7 +13,7 @@ use crate::model::alphabet::{Alphabet, MAX_NAME_CHARS, POP, PUSH, SymbolId};
 use crate::model::dialect::Dialect;
 use crate::model::expr::{Expr, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
-use crate::model::statement::Blocks;
+use crate::model::statement::{Array, Blocks};
 use crate::model::word::Word;
 use crate::syntax::comments::strip_block_comments;
 use crate::syntax::cursor::Cursor;
@@ -37,6 +38,8 @@ struct Names<'a> {
     globals: &'a [String],
     /// How many function files the model has.
     functions: usize,
+    /// The grammar's arrays of block variables.
+    arrays: &'a [Array],
 }
 
 impl Scope for Names<'_> {
@@ -51,6 +54,12 @@ impl Scope for Names<'_> {
     }
     fn functions(&self) -> usize {
         self.functions
+    }
+    fn array(&self, name: &str) -> Option<(u16, Vec<u32>)> {
+        self.arrays
+            .iter()
+            .find(|a| a.name == name)
+            .map(|a| (a.slot, a.dims.clone()))
     }
     fn global(&self, name: &str) -> Option<u16> {
         self.globals
@@ -70,6 +79,7 @@ impl GrammarParser {
             degrees: self.dialect == Dialect::Cpfg,
             globals: &self.globals,
             functions: self.functions,
+            arrays: &self.blocks.arrays,
         }
     }
 }
@@ -244,6 +254,7 @@ pub(crate) fn parse_modules(
         degrees: false,
         globals: &[],
         functions: 0,
+        arrays: &[],
     };
     let mut params = Vec::new();
     for (n, line) in chars.split(|&c| c == '\n').enumerate() {

@@ -248,7 +248,14 @@ impl GrammarParser {
             let mut args = Vec::new();
             if cur.eat('(') {
                 loop {
-                    args.push(parse_expr(cur, &scope)?);
+                    cur.skip_ws();
+                    if self.dialect == Dialect::Cpfg && cur.peek() == Some('"') {
+                        // A label's text (`@L("%.f", c)`): the turtle here draws no text,
+                        // so the module keeps its numbers only.
+                        skip_string(cur)?;
+                    } else {
+                        args.push(parse_expr(cur, &scope)?);
+                    }
                     if cur.eat(')') {
                         break;
                     }
@@ -261,5 +268,21 @@ impl GrammarParser {
             items.push(SuccessorItem::Module(ModuleTemplate { symbol, args }));
         }
         Ok(items)
+    }
+}
+
+/// Moves past a string literal in double quotes (a backslash escapes the next character).
+fn skip_string(cur: &mut Cursor<'_>) -> Result<(), ParseError> {
+    let at = cur.pos();
+    cur.bump();
+    loop {
+        match cur.bump() {
+            Some('"') => return Ok(()),
+            Some('\\') => {
+                cur.bump();
+            }
+            Some(_) => {}
+            None => return Err(cur.error_at(at, "a string never closed with '\"'")),
+        }
     }
 }
