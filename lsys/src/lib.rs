@@ -71,6 +71,11 @@
 //! one value for the whole derivation; `#start { ... }`, `#starteach`, `#endeach` and `#end`
 //! run blocks around the derivation and each step. Runs are bounded
 //! ([`MAX_BLOCK_STATEMENTS`] per block, [`Limits::max_statements`] per derivation).
+//! `#array len[2][3] = {1, 2, 3, 4}` declares an [`Array`] of block variables (cpfg's
+//! `define: { array len[2][3] = {...}; }`): values row-major, zeros after them, set before
+//! `#start`; `len[i][j]` reads an element and `len[i][j] = v;` sets one, each index clamped
+//! to its dimension as cpfg clamps it. cpfg's `stop(n)` (`n` other than 1) ends the
+//! derivation after the step that called it.
 //!
 //! **Choices** (a sylva extension): `?(p)<then><otherwise>` in a successor emits `then` with
 //! probability `p` and `otherwise` else, drawn independently each time the production fires.
