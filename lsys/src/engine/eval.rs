@@ -35,14 +35,9 @@ impl Expr {
             Expr::Var { slot, .. } => out.push(Op::Var(*slot)),
             Expr::Global { slot, .. } => out.push(Op::Global(*slot)),
             Expr::Generation => out.push(Op::Gen),
-            Expr::Element {
-                slot,
-                dims,
-                indices,
-                ..
-            } => {
-                offset(dims, indices, out);
-                out.push(Op::Element(*slot, elements(dims) as u32));
+            // An element is never constant: compiled the one way there is.
+            Expr::Element { .. } => {
+                compile_folding(self, out);
             }
             Expr::Unary(op, e) => {
                 e.compile_raw(out);

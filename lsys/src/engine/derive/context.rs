@@ -61,14 +61,7 @@ impl Deriver<'_> {
             if self.near_left.0 != i as u32 {
                 self.near_left = (i as u32, self.walk_left(cur, i));
             }
-            let j = self.near_left.1;
-            let found = j != u32::MAX
-                && cur.symbols[j as usize] == p.symbol
-                && Self::arity_of(cur, j as usize) == p.arity;
-            if found {
-                self.matched.push(j);
-            }
-            return found;
+            return self.names_module(cur, self.near_left.1, p);
         }
         let ignored = &self.compiled().ignored;
         let mut j = i;
@@ -99,6 +92,18 @@ impl Deriver<'_> {
         }
         self.matched[start..].reverse();
         true
+    }
+
+    /// Whether module `j` (`u32::MAX` for none) is the one pattern `p` names; it is noted as
+    /// matched when it is.
+    fn names_module(&mut self, cur: &Word, j: u32, p: &CPattern) -> bool {
+        let found = j != u32::MAX
+            && cur.symbols[j as usize] == p.symbol
+            && Self::arity_of(cur, j as usize) == p.arity;
+        if found {
+            self.matched.push(j);
+        }
+        found
     }
 
     /// The nearest module left of `i` a left context can name (`u32::MAX` for none): ignored
@@ -156,14 +161,7 @@ impl Deriver<'_> {
             if self.near_right.0 != i as u32 {
                 self.near_right = (i as u32, self.walk_right(cur, i));
             }
-            let j = self.near_right.1;
-            let found = j != u32::MAX
-                && cur.symbols[j as usize] == p.symbol
-                && Self::arity_of(cur, j as usize) == p.arity;
-            if found {
-                self.matched.push(j);
-            }
-            return found;
+            return self.names_module(cur, self.near_right.1, p);
         }
         let ignored = &self.compiled().ignored;
         let n = cur.len();
