@@ -216,3 +216,32 @@ proptest! {
         prop_assert_eq!(g.derive(1, 0).unwrap().to_string(), expected);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// A symbol rewritten by weighted productions alone takes its draw without matching;
+    /// the same productions with a condition that always holds go through matching. Both
+    /// make the same draws, so they derive the same word for every seed.
+    #[test]
+    fn draws_without_matching_agree_with_draws_after_matching(
+        weights in prop::collection::vec(0u8..5, 2..5),
+        seed: u64,
+    ) {
+        let successors = ["F[+A]A", "F[-A]A", "F[&A][^A]", "FA"];
+        let productions = |condition: &str| -> String {
+            weights
+                .iter()
+                .zip(successors)
+                .map(|(w, s)| format!("A{condition} -> {s} : {w}\n"))
+                .collect()
+        };
+        let drawn = LSystem::parse(&format!("axiom: A\n{}", productions(""))).unwrap();
+        let matched = LSystem::parse(&format!("axiom: A\n{}", productions(" : 1"))).unwrap();
+        let limits = Limits::default().with_max_modules(100_000);
+        prop_assert_eq!(
+            drawn.derive_with(6, seed, &limits),
+            matched.derive_with(6, seed, &limits)
+        );
+    }
+}

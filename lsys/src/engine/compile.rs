@@ -65,10 +65,11 @@ pub(crate) struct Compiled {
     pub(crate) simple: Vec<u32>,
     /// Whether any production rewrites the symbol.
     pub(crate) rewritten: Vec<bool>,
-    /// For each symbol: whether its productions are a weighted draw and nothing else (each
-    /// weighted, no context, no condition, no block, one arity), so a module of it takes a
-    /// draw without matching any of them.
-    pub(crate) drawn: Vec<bool>,
+    /// For each symbol whose productions are a weighted draw and nothing else (each
+    /// weighted, no context, no condition, no block, one arity): their weights' sum, added
+    /// in order as a draw among matches adds them. A module of it takes a draw without
+    /// matching any of them.
+    pub(crate) draw_total: Vec<Option<f64>>,
     /// For each symbol: whether a module of it whose left context is a module of the same
     /// symbol never fires (every production names a nearest left context of another
     /// symbol). Runs of such modules, with ignored modules and whole branches between them,
@@ -177,7 +178,14 @@ impl Compiled {
         for s in ignore {
             c.ignored[s.index()] = true;
         }
-        c.drawn = (0..n).map(|s| c.is_drawn(s)).collect();
+        c.draw_total = (0..n)
+            .map(|s| {
+                c.is_drawn(s).then(|| {
+                    c.of_symbol(s)
+                        .fold(0.0, |total, q| total + q.weight.unwrap_or(0.0))
+                })
+            })
+            .collect();
         c.stays_after_itself = (0..n)
             .map(|s| {
                 c.rewritten[s]
@@ -200,7 +208,8 @@ impl Compiled {
             .map(|&p| &self.productions[p as usize])
     }
 
-    /// Whether symbol `s` is rewritten by a weighted draw alone (see [`Compiled::drawn`]).
+    /// Whether symbol `s` is rewritten by a weighted draw alone (see
+    /// [`Compiled::draw_total`]).
     fn is_drawn(&self, s: usize) -> bool {
         let mut all = self.of_symbol(s).peekable();
         let Some(arity) = all.peek().map(|q| q.arity) else {

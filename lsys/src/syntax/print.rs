@@ -88,10 +88,7 @@ impl fmt::Display for Expr {
                 f.write_str(name)
             }
             Expr::Generation => f.write_str("#"),
-            Expr::Element { name, indices, .. } => {
-                f.write_str(name)?;
-                indices.iter().try_for_each(|i| write!(f, "[{i}]"))
-            }
+            Expr::Element { name, indices, .. } => write_element(f, name, indices),
             Expr::Unary(op, e) => {
                 let sign = if *op == UnaryOp::Neg { "-" } else { "!" };
                 write!(f, "{sign}{}", Child(e, e.precedence() < UNARY))
@@ -128,6 +125,12 @@ impl fmt::Display for Expr {
             }
         }
     }
+}
+
+/// An array's element as grammar text: `name[i][j]`.
+fn write_element(f: &mut fmt::Formatter<'_>, name: &str, indices: &[Expr]) -> fmt::Result {
+    f.write_str(name)?;
+    indices.iter().try_for_each(|i| write!(f, "[{i}]"))
 }
 
 struct PatternsDisplay<'a>(&'a [Pattern], &'a Alphabet);
@@ -313,8 +316,7 @@ impl fmt::Display for BlockDisplay<'_> {
                     value,
                     ..
                 } => {
-                    f.write_str(name)?;
-                    indices.iter().try_for_each(|i| write!(f, "[{i}]"))?;
+                    write_element(f, name, indices)?;
                     write!(f, " = {value};")?
                 }
                 Statement::Eval(e) => write!(f, "{e};")?,

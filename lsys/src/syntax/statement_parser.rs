@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use crate::error::ParseError;
-use crate::model::expr::MAX_NESTING;
+use crate::model::expr::{Expr, MAX_NESTING};
 use crate::model::statement::Statement;
 use crate::syntax::cursor::Cursor;
 use crate::syntax::expr_parser::{Scope, parse_expr};
@@ -90,33 +90,6 @@ impl StatementParser<'_, '_> {
         Ok(out)
     }
 
-    /// Whether the statement at the cursor, after the name just read, assigns an element of
-    /// array `name` (`name[i] = ...;`) rather than reading one in an expression.
-    fn assigns_element(&mut self, name: &str) -> bool {
-        if self.scope.array(name).is_none() {
-            return false;
-        }
-        let at = self.cur.pos();
-        let mut depth = 0usize;
-        let mut assigns = false;
-        // Past the indices' brackets, a lone '=' makes it an assignment.
-        while let Some(c) = self.cur.bump() {
-            match c {
-                '[' => depth += 1,
-                ']' => depth = depth.saturating_sub(1),
-                '=' if depth == 0 => {
-                    assigns = self.cur.peek() != Some('=');
-                    break;
-                }
-                ';' | '{' | '}' => break,
-                _ if depth == 0 && !c.is_whitespace() => break,
-                _ => {}
-            }
-        }
-        self.cur.set_pos(at);
-        assigns
-    }
-
     /// One statement, appended to `out` (a nested block's statements are appended flat).
     fn statement(&mut self, out: &mut Vec<Statement>) -> Result<(), ParseError> {
         self.cur.skip_ws();
@@ -174,32 +147,8 @@ impl StatementParser<'_, '_> {
                 self.skip_call()?;
                 self.cur.expect(';', "';' after the call")?;
             }
-            Some(name) if self.assigns_element(name) => {
-                let name = name.to_string();
-                let (slot, dims) = self.scope.array(&name).unwrap_or_default();
-                let mut indices = Vec::with_capacity(dims.len());
-                for _ in 0..dims.len() {
-                    self.cur.skip_ws();
-                    self.cur
-                        .expect('[', "'[' and an index for each of the array's dimensions")?;
-                    indices.push(parse_expr(self.cur, self.scope)?);
-                    self.cur.expect(']', "']' after the index")?;
-                }
-                self.cur.skip_ws();
-                self.cur.expect('=', "'=' after the array's element")?;
-                let value = parse_expr(self.cur, self.scope)?;
-                self.cur.expect(';', "';' after the assignment")?;
-                out.push(Statement::AssignElement {
-                    name,
-                    slot,
-                    dims,
-                    indices,
-                    value,
-                });
-            }
             Some(name) => {
                 let name = name.to_string();
-                let after = self.cur.pos();
                 self.cur.skip_ws();
                 if self.cur.peek() == Some('=') && self.cur.peek_at(1) != Some('=') {
                     self.cur.bump();
@@ -216,18 +165,47 @@ impl StatementParser<'_, '_> {
                     }
                 } else {
                     self.cur.set_pos(start);
-                    let _ = after;
-                    let e = parse_expr(self.cur, self.scope)?;
-                    self.cur.expect(';', "';' after the statement")?;
-                    out.push(Statement::Eval(e));
+                    self.expression_statement(out)?;
                 }
             }
-            None => {
-                let e = parse_expr(self.cur, self.scope)?;
-                self.cur.expect(';', "';' after the statement")?;
-                out.push(Statement::Eval(e));
-            }
+            None => self.expression_statement(out)?,
         }
+        Ok(())
+    }
+
+    /// An expression evaluated for its draws, or an array element given a value
+    /// (`len[i][j] = v;`: the element is read as an expression reads it, then assigned).
+    fn expression_statement(&mut self, out: &mut Vec<Statement>) -> Result<(), ParseError> {
+        let start = self.cur.pos();
+        let mut e = parse_expr(self.cur, self.scope)?;
+        self.cur.skip_ws();
+        if self.cur.peek() == Some('=') && self.cur.peek_at(1) != Some('=') {
+            let Expr::Element {
+                name,
+                slot,
+                dims,
+                indices,
+            } = &mut e
+            else {
+                return Err(self
+                    .cur
+                    .error_at(start, "only a name or an array's element can be assigned"));
+            };
+            self.cur.bump();
+            let value = parse_expr(self.cur, self.scope)?;
+            self.cur.expect(';', "';' after the assignment")?;
+            // `Expr` has its own drop, so its fields are taken rather than moved out.
+            out.push(Statement::AssignElement {
+                name: std::mem::take(name),
+                slot: *slot,
+                dims: std::mem::take(dims),
+                indices: std::mem::take(indices),
+                value,
+            });
+            return Ok(());
+        }
+        self.cur.expect(';', "';' after the statement")?;
+        out.push(Statement::Eval(e));
         Ok(())
     }
 
@@ -245,7 +223,7 @@ impl StatementParser<'_, '_> {
         Ok(out)
     }
 
-    fn parenthesised(&mut self) -> Result<crate::model::expr::Expr, ParseError> {
+    fn parenthesised(&mut self) -> Result<Expr, ParseError> {
         self.cur.expect('(', "'(' before the condition")?;
         let e = parse_expr(self.cur, self.scope)?;
         self.cur.expect(')', "')' after the condition")?;

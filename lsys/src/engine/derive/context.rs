@@ -2,7 +2,7 @@
 //! around a module, skipping branches and ignored symbols as the notation says.
 
 use super::Deriver;
-use crate::engine::compile::{CPattern, CProduction};
+use crate::engine::compile::{CPattern, CProduction, Compiled};
 use crate::model::alphabet::{POP, PUSH};
 use crate::model::word::Word;
 
@@ -55,40 +55,23 @@ impl Deriver<'_> {
 
     /// ABOP 1.8: walking left, a whole branch `[...]` is skipped and a `[` leads to the parent.
     fn match_left(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
-        if let [p] = pattern {
-            // One module of context, as most productions have: the walk is the same for
-            // every production tried on module `i`, so it is made once.
-            if self.near_left.0 != i as u32 {
-                self.near_left = (i as u32, self.walk_left(cur, i));
-            }
-            return self.names_module(cur, self.near_left.1, p);
-        }
-        let ignored = &self.compiled().ignored;
-        let mut j = i;
         let start = self.matched.len();
-        for p in pattern.iter().rev() {
-            loop {
-                if j == 0 {
-                    return false;
+        let mut j = i;
+        for (k, p) in pattern.iter().rev().enumerate() {
+            let near = if k == 0 {
+                // The walk from module `i` is the same for every production tried on it:
+                // made once.
+                if self.near_left.0 != i as u32 {
+                    self.near_left = (i as u32, self.walk_left(cur, i));
                 }
-                j -= 1;
-                let s = cur.symbols[j];
-                if s == POP {
-                    match self.partner[j] {
-                        u32::MAX => return false,
-                        open => j = open as usize,
-                    }
-                    continue;
-                }
-                if s == PUSH || ignored[s.index()] {
-                    continue;
-                }
-                if s == p.symbol && Self::arity_of(cur, j) == p.arity {
-                    self.matched.push(j as u32);
-                    break;
-                }
+                self.near_left.1
+            } else {
+                self.walk_left(cur, j)
+            };
+            if !self.names_module(cur, near, p) {
                 return false;
             }
+            j = near as usize;
         }
         self.matched[start..].reverse();
         true
@@ -126,12 +109,12 @@ impl Deriver<'_> {
         u32::MAX
     }
 
-    /// The nearest module right of `i` a right context of one module can name (`u32::MAX`
-    /// for none): ignored modules and whole branches are stepped over; the end of the
-    /// current branch ends the walk.
-    fn walk_right(&self, cur: &Word, i: usize) -> u32 {
+    /// The nearest module from `from` on that a right context can name (`u32::MAX` for
+    /// none): ignored modules and whole branches are stepped over; the end of the current
+    /// branch ends the walk.
+    fn walk_right(&self, cur: &Word, from: usize) -> u32 {
         let ignored = &self.compiled().ignored;
-        let mut j = i + 1;
+        let mut j = from;
         while j < cur.len() {
             let s = cur.symbols[j];
             if s == PUSH {
@@ -153,16 +136,6 @@ impl Deriver<'_> {
     /// ABOP 1.8: walking right, branches not named by the pattern are skipped; `[` in the
     /// pattern enters a branch and `]` skips to the end of the current one.
     fn match_right(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
-        if let [p] = pattern
-            && p.symbol != PUSH
-            && p.symbol != POP
-        {
-            // As for the left: one walk for every production tried on module `i`.
-            if self.near_right.0 != i as u32 {
-                self.near_right = (i as u32, self.walk_right(cur, i));
-            }
-            return self.names_module(cur, self.near_right.1, p);
-        }
         let ignored = &self.compiled().ignored;
         let n = cur.len();
         let mut j = i + 1;
@@ -196,32 +169,20 @@ impl Deriver<'_> {
                 }
                 continue;
             }
-            loop {
-                if j >= n {
-                    return false;
+            let near = if j == i + 1 {
+                // As for the left: the walk from module `i` is made once for every
+                // production tried on it.
+                if self.near_right.0 != i as u32 {
+                    self.near_right = (i as u32, self.walk_right(cur, i + 1));
                 }
-                let s = cur.symbols[j];
-                if s == PUSH {
-                    match self.partner[j] {
-                        u32::MAX => return false,
-                        close => j = close as usize + 1,
-                    }
-                    continue;
-                }
-                if s == POP {
-                    return false;
-                }
-                if ignored[s.index()] {
-                    j += 1;
-                    continue;
-                }
-                if s == p.symbol && Self::arity_of(cur, j) == p.arity {
-                    self.matched.push(j as u32);
-                    j += 1;
-                    break;
-                }
+                self.near_right.1
+            } else {
+                self.walk_right(cur, j)
+            };
+            if !self.names_module(cur, near, p) {
                 return false;
             }
+            j = near as usize + 1;
         }
         true
     }
@@ -243,5 +204,28 @@ impl Deriver<'_> {
                 self.partner[o as usize] = j as u32;
             }
         }
+    }
+
+    /// For a module `i` whose symbol stays after itself ([`Compiled::stays_after_itself`]):
+    /// the end of the run after it whose every module of that symbol has its left context
+    /// in the run, so stays. The run holds modules of the symbol, ignored symbols and
+    /// brackets that nothing rewrites; a `]` only when its `[` is in the run, since a left
+    /// context walks from `]` to its `[` and on.
+    pub(super) fn run_after(&self, cur: &Word, i: usize, c: &Compiled) -> usize {
+        let symbol = cur.symbols[i];
+        let mut j = i + 1;
+        while j < cur.len() {
+            let t = cur.symbols[j];
+            let stays = t == symbol
+                || !c.rewritten[t.index()]
+                    && (c.ignored[t.index()]
+                        || t == PUSH
+                        || t == POP && self.partner[j] != u32::MAX && self.partner[j] as usize > i);
+            if !stays {
+                break;
+            }
+            j += 1;
+        }
+        j
     }
 }

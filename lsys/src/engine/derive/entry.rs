@@ -34,12 +34,10 @@ impl LSystem {
     ) -> Result<Word, DeriveError> {
         let mut d = Deriver::new(self, seed, *limits);
         d.run_derivation_block(0, 0)?;
-        let word = if self.decomposition.is_empty() && generations > 0 {
+        let word = if self.decomposition.is_empty() {
             // The first step reads the axiom where it is: a large axiom (a forest's seeds, a
             // long signal) is not copied first.
-            d.check_generations(generations)?;
-            let first = d.step(&self.axiom_word, 1)?;
-            d.derive_from(first, 1, generations - 1)?
+            d.derive_from_ref(&self.axiom_word, 0, generations)?
         } else {
             let axiom = d.decompose(self.axiom_word(), 0)?;
             d.derive_from(axiom, 0, generations)?

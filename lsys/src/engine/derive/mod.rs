@@ -3,13 +3,13 @@
 use crate::engine::block::{self, MAX_BLOCK_STATEMENTS};
 use crate::engine::compile::{CProduction, Compiled};
 use crate::engine::eval::Span;
-use crate::engine::eval::eval;
 use crate::engine::lsystem::LSystem;
 use crate::engine::random::Random;
 use crate::error::DeriveError;
-use crate::model::alphabet::{CUT, POP, PUSH, SymbolId};
+use crate::model::alphabet::{CUT, SymbolId};
 use crate::model::word::Word;
 
+mod choose;
 mod context;
 mod emit;
 mod entry;
@@ -184,9 +184,31 @@ impl<'g> Deriver<'g> {
         generation: u32,
         generations: u32,
     ) -> Result<Word, DeriveError> {
-        self.check_generations(generations)?;
-        let mut current = word;
-        let mut next = Word::empty(current.alphabet.clone());
+        if generations == 0 {
+            return Ok(word);
+        }
+        self.derive_from_ref(&word, generation, generations)
+    }
+
+    /// As [`Deriver::derive_from`], reading `word` where it is: the first step rewrites it
+    /// into a new word, so it is copied only when no step is made.
+    pub(crate) fn derive_from_ref(
+        &mut self,
+        word: &Word,
+        generation: u32,
+        generations: u32,
+    ) -> Result<Word, DeriveError> {
+        if generations > self.limits.max_generations {
+            return Err(DeriveError::TooManyGenerations {
+                requested: generations,
+                limit: self.limits.max_generations,
+            });
+        }
+        if generations == 0 || self.rng.stop {
+            return Ok(word.clone());
+        }
+        let mut current = Word::empty(word.alphabet.clone());
+        let mut next = Word::empty(word.alphabet.clone());
         let decomposed = !self.grammar.decomposition.is_empty();
         for k in 1..=generations {
             if self.rng.stop {
@@ -195,7 +217,8 @@ impl<'g> Deriver<'g> {
             }
             let produced = generation.saturating_add(k);
             self.run_derivation_block(1, produced)?;
-            self.rewrite(&current, &mut next, produced)?;
+            let from = if k == 1 { word } else { &current };
+            self.rewrite(from, &mut next, produced)?;
             std::mem::swap(&mut current, &mut next);
             if decomposed {
                 current = self.decompose(current, produced)?;
@@ -203,29 +226,6 @@ impl<'g> Deriver<'g> {
             self.run_derivation_block(2, produced)?;
         }
         Ok(current)
-    }
-
-    /// An error when `generations` is over the limits' maximum.
-    fn check_generations(&self, generations: u32) -> Result<(), DeriveError> {
-        if generations > self.limits.max_generations {
-            return Err(DeriveError::TooManyGenerations {
-                requested: generations,
-                limit: self.limits.max_generations,
-            });
-        }
-        Ok(())
-    }
-
-    /// One whole derivation step from `word` to generation `produced`, as
-    /// [`Deriver::derive_from`] makes each, into a new word: its blocks, the rewrite and the
-    /// decomposition.
-    fn step(&mut self, word: &Word, produced: u32) -> Result<Word, DeriveError> {
-        self.run_derivation_block(1, produced)?;
-        let mut next = Word::empty(word.alphabet.clone());
-        self.rewrite(word, &mut next, produced)?;
-        let next = self.decompose(next, produced)?;
-        self.run_derivation_block(2, produced)?;
-        Ok(next)
     }
 
     /// One parallel rewrite of `cur` into `out` (cleared first), producing generation
@@ -306,7 +306,7 @@ impl<'g> Deriver<'g> {
                     // A simple production has no context: nothing was matched, nothing needs to be.
                     Some((p, true))
                 }
-                _ if c.drawn[s] => self.draw(cur, i, &c.order[lo..hi]),
+                _ if c.draw_total[s].is_some() => self.draw(cur, i, &c.order[lo..hi]),
                 _ => self.select(cur, i, &c.order[lo..hi], gen_f)?,
             };
             match chosen {
@@ -391,132 +391,6 @@ impl<'g> Deriver<'g> {
             });
         }
         Ok(())
-    }
-
-    /// Picks the production to apply to module `i`, if any: the first match when it is
-    /// deterministic, else a weighted draw among all matching weighted productions. The flag
-    /// says whether `matched` still holds the chosen production's context match.
-    fn select(
-        &mut self,
-        cur: &Word,
-        i: usize,
-        order: &[u32],
-        generation: f64,
-    ) -> Result<Option<(u32, bool)>, DeriveError> {
-        let c = self.compiled();
-        self.candidates.clear();
-        self.bound_for = None;
-        let mut total = 0.0;
-        for &p in order {
-            let prod = &c.productions[p as usize];
-            if !self.matches(cur, i, prod) {
-                continue;
-            }
-            let pre = prod.pre.0 != prod.pre.1;
-            if pre {
-                self.bind(cur, i, prod, true);
-                self.run_block(c, (prod.pre, Some(p)), generation)?;
-            }
-            if let Some((a, b)) = prod.condition {
-                if !pre {
-                    self.bind(cur, i, prod, true);
-                }
-                let v = eval(
-                    &c.ops[a as usize..b as usize],
-                    (&self.vars, &self.globals, &self.grammar.functions),
-                    generation,
-                    &mut self.rng,
-                    &mut self.stack,
-                );
-                if v == 0.0 || v.is_nan() {
-                    continue;
-                }
-            }
-            match prod.weight {
-                None if self.candidates.is_empty() => {
-                    if pre {
-                        self.bound_for = Some(p);
-                    }
-                    return Ok(Some((p, true)));
-                }
-                None => {}
-                Some(w) => {
-                    total += w;
-                    self.candidates.push((p, w));
-                }
-            }
-        }
-        if self.candidates.is_empty() || total <= 0.0 {
-            return Ok(None);
-        }
-        // Later candidates were matched after the drawn one: its match must be redone.
-        let mut u = self.rng.unit() * total;
-        for &(p, w) in &self.candidates {
-            if u < w {
-                return Ok(Some((p, false)));
-            }
-            u -= w;
-        }
-        Ok(self
-            .candidates
-            .iter()
-            .rev()
-            .find(|c| c.1 > 0.0)
-            .map(|c| (c.0, false)))
-    }
-
-    /// For a module `i` whose symbol stays after itself ([`Compiled::stays_after_itself`]):
-    /// the end of the run after it whose every module of that symbol has its left context
-    /// in the run, so stays. The run holds modules of the symbol, ignored symbols and
-    /// brackets that nothing rewrites; a `]` only when its `[` is in the run, since a left
-    /// context walks from `]` to its `[` and on.
-    fn run_after(&self, cur: &Word, i: usize, c: &Compiled) -> usize {
-        let symbol = cur.symbols[i];
-        let mut j = i + 1;
-        while j < cur.len() {
-            let t = cur.symbols[j];
-            let stays = t == symbol
-                || !c.rewritten[t.index()]
-                    && (c.ignored[t.index()]
-                        || t == PUSH
-                        || t == POP && self.partner[j] != u32::MAX && self.partner[j] as usize > i);
-            if !stays {
-                break;
-            }
-            j += 1;
-        }
-        j
-    }
-
-    /// Picks the production of a symbol rewritten by a weighted draw alone
-    /// ([`Compiled::drawn`]): the draw [`Deriver::select`] makes, without matching.
-    fn draw(&mut self, cur: &Word, i: usize, order: &[u32]) -> Option<(u32, bool)> {
-        let c = self.compiled();
-        self.bound_for = None;
-        if c.productions[order[0] as usize].arity as usize != cur.params(i).len() {
-            return None;
-        }
-        let weight = |p: u32| c.productions[p as usize].weight.unwrap_or(0.0);
-        let mut total = 0.0;
-        for &p in order {
-            total += weight(p);
-        }
-        if total <= 0.0 {
-            return None;
-        }
-        let mut u = self.rng.unit() * total;
-        for &p in order {
-            let w = weight(p);
-            if u < w {
-                return Some((p, false));
-            }
-            u -= w;
-        }
-        order
-            .iter()
-            .rev()
-            .find(|&&p| weight(p) > 0.0)
-            .map(|&p| (p, false))
     }
 
     /// Runs a block of `compiled` (span into its instructions) on the bound parameters and
