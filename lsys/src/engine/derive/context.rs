@@ -55,19 +55,18 @@ impl Deriver<'_> {
 
     /// ABOP 1.8: walking left, a whole branch `[...]` is skipped and a `[` leads to the parent.
     fn match_left(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
+        if let [p] = pattern {
+            // One module of context, as most productions have: the walk from module `i` is
+            // the same for every production tried on it, so it is made once.
+            if self.near_left.0 != i as u32 {
+                self.near_left = (i as u32, self.walk_left(cur, i));
+            }
+            return self.names_module(cur, self.near_left.1, p);
+        }
         let start = self.matched.len();
         let mut j = i;
-        for (k, p) in pattern.iter().rev().enumerate() {
-            let near = if k == 0 {
-                // The walk from module `i` is the same for every production tried on it:
-                // made once.
-                if self.near_left.0 != i as u32 {
-                    self.near_left = (i as u32, self.walk_left(cur, i));
-                }
-                self.near_left.1
-            } else {
-                self.walk_left(cur, j)
-            };
+        for p in pattern.iter().rev() {
+            let near = self.walk_left(cur, j);
             if !self.names_module(cur, near, p) {
                 return false;
             }
@@ -136,6 +135,17 @@ impl Deriver<'_> {
     /// ABOP 1.8: walking right, branches not named by the pattern are skipped; `[` in the
     /// pattern enters a branch and `]` skips to the end of the current one.
     fn match_right(&mut self, cur: &Word, i: usize, pattern: &[CPattern]) -> bool {
+        if let [p] = pattern
+            && p.symbol != PUSH
+            && p.symbol != POP
+        {
+            // As for the left: the walk from module `i` is made once for every production
+            // tried on it.
+            if self.near_right.0 != i as u32 {
+                self.near_right = (i as u32, self.walk_right(cur, i + 1));
+            }
+            return self.names_module(cur, self.near_right.1, p);
+        }
         let ignored = &self.compiled().ignored;
         let n = cur.len();
         let mut j = i + 1;
@@ -169,16 +179,7 @@ impl Deriver<'_> {
                 }
                 continue;
             }
-            let near = if j == i + 1 {
-                // As for the left: the walk from module `i` is made once for every
-                // production tried on it.
-                if self.near_right.0 != i as u32 {
-                    self.near_right = (i as u32, self.walk_right(cur, i + 1));
-                }
-                self.near_right.1
-            } else {
-                self.walk_right(cur, j)
-            };
+            let near = self.walk_right(cur, j);
             if !self.names_module(cur, near, p) {
                 return false;
             }
