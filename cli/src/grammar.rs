@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use sylva::lsys::{LSystem, PRESETS, Preset, preset};
-use sylva::turtle::{SymbolTable, TurtleOptions};
+use sylva::turtle::TurtleOptions;
 
 use crate::Failure;
 
@@ -75,13 +75,12 @@ impl GrammarArgs {
 }
 
 impl Grammar {
-    /// The turtle it draws with: a preset's own, or for a file its dialect's symbols (cpfg
-    /// models draw with cpfg's turtle).
+    /// The turtle it draws with: a preset's own, or for a file its dialect's symbols and
+    /// its model's surfaces and contours (cpfg models draw with cpfg's turtle).
     pub(crate) fn turtle(&self) -> TurtleOptions {
         match self.preset {
             Some(p) => TurtleOptions::for_preset(p),
-            None => TurtleOptions::default()
-                .with_symbols(SymbolTable::for_dialect(self.lsystem.dialect())),
+            None => TurtleOptions::for_grammar(&self.lsystem),
         }
     }
 }

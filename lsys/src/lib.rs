@@ -123,13 +123,17 @@
 
 // The modules form layers: `model` (data) <- `engine` (check, compile, derive) <- `syntax`
 // (parse, print). No module reaches back up.
+pub mod curve;
 mod engine;
 mod error;
+mod file_lines;
 mod model;
+mod model_files;
 mod presets;
 pub mod spline;
 #[cfg(feature = "proptest")]
 pub mod strategies;
+pub mod surface;
 mod syntax;
 
 pub use engine::block::MAX_BLOCK_STATEMENTS;
@@ -143,6 +147,7 @@ pub use model::expr::{BinaryOp, Expr, Function, MAX_EXPR_DEPTH, UnaryOp};
 pub use model::grammar::{ModuleTemplate, Pattern, Production, RuleSet, SuccessorItem};
 pub use model::statement::{Array, Blocks, Statement};
 pub use model::word::{Module, Word};
+pub use model_files::ModelFiles;
 pub use presets::{PRESETS, Preset, preset};
 pub use syntax::parser::{MAX_GRAMMAR_BYTES, MAX_RULE_DEPTH};
 
@@ -182,28 +187,30 @@ impl LSystem {
         syntax::read::parse_dialect(text, dialect)
     }
 
-    /// Parses grammar text written in `dialect` whose `func(id, x)` reads `functions` (id 1
-    /// the first; a function set's names are defined as their ids in cpfg text): a model's
-    /// functions without its folder, or a model printed and read back.
+    /// Parses grammar text written in `dialect` whose expressions read `files` (`func(id, x)`
+    /// its functions, id 1 the first; a function set's names are defined as their ids in
+    /// cpfg text; `curveX(id, t)` and the others its curves): a model's files without its
+    /// folder, or a model printed and read back.
     ///
     /// ```
     /// use sylva_lsys::spline::SplineFunction;
-    /// use sylva_lsys::{Dialect, LSystem};
+    /// use sylva_lsys::{Dialect, LSystem, ModelFiles};
     /// let up = SplineFunction::new(None, vec![[0.0, 0.0], [0.4, 0.4], [0.6, 0.6], [1.0, 1.0]], Some(11))?;
-    /// let g = LSystem::parse_with_functions("axiom: A\nA -> B(func(1, 0.5))", Dialect::Sylva, vec![up])?;
+    /// let files = ModelFiles { functions: vec![up], ..ModelFiles::default() };
+    /// let g = LSystem::parse_with_files("axiom: A\nA -> B(func(1, 0.5))", Dialect::Sylva, files)?;
     /// let b = g.derive(1, 0)?.params(0)[0];
     /// assert!((b - 0.5).abs() < 2e-3);
     /// // Printed, it reads back with the same functions.
-    /// let again = LSystem::parse_with_functions(&g.to_string(), Dialect::Sylva, g.functions().to_vec())?;
+    /// let again = LSystem::parse_with_files(&g.to_string(), Dialect::Sylva, g.files().clone())?;
     /// assert_eq!(again.derive(1, 0)?, g.derive(1, 0)?);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn parse_with_functions(
+    pub fn parse_with_files(
         text: &str,
         dialect: Dialect,
-        functions: Vec<spline::SplineFunction>,
+        files: ModelFiles,
     ) -> Result<LSystem, ParseError> {
-        syntax::read::parse_with(text, dialect, None, functions).map_err(|e| e.error)
+        syntax::read::parse_with(text, dialect, None, files).map_err(|e| e.error)
     }
 }
 

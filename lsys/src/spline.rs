@@ -14,6 +14,8 @@
 //! [`DENSE_SAMPLES`] (cpfg searches the curve instead, to within 0.001 in x). Arguments
 //! outside [0, 1] are clamped.
 
+use crate::file_lines::Lines;
+
 /// Samples of a function whose file gives none (or two or fewer).
 pub const DENSE_SAMPLES: usize = 1025;
 /// Most control points of one function (counting repeats).
@@ -226,50 +228,7 @@ fn version(line: &str, word: &str) -> Result<(), String> {
     }
 }
 
-/// The non-empty lines of a function file, with the line number for errors.
-struct Lines<'a> {
-    lines: std::iter::Enumerate<std::str::Lines<'a>>,
-    line: usize,
-}
-
-impl<'a> Lines<'a> {
-    fn new(text: &'a str) -> Self {
-        Lines {
-            lines: text.lines().enumerate(),
-            line: 0,
-        }
-    }
-
-    fn next_line(&mut self) -> Result<&'a str, String> {
-        for (k, l) in self.lines.by_ref() {
-            self.line = k + 1;
-            let l = l.trim();
-            if !l.is_empty() {
-                return Ok(l);
-            }
-        }
-        Err(format!("the file ends after line {}", self.line))
-    }
-
-    fn at(&self, message: impl std::fmt::Display) -> String {
-        format!("line {}: {message}", self.line)
-    }
-
-    /// The value of a `key: value` line.
-    fn field(&mut self, key: &str) -> Result<&'a str, String> {
-        let line = self.next_line()?;
-        line.strip_prefix(key)
-            .map(str::trim)
-            .ok_or_else(|| self.at(format!("expected '{key}', found '{line}'")))
-    }
-
-    fn count(&mut self, key: &str) -> Result<usize, String> {
-        let value = self.field(key)?;
-        value
-            .parse()
-            .map_err(|_| self.at(format!("{key} '{value}': expected a count")))
-    }
-
+impl Lines<'_> {
     /// `count` lines of `x y` (and, with `repeats`, an optional multiplicity).
     fn points(&mut self, count: usize, repeats: bool) -> Result<Vec<[f64; 2]>, String> {
         if count > MAX_POINTS {

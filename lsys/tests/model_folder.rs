@@ -216,7 +216,7 @@ fn function_files_of_the_view_file_are_read_by_id_and_by_name() {
         ],
     );
     let plant = LSystem::from_model_dir(&dir).unwrap();
-    assert_eq!(plant.functions().len(), 2);
+    assert_eq!(plant.files().functions.len(), 2);
     let word = plant.derive(1, 0).unwrap();
     assert!((word.params(0)[0] - 0.5).abs() < 2e-3 && word.params(0)[1] == 2.0);
 }

@@ -2,7 +2,10 @@
 
 use glam::Vec3;
 
-use crate::symbols::SymbolTable;
+use std::sync::Arc;
+
+use crate::model_shapes::ModelShapes;
+use crate::symbols::{Command, SymbolTable};
 
 /// How branch segments become surfaces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -102,6 +105,8 @@ pub struct TurtleOptions {
     /// crown thinned by dieback. Which leaves go is a pure function of their order in the
     /// word, so a tree thins the same way every time.
     pub leaf_keep: f32,
+    /// A cpfg model's surfaces and contours ([`TurtleOptions::with_model_files`]).
+    pub shapes: Arc<ModelShapes>,
 }
 
 impl Default for TurtleOptions {
@@ -129,6 +134,7 @@ impl Default for TurtleOptions {
             max_depth: 1 << 20,
             stem_break: None,
             leaf_keep: 1.0,
+            shapes: Arc::default(),
         }
     }
 }
@@ -269,6 +275,49 @@ impl TurtleOptions {
     pub fn with_symbols(mut self, symbols: SymbolTable) -> Self {
         self.symbols = symbols;
         self
+    }
+
+    /// These options drawing a cpfg model's surfaces where its word has `~` and their letter,
+    /// and sweeping its contours along generalized cylinders after `@#(id)` (set the
+    /// symbols first: this adds the surfaces' names to them).
+    ///
+    /// ```
+    /// use sylva_lsys::LSystem;
+    /// use sylva_turtle::{SymbolTable, TurtleOptions};
+    /// # let dir = std::env::temp_dir().join(format!("sylva-doc-shapes-{}", std::process::id()));
+    /// # std::fs::create_dir_all(&dir)?;
+    /// # std::fs::write(dir.join("plant.l"), "Lsystem: 1\nderivation length: 1\nAxiom: F~l(2)\nendlsystem\n")?;
+    /// # std::fs::write(dir.join("plant.v"), "surface: l leaf.s 1 4 4\n")?;
+    /// # std::fs::write(dir.join("leaf.s"), "0 1 0 1 0 0\nCONTACT POINT X: 0 Y: 0 Z: 0\nEND POINT X: 0 Y: 1 Z: 0\nHEADING X: 0 Y: 1 Z: 0\nUP X: 0 Y: 0 Z: 1\nSIZE: 1\np\n0 0 0 0 0.3 0 0 0.6 0 0 1 0\n0.3 0 0 0.3 0.3 0 0.3 0.6 0 0.3 1 0\n0.6 0 0 0.6 0.3 0 0.6 0.6 0 0.6 1 0\n1 0 0 1 0.3 0 1 0.6 0 1 1 0\n")?;
+    /// let model = LSystem::from_model_dir(&dir)?;
+    /// let options = TurtleOptions::default()
+    ///     .with_symbols(SymbolTable::for_dialect(model.dialect()))
+    ///     .with_model_files(model.files());
+    /// assert_eq!(options, TurtleOptions::for_grammar(&model));
+    /// let word = model.derive(1, 0)?;
+    /// let stats = sylva_turtle::interpret(&word, &options, &mut sylva_turtle::NullSink)?;
+    /// assert_eq!(stats.polygons, 16); // one patch cut 4 by 4
+    /// # std::fs::remove_dir_all(&dir)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_model_files(mut self, files: &sylva_lsys::ModelFiles) -> Self {
+        let shapes = ModelShapes::new(files);
+        for (k, (name, _)) in shapes.surfaces.iter().enumerate() {
+            self.symbols.set(
+                name.as_str(),
+                Command::Surface(k.min(u16::MAX as usize) as u16),
+            );
+        }
+        self.shapes = Arc::new(shapes);
+        self
+    }
+
+    /// The turtle a grammar file draws with: its dialect's symbols ([`SymbolTable::for_dialect`])
+    /// and its model's surfaces and contours ([`TurtleOptions::with_model_files`]).
+    pub fn for_grammar(grammar: &sylva_lsys::LSystem) -> Self {
+        TurtleOptions::default()
+            .with_symbols(SymbolTable::for_dialect(grammar.dialect()))
+            .with_model_files(grammar.files())
     }
 
     /// Options matching a bundled preset's published angle and tropism.

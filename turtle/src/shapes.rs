@@ -5,6 +5,7 @@
 use glam::{Quat, Vec3};
 
 use crate::frame::Frame;
+use crate::model_shapes::Contour;
 
 /// Rings and sectors of a sphere: coarse, since spheres are buds and fruit seen small.
 const SPHERE_RINGS: usize = 6;
@@ -120,6 +121,37 @@ pub(crate) fn curve(points: &[(Vec3, f32)], frame: &Frame) -> Vec<Piece> {
             length: a.distance(b),
             radii: (ra, rb),
         });
+    }
+    out
+}
+
+/// The sheet a contour sweeps along a generalized cylinder's pieces: at the start of each
+/// piece and at the end of the last, the contour across the piece (x along its up, y to
+/// its right) scaled by its radius there; quads join each ring to the next.
+pub(crate) fn sweep(pieces: &[Piece], contour: &Contour) -> Vec<Vec<Vec3>> {
+    let ring = |frame: &Frame, centre: Vec3, radius: f32| -> Vec<Vec3> {
+        contour
+            .points
+            .iter()
+            .map(|p| centre + (frame.up() * p.x - frame.left() * p.y) * radius)
+            .collect()
+    };
+    let mut rings: Vec<Vec<Vec3>> = pieces
+        .iter()
+        .map(|piece| ring(&piece.frame, piece.frame.position, piece.radii.0))
+        .collect();
+    if let Some(last) = pieces.last() {
+        let end = last.frame.position + last.frame.heading() * last.length;
+        rings.push(ring(&last.frame, end, last.radii.1));
+    }
+    let sides = contour.points.len();
+    let around = if contour.closed { sides } else { sides - 1 };
+    let mut out = Vec::with_capacity(rings.len().saturating_sub(1) * around);
+    for pair in rings.windows(2) {
+        for k in 0..around {
+            let next = (k + 1) % sides;
+            out.push(vec![pair[0][k], pair[1][k], pair[1][next], pair[0][next]]);
+        }
     }
     out
 }

@@ -70,6 +70,12 @@ pub enum Command {
     SubStart,
     /// `$` in cpfg: the end of a sub-L-system; the scale before it returns.
     SubEnd,
+    /// `~l(s)`: the model's surface number `k` (cpfg's `~` and the surface's letter), `s`
+    /// times its size ([`TurtleOptions::with_model_files`](crate::TurtleOptions::with_model_files)).
+    Surface(u16),
+    /// `@#(id)`: generalized cylinders from here on in this branch take the model's contour
+    /// `id` as their cross-section (0, or an id the model lacks: a circle).
+    Contour,
     /// Does nothing (cpfg's `@Gt`).
     Ignore,
 }
@@ -195,6 +201,7 @@ impl SymbolTable {
             ("@Gs", Command::CurveStart),
             ("@Gc", Command::CurvePoint),
             ("@Gt", Command::Ignore),
+            ("@#", Command::Contour),
             ("@Ge", Command::CurveEnd),
             ("@v", Command::RollToHorizontal),
             ("?", Command::SubStart),

@@ -4,7 +4,7 @@ use crate::engine::eval::{Op, Span, element_at, eval, offset};
 use crate::engine::random::Random;
 use crate::model::expr::elements;
 use crate::model::statement::Statement;
-use crate::spline::SplineFunction;
+use crate::model_files::ModelFiles;
 
 /// Most statements one run of a block may execute: a loop that never ends stops here with
 /// an error instead of hanging the derivation.
@@ -125,7 +125,7 @@ fn emit(statements: &[Statement], ops: &mut Vec<Op>, out: &mut Vec<Instruction>,
 pub(crate) fn run(
     block: &[Instruction],
     ops: &[Op],
-    (vars, globals, functions): (&mut [f64], &mut [f64], &[SplineFunction]),
+    (vars, globals, files): (&mut [f64], &mut [f64], &ModelFiles),
     generation: f64,
     rng: &mut Random,
     stack: &mut Vec<f64>,
@@ -137,7 +137,7 @@ pub(crate) fn run(
         |span: Span, vars: &[f64], globals: &[f64], rng: &mut Random, stack: &mut Vec<f64>| {
             eval(
                 &ops[span.0 as usize..span.1 as usize],
-                (vars, globals, functions),
+                (vars, globals, files),
                 generation,
                 rng,
                 stack,

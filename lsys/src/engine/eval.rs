@@ -2,7 +2,7 @@
 
 use crate::engine::random::Random;
 use crate::model::expr::{BinaryOp, Expr, Function, UnaryOp, elements};
-use crate::spline::SplineFunction;
+use crate::model_files::ModelFiles;
 
 /// A range (start, end) into one of the compiled flat tables: ops, items, instructions.
 pub(crate) type Span = (u32, u32);
@@ -63,7 +63,7 @@ impl Expr {
         self.compile_raw(&mut ops);
         eval(
             &ops,
-            (&[], &[], &[]),
+            (&[], &[], &ModelFiles::NONE),
             generation,
             &mut Random::new(rng_seed),
             &mut Vec::new(),
@@ -114,8 +114,8 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
             left && right
         }
         Expr::Call(f, args) => {
-            // A spline function's values are the model's, not known while compiling.
-            let mut constant = !f.is_random() && !matches!(f, Function::Func | Function::Stop);
+            // A model file's values are the model's, not known while compiling.
+            let mut constant = f.is_pure();
             for a in args {
                 constant &= compile_folding(a, out);
             }
@@ -126,7 +126,7 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
     if constant {
         let value = eval(
             &out[start..],
-            (&[], &[], &[]),
+            (&[], &[], &ModelFiles::NONE),
             0.0,
             &mut Random::new(0),
             &mut Vec::new(),
@@ -177,7 +177,7 @@ pub(crate) fn element_at(offset: f64, len: u32) -> usize {
 #[inline]
 pub(crate) fn eval(
     ops: &[Op],
-    (vars, globals, functions): (&[f64], &[f64], &[SplineFunction]),
+    (vars, globals, files): (&[f64], &[f64], &ModelFiles),
     generation: f64,
     rng: &mut Random,
     stack: &mut Vec<f64>,
@@ -220,24 +220,39 @@ pub(crate) fn eval(
                     *slot = *v;
                 }
                 stack.truncate(at);
-                stack.push(match f {
-                    // func(id, x): the model's function `id` (from 1) at x; 0 for an id it
-                    // does not have, as cpfg gives (the parser refuses constant ones).
-                    Function::Func => {
-                        let id = args[0];
-                        let k = id as usize;
-                        if id >= 1.0 && id.fract() == 0.0 && k <= functions.len() {
-                            functions[k - 1].value(args[1])
-                        } else {
-                            0.0
-                        }
-                    }
-                    _ => f.apply(&args[..n.max(1)], rng),
+                stack.push(if f.reads_files() {
+                    files.value(f, args[0], args[1])
+                } else {
+                    f.apply(&args[..n.max(1)], rng)
                 });
             }
         }
     }
     stack.pop().unwrap_or(0.0)
+}
+
+impl ModelFiles {
+    /// The value of `f`, a function reading the model's files, at `id` (from 1) and `x`; 0
+    /// for an id the model does not have, as cpfg gives (the parser refuses constant ones).
+    fn value(&self, f: Function, id: f64, x: f64) -> f64 {
+        let k = if id >= 1.0 && id.fract() == 0.0 {
+            id as usize - 1
+        } else {
+            usize::MAX
+        };
+        if f == Function::Func {
+            return self.functions.get(k).map_or(0.0, |g| g.value(x));
+        }
+        let Some(curve) = self.curves.get(k) else {
+            return 0.0;
+        };
+        match f {
+            Function::CurveX => curve.at_length(x)[0],
+            Function::CurveY => curve.at_length(x)[1],
+            Function::CurveZ => curve.at_length(x)[2],
+            _ => curve.length(),
+        }
+    }
 }
 
 impl BinaryOp {
@@ -298,8 +313,12 @@ impl Function {
             Function::Nran => a + b * rng.normal(),
             Function::Bran => rng.beta(a, b),
             Function::Biran => rng.binomial(a, b),
-            // Evaluated by `eval`, which has the model's functions.
-            Function::Func => 0.0,
+            // Evaluated by `eval`, which has the model's files.
+            Function::Func
+            | Function::CurveX
+            | Function::CurveY
+            | Function::CurveZ
+            | Function::CurveLength => 0.0,
         }
     }
 }
@@ -327,7 +346,7 @@ mod tests {
         e.compile(&mut ops);
         eval(
             &ops,
-            (&[x], &[], &[]),
+            (&[x], &[], &ModelFiles::NONE),
             3.0,
             &mut Random::new(0),
             &mut Vec::new(),

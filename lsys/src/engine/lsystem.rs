@@ -11,7 +11,7 @@ use crate::model::expr::{Expr, MAX_EXPR_DEPTH, MAX_NESTING};
 use crate::model::grammar::{ModuleTemplate, Production, RuleSet, SuccessorItem};
 use crate::model::statement::{Blocks, Statement, expressions};
 use crate::model::word::Word;
-use crate::spline::SplineFunction;
+use crate::model_files::ModelFiles;
 
 /// A parsed, compiled L-system: axiom, productions, constants and the context ignore set.
 ///
@@ -52,8 +52,8 @@ pub struct LSystem {
     /// (start, start each, end each, end).
     pub(crate) blocks: Blocks,
     pub(crate) block_spans: [Span; 4],
-    /// The model's function files, for `func(id, x)` (id 1 is the first).
-    pub(crate) functions: Arc<[SplineFunction]>,
+    /// The data files the model reads (functions, curves, contours, surfaces).
+    pub(crate) files: Arc<ModelFiles>,
 }
 
 impl PartialEq for LSystem {
@@ -69,7 +69,7 @@ impl PartialEq for LSystem {
             && self.globals == other.globals
             && self.subsystems == other.subsystems
             && self.blocks == other.blocks
-            && self.functions == other.functions
+            && self.files == other.files
     }
 }
 
@@ -154,7 +154,7 @@ impl LSystem {
             globals: Vec::new(),
             blocks: Blocks::default(),
             block_spans: [(0, 0); 4],
-            functions: Arc::new([]),
+            files: Arc::default(),
         })
     }
 
@@ -284,16 +284,17 @@ impl LSystem {
         self
     }
 
-    /// This system with the function files `func(id, x)` reads (id 1 is the first); a model
-    /// folder's are read by [`LSystem::from_model_dir`].
-    pub fn with_functions(mut self, functions: Vec<SplineFunction>) -> LSystem {
-        self.functions = functions.into();
+    /// This system with the data files its expressions read (`func`, `curveX`, ...) and
+    /// its turtle draws (surfaces, contours); a model folder's are read by
+    /// [`LSystem::from_model_dir`].
+    pub fn with_files(mut self, files: ModelFiles) -> LSystem {
+        self.files = Arc::new(files);
         self
     }
 
-    /// The function files `func(id, x)` reads.
-    pub fn functions(&self) -> &[SplineFunction] {
-        &self.functions
+    /// The data files the model reads: its functions, curves, contours and surfaces.
+    pub fn files(&self) -> &ModelFiles {
+        &self.files
     }
 
     /// This system marked as read from `dialect`.

@@ -107,6 +107,15 @@ pub enum Function {
     /// `func(id, x)`: the model's function file `id` (from 1) at `x` in [0, 1] (cpfg; the
     /// functions of a model folder, [`crate::spline`]).
     Func,
+    /// `curveX(id, t)`: the x of the model's curve file `id` (from 1) a fraction `t` of its
+    /// length along it (cpfg; [`crate::curve`]).
+    CurveX,
+    /// `curveY(id, t)`: the y, as [`Function::CurveX`].
+    CurveY,
+    /// `curveZ(id, t)`: the z, as [`Function::CurveX`].
+    CurveZ,
+    /// `curveGAL(id)`: the length of the model's curve file `id` (cpfg).
+    CurveLength,
     /// `stop(n)`: `n`, and unless `n` is 1 the derivation ends after the step under way
     /// (cpfg; `stop(1)` only asks cpfg's window to draw the word, which means nothing here).
     Stop,
@@ -135,6 +144,10 @@ pub(crate) const FUNCTIONS: &[(&str, Function, usize)] = &[
     ("biran", Function::Biran, 2),
     ("select", Function::Select, 3),
     ("func", Function::Func, 2),
+    ("curveX", Function::CurveX, 2),
+    ("curveY", Function::CurveY, 2),
+    ("curveZ", Function::CurveZ, 2),
+    ("curveGAL", Function::CurveLength, 1),
     ("stop", Function::Stop, 1),
     // cpfg's C spelling of abs.
     ("fabs", Function::Abs, 1),
@@ -149,6 +162,24 @@ impl Function {
     /// Number of arguments.
     pub fn arity(self) -> usize {
         FUNCTIONS.iter().find(|f| f.1 == self).map_or(0, |f| f.2)
+    }
+
+    /// Whether the function reads one of the model's files (`func`, the curves).
+    pub fn reads_files(self) -> bool {
+        matches!(
+            self,
+            Function::Func
+                | Function::CurveX
+                | Function::CurveY
+                | Function::CurveZ
+                | Function::CurveLength
+        )
+    }
+
+    /// Whether a call's value depends on its arguments alone, known while compiling: not
+    /// a random draw, not a model file's value, not `stop`.
+    pub(crate) fn is_pure(self) -> bool {
+        !self.is_random() && !self.reads_files() && self != Function::Stop
     }
 
     /// Whether the function draws from the derivation's random stream.
@@ -251,9 +282,7 @@ impl Expr {
             Expr::Var { .. } | Expr::Global { .. } | Expr::Element { .. } | Expr::Generation => {
                 false
             }
-            Expr::Call(f, _) if f.is_random() || matches!(f, Function::Func | Function::Stop) => {
-                false
-            }
+            Expr::Call(f, _) if !f.is_pure() => false,
             _ => self.children().all(Expr::is_constant),
         }
     }

@@ -179,11 +179,18 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                             .iter()
                             .take_while(|l| !ends_statement(l))
                             .count();
-                    let end = if lines[i + 1..run].iter().any(|l| has_arrow(l)) {
-                        i + 1
-                    } else {
-                        run
-                    };
+                    // A production's block may hold blank lines before its arrow: the
+                    // statement the next line starts is read whole to see.
+                    let production_follows = run > i + 1
+                        && lines[i + 1..continuation(&lines, i + 1)]
+                            .iter()
+                            .any(|l| has_arrow(l));
+                    let end =
+                        if production_follows || lines[i + 1..run].iter().any(|l| has_arrow(l)) {
+                            i + 1
+                        } else {
+                            run
+                        };
                     let joined = Joined::new(&lines[i..end], n);
                     let mut cur = Cursor::new(&joined.chars, n);
                     cur.set_pos(after);
@@ -287,18 +294,35 @@ fn ends_statement(line: &[char]) -> bool {
     is_blank(line) || is_directive(line) || keyword(line).is_some()
 }
 
-/// Where the statement starting at line `i` ends (exclusive): at a blank line, a keyword, a
-/// directive, or, once the statement has its arrow, at a line that begins the next
-/// production: one with an arrow, or one with a condition (`:`) whose arrow comes on a later
-/// line.
+/// Where the statement starting at line `i` ends (exclusive): at a blank line outside a
+/// statement block, a keyword, a directive, or, once the statement has its arrow, at a line
+/// that begins the next production: one with an arrow, or one with a condition (`:`) whose
+/// arrow comes on a later line.
 fn continuation(lines: &[&[char]], i: usize) -> usize {
     let mut arrow = has_arrow(lines[i]);
+    // Inside a statement block a blank line (a comment's, once comments are gone) is part
+    // of the block.
+    let braces = |line: &[char]| {
+        line.iter()
+            .map(|&c| match c {
+                '{' => 1i64,
+                '}' => -1,
+                _ => 0,
+            })
+            .sum::<i64>()
+    };
+    let mut open = braces(lines[i]);
     let mut j = i + 1;
     while j < lines.len() {
         let line = lines[j];
+        if open > 0 && is_blank(line) {
+            j += 1;
+            continue;
+        }
         if ends_statement(line) {
             break;
         }
+        open += braces(line);
         if arrow && has_arrow(line) {
             break;
         }

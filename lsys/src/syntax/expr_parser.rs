@@ -33,6 +33,10 @@ pub(crate) trait Scope {
     fn functions(&self) -> usize {
         0
     }
+    /// How many curve files `curveX(id, t)` and the others may read.
+    fn curves(&self) -> usize {
+        0
+    }
 }
 
 /// Parses one expression at the cursor. Stops before any character that cannot continue it.
@@ -369,8 +373,8 @@ impl ExprParser<'_, '_> {
                 ),
             ));
         }
-        if func == Function::Func {
-            self.check_function(&args[0], start)?;
+        if func.reads_files() {
+            self.check_file(func, &args[0], start)?;
         }
         if self.scope.degrees() {
             return self.in_degrees(func, args, start, depth);
@@ -378,13 +382,21 @@ impl ExprParser<'_, '_> {
         self.node(start, depth, || Expr::Call(func, args))
     }
 
-    /// `func(id, x)` needs the model's function files, and a constant id one of them.
-    fn check_function(&self, id: &Expr, start: usize) -> Result<(), ParseError> {
-        let count = self.scope.functions();
+    /// `func(id, x)` needs the model's function files and `curveX(id, t)` and the others
+    /// its curve files, and a constant id one of them.
+    fn check_file(&self, func: Function, id: &Expr, start: usize) -> Result<(), ParseError> {
+        let (count, files) = if func == Function::Func {
+            (self.scope.functions(), "function")
+        } else {
+            (self.scope.curves(), "curve")
+        };
+        let name = func.name();
         if count == 0 {
             return Err(self.cur.error_at(
                 start,
-                "unsupported: func(id, x) reads the model's function files: load the model's folder (LSystem::from_model_dir, or give sylva the folder or its .l file)",
+                format!(
+                    "unsupported: {name}(id, ...) reads the model's {files} files: load the model's folder (LSystem::from_model_dir, or give sylva the folder or its .l file)"
+                ),
             ));
         }
         if id.is_constant() {
@@ -392,7 +404,7 @@ impl ExprParser<'_, '_> {
             if !(k >= 1.0 && k.fract() == 0.0 && k <= count as f64) {
                 return Err(self.cur.error_at(
                     start,
-                    format!("func({k}, ...): the model has functions 1 to {count}"),
+                    format!("{name}({k}, ...): the model has {files}s 1 to {count}"),
                 ));
             }
         }

@@ -5,7 +5,7 @@
 use crate::engine::lsystem::LSystem;
 use crate::error::ParseError;
 use crate::model::dialect::Dialect;
-use crate::spline::SplineFunction;
+use crate::model_files::ModelFiles;
 use crate::syntax::comments::{strip_block_comments, strip_line_comments};
 use crate::syntax::cursor::Cursor;
 use crate::syntax::parser::{CPFG_LONG_NAMES, GrammarParser, MAX_GRAMMAR_BYTES};
@@ -19,7 +19,7 @@ pub(crate) fn parse(text: &str) -> Result<LSystem, ParseError> {
 
 /// Parses `text` as `dialect`.
 pub(crate) fn parse_dialect(text: &str, dialect: Dialect) -> Result<LSystem, ParseError> {
-    parse_with(text, dialect, None, Vec::new()).map_err(|e| e.error)
+    parse_with(text, dialect, None, ModelFiles::default()).map_err(|e| e.error)
 }
 
 /// A parse error and the included file it is in (`None`: the model's own text).
@@ -35,15 +35,15 @@ impl From<ParseError> for SourcedError {
     }
 }
 
-/// Parses `text` as `dialect`, cpfg's `#include`s read by `includes` when given, `func(id,
-/// x)` reading `functions` (the names of a function set's functions are defined as their
-/// ids, as cpfg defines them); errors in the lines of an included file name that file and
+/// Parses `text` as `dialect`, cpfg's `#include`s read by `includes` when given, its
+/// expressions reading `files` (the names of a function set's functions are defined as
+/// their ids, as cpfg defines them); errors in the lines of an included file name that file and
 /// its own line.
 pub(crate) fn parse_with(
     text: &str,
     dialect: Dialect,
     includes: Option<&mut dyn Includes>,
-    functions: Vec<SplineFunction>,
+    files: ModelFiles,
 ) -> Result<LSystem, SourcedError> {
     if text.len() > MAX_GRAMMAR_BYTES {
         return Err(ParseError::new(
@@ -58,7 +58,8 @@ pub(crate) fn parse_with(
     let src: Vec<char> = text.chars().collect();
     let src = strip_block_comments(&src)?;
     let mut p = GrammarParser::new(dialect, assigned_names(&src));
-    p.functions = functions.len();
+    p.functions = files.functions.len();
+    p.curves = files.curves.len();
     match dialect {
         Dialect::Sylva => {
             for (n, line) in src.split(|&c| c == '\n').enumerate() {
@@ -70,7 +71,8 @@ pub(crate) fn parse_with(
             // cpfg files go through the C preprocessor, which ends a line at '//' and
             // expands macros.
             let src = strip_line_comments(&src);
-            let named: Vec<(String, String)> = functions
+            let named: Vec<(String, String)> = files
+                .functions
                 .iter()
                 .enumerate()
                 .filter_map(|(k, f)| Some((f.name.clone()?, (k + 1).to_string())))
@@ -79,6 +81,13 @@ pub(crate) fn parse_with(
             let src = pre.lines.join(&'\n');
             p.globals = assigned_names(&src);
             p.add_long_names(CPFG_LONG_NAMES.iter().copied());
+            // `~` and a surface's letter draw that surface: one module.
+            let surfaces: Vec<String> = files
+                .surfaces
+                .iter()
+                .map(|s| format!("~{}", s.letter))
+                .collect();
+            p.add_long_names(surfaces.iter().map(String::as_str));
             // Lines of included files moved the model's own: each error goes back to the
             // file and line it came from.
             let place = |e: ParseError| {
@@ -98,7 +107,7 @@ pub(crate) fn parse_with(
                 }
             };
             crate::syntax::cpfg::read(&src, &mut p).map_err(place)?;
-            return Ok(p.finish().map_err(place)?.with_functions(functions));
+            return Ok(p.finish().map_err(place)?.with_files(files));
         }
         Dialect::LPy => {
             // The declarative subset has no statement blocks: a name assigned in Python
@@ -109,5 +118,5 @@ pub(crate) fn parse_with(
             crate::syntax::lpy::read(&src, &mut p)?
         }
     }
-    Ok(p.finish()?.with_functions(functions))
+    Ok(p.finish()?.with_files(files))
 }

@@ -52,6 +52,9 @@ struct State {
     /// turtle moves on but draws nothing. Kept per branch, so branches that left the trunk
     /// below the break, and restored by their `]`, draw.
     broken: bool,
+    /// The contour generalized cylinders take as their cross-section (`@#(id)`; 0 a
+    /// circle).
+    contour: u32,
 }
 
 /// Interprets `word` with the turtle described by `options`, sending geometry to `sink`.
@@ -111,10 +114,24 @@ pub fn interpret<S: GeometrySink + ?Sized>(
             Command::TropismDirection | Command::TropismSusceptibility => {
                 turtle.tropism(command, args)?;
             }
+            Command::Surface(k) => turtle.surface(usize::from(k), args)?,
+            Command::Contour => {
+                turtle.state.contour = args.get(0)?.map_or(0, |id| id.max(0.0) as u32);
+            }
             Command::Ignore => {}
         }
     }
     Ok(turtle.finish())
+}
+
+/// A generalized cylinder between its `@Gs` and its `@Ge`.
+struct OpenCylinder {
+    /// Control points: position and radius.
+    points: Vec<(Vec3, f32)>,
+    /// The turtle's frame at the start.
+    frame: Frame,
+    /// The contour in force at the start (0: a circle).
+    contour: u32,
 }
 
 /// One module's actual parameters, with where it is for errors.
@@ -153,9 +170,8 @@ struct Turtle<'o, 's, S: GeometrySink + ?Sized> {
     state: State,
     stack: Vec<State>,
     polygons: Vec<Vec<Vec3>>,
-    /// The control points of the generalized cylinder being traced, and the frame it
-    /// started with.
-    curve: Option<(Vec<(Vec3, f32)>, Frame)>,
+    /// The generalized cylinder being traced.
+    curve: Option<OpenCylinder>,
     /// The step, width and scale before each open sub-L-system (cpfg's `?(id, scale)` ...
     /// `$`).
     sub_scales: Vec<(f32, f32, f32)>,
@@ -187,6 +203,7 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
                 tropism: options.tropism,
                 colour: 0,
                 broken: false,
+                contour: 0,
             },
             stack: Vec::new(),
             polygons: Vec::new(),
@@ -363,16 +380,53 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
         Ok(())
     }
 
+    /// `~l(s)`: the model's surface `k` at the turtle, `s` (default 1) times its size.
+    fn surface(&mut self, k: usize, args: Args) -> Result<(), TurtleError> {
+        let size = args.get(0)?.unwrap_or(1.0) * self.scale * self.options.length_unit;
+        let Some((_, quads)) = self.options.shapes.surfaces.get(k) else {
+            return Ok(());
+        };
+        if self.state.broken {
+            return Ok(());
+        }
+        let frame = self.state.frame;
+        let axes = [frame.heading(), frame.left(), frame.up()];
+        let mut drawn = 0u32;
+        for quad in quads.iter() {
+            let mut face: Vec<Vec3> = Vec::with_capacity(4);
+            for p in quad {
+                let q = frame.position + (axes[0] * p.x + axes[1] * p.y + axes[2] * p.z) * size;
+                // Where a patch narrows to a point two corners meet: a triangle.
+                if face
+                    .last()
+                    .is_none_or(|last| last.distance(q) > 1e-7 * (1.0 + q.length()))
+                {
+                    face.push(q);
+                }
+            }
+            if face.len() >= 3 {
+                self.sink.polygon(&face);
+                drawn += 1;
+            }
+        }
+        self.stats.polygons = self.stats.polygons.saturating_add(drawn);
+        Ok(())
+    }
+
     /// A generalized cylinder: started, a control point added, or ended and emitted as
     /// segments along the smooth curve through its points.
     fn curve(&mut self, command: Command) {
         let radius = self.radius();
         let position = self.state.frame.position;
         if command == Command::CurveStart {
-            self.curve = Some((vec![(position, radius)], self.state.frame));
+            self.curve = Some(OpenCylinder {
+                points: vec![(position, radius)],
+                frame: self.state.frame,
+                contour: self.state.contour,
+            });
             return;
         }
-        if let Some((points, _)) = &mut self.curve
+        if let Some(OpenCylinder { points, .. }) = &mut self.curve
             && points.last().map(|p| p.0) != Some(position)
             && points.len() < MAX_CURVE_POINTS
         {
@@ -381,11 +435,30 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
         if command != Command::CurveEnd {
             return;
         }
-        let Some((points, frame)) = self.curve.take() else {
+        let Some(OpenCylinder {
+            points,
+            frame,
+            contour,
+        }) = self.curve.take()
+        else {
             return;
         };
+        let pieces = crate::shapes::curve(&points, &frame);
+        // A contour's cylinder is a sheet of quads the sink takes as polygons; a circle's
+        // is segments, tubes like the branches'.
+        if let Some(contour) = self.options.shapes.contour(contour).filter(|_| contour > 0) {
+            if self.state.broken {
+                return;
+            }
+            let faces = crate::shapes::sweep(&pieces, contour);
+            for face in &faces {
+                self.sink.polygon(face);
+            }
+            self.stats.polygons = self.stats.polygons.saturating_add(faces.len() as u32);
+            return;
+        }
         let mut parent = self.state.last;
-        for (k, piece) in crate::shapes::curve(&points, &frame).iter().enumerate() {
+        for (k, piece) in pieces.iter().enumerate() {
             self.sink.segment(&Segment {
                 id: self.next_id,
                 parent,

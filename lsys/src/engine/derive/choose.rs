@@ -37,7 +37,7 @@ impl Deriver<'_> {
                 }
                 let v = eval(
                     &c.ops[a as usize..b as usize],
-                    (&self.vars, &self.globals, &self.grammar.functions),
+                    (&self.vars, &self.globals, &self.grammar.files),
                     generation,
                     &mut self.rng,
                     &mut self.stack,

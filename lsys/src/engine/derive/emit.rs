@@ -27,7 +27,7 @@ impl Deriver<'_> {
                         let (lo, hi) = c.args[a as usize];
                         let v = eval(
                             &c.ops[lo as usize..hi as usize],
-                            (&self.vars, &self.globals, &self.grammar.functions),
+                            (&self.vars, &self.globals, &self.grammar.files),
                             generation,
                             &mut self.rng,
                             &mut self.stack,
@@ -54,7 +54,7 @@ impl Deriver<'_> {
                     let (lo, hi) = probability;
                     let p = eval(
                         &c.ops[lo as usize..hi as usize],
-                        (&self.vars, &self.globals, &self.grammar.functions),
+                        (&self.vars, &self.globals, &self.grammar.files),
                         generation,
                         &mut self.rng,
                         &mut self.stack,

@@ -408,7 +408,7 @@ impl<'g> Deriver<'g> {
         let run = block::run(
             &compiled.blocks[span.0 as usize..span.1 as usize],
             &compiled.ops,
-            (&mut self.vars, &mut self.globals, &self.grammar.functions),
+            (&mut self.vars, &mut self.globals, &self.grammar.files),
             generation,
             &mut self.rng,
             &mut self.stack,

@@ -38,6 +38,8 @@ struct Names<'a> {
     globals: &'a [String],
     /// How many function files the model has.
     functions: usize,
+    /// How many curve files the model has.
+    curves: usize,
     /// The grammar's arrays of block variables.
     arrays: &'a [Array],
 }
@@ -54,6 +56,9 @@ impl Scope for Names<'_> {
     }
     fn functions(&self) -> usize {
         self.functions
+    }
+    fn curves(&self) -> usize {
+        self.curves
     }
     fn array(&self, name: &str) -> Option<(u16, Vec<u32>)> {
         self.arrays
@@ -79,6 +84,7 @@ impl GrammarParser {
             degrees: self.dialect == Dialect::Cpfg,
             globals: &self.globals,
             functions: self.functions,
+            curves: self.curves,
             arrays: &self.blocks.arrays,
         }
     }
@@ -138,6 +144,7 @@ impl GrammarParser {
             constant_at: Vec::new(),
             ignore: Vec::new(),
             functions: 0,
+            curves: 0,
             axiom: None,
             productions: Vec::new(),
         }
@@ -254,6 +261,7 @@ pub(crate) fn parse_modules(
         degrees: false,
         globals: &[],
         functions: 0,
+        curves: 0,
         arrays: &[],
     };
     let mut params = Vec::new();
@@ -381,6 +389,8 @@ pub(crate) struct GrammarParser {
     pub(crate) ignore: Vec<SymbolId>,
     /// How many function files `func(id, x)` may read (a model folder's).
     pub(crate) functions: usize,
+    /// How many curve files `curveX(id, t)` and the others may read.
+    pub(crate) curves: usize,
     /// The axiom and where each of its modules starts.
     axiom: Option<(Vec<ModuleTemplate>, Vec<Location>)>,
     /// The productions, where each starts and its section.
