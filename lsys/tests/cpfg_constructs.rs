@@ -1,6 +1,7 @@
 //! Known answers for cpfg's constructs beyond ABOP's notation, each worked by hand and read
 //! back from sylva's notation: a section's maximum depth, `=` in right contexts, brackets in
-//! string predecessors, `define:` arrays, `stop(n)` and the refused file functions.
+//! string predecessors, `define:` arrays, `stop(n)`, the refused file functions and ring
+//! L-systems.
 
 use sylva_lsys::{Dialect, LSystem};
 
@@ -116,4 +117,54 @@ fn cpfg_stop_ends_the_derivation_and_file_functions_are_refused() {
         "{err}"
     );
     assert_eq!((err.location.line, err.location.column), (2, 14), "{err}");
+}
+
+/// vlab's Ring model: a decomposition lays out 31 B and one A in a ring, and the A passes
+/// round it, one place a step, leftward or rightward as `dir` says; past the word's end it
+/// comes back at its start.
+#[test]
+fn a_ring_lsystem_passes_its_signal_round() {
+    let ring = |dir: u32| {
+        format!(
+            "#define dir {dir}\n#define NR 8\nLsystem: 0\nring lsystem\nderivation length: 1\n\
+             Axiom: X(NR)\nA < B : dir==0 --> A\nB > A : dir==1 --> A\nA --> B\n\
+             decomposition\nmaximum depth: 100\nX(n) : n>1 --> X(n-1)B\nX(n) : n==1 --> A\nendlsystem\n"
+        )
+    };
+    let forward = LSystem::parse_dialect(&ring(0), Dialect::Cpfg).unwrap();
+    assert!(forward.is_ring());
+    // The axiom decomposes to A B B B B B B B; by hand each step moves the A one place
+    // right, and the eighth brings it back.
+    assert_eq!(forward.derive(0, 0).unwrap().to_string(), "ABBBBBBB");
+    assert_eq!(forward.derive(1, 0).unwrap().to_string(), "BABBBBBB");
+    assert_eq!(forward.derive(7, 0).unwrap().to_string(), "BBBBBBBA");
+    assert_eq!(forward.derive(8, 0).unwrap().to_string(), "ABBBBBBB");
+    // With dir 1 the A moves left: from the first place to the last at once (its right
+    // context wraps from the end of the word).
+    let back = LSystem::parse_dialect(&ring(1), Dialect::Cpfg).unwrap();
+    assert_eq!(back.derive(1, 0).unwrap().to_string(), "BBBBBBBA");
+    // Printed in sylva's notation with #ring, it reads back and derives the same.
+    let printed = forward.to_string();
+    assert!(printed.contains("#ring"), "{printed}");
+    let again = LSystem::parse(&printed).unwrap();
+    assert_eq!(again.derive(5, 0).unwrap(), forward.derive(5, 0).unwrap());
+}
+
+/// The ring joins the word's ends only: a context walk from inside a branch still ends at
+/// the branch's `]`, and a walk that goes all the way round without a match fails.
+#[test]
+fn a_ring_joins_the_ends_of_the_word_only() {
+    // B's right context: in the branch, `]` comes first (no match); at the top level the
+    // walk wraps past the end to the first module, A.
+    let g = LSystem::parse("#ring\naxiom: A[B]B\nB > A -> C").unwrap();
+    assert_eq!(g.derive(1, 0).unwrap().to_string(), "A[B]C");
+    // Nothing matches round the whole ring: the walk ends after one turn (no hang).
+    let none = LSystem::parse("#ring\naxiom: BBB\nA < B -> C\nB > A -> C").unwrap();
+    assert_eq!(none.derive(3, 0).unwrap().to_string(), "BBB");
+    // A ring of one module is its own neighbour.
+    let one = LSystem::parse("#ring\naxiom: A\nA < A -> B").unwrap();
+    assert_eq!(one.derive(1, 0).unwrap().to_string(), "B");
+    // #ring takes nothing after it.
+    let err = LSystem::parse("#ring now\naxiom: A").unwrap_err();
+    assert_eq!((err.location.line, err.location.column), (1, 7), "{err}");
 }

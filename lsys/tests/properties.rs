@@ -245,3 +245,29 @@ proptest! {
         );
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// A ring has no first module: turning the axiom round by `k` places turns every word
+    /// derived from it by `k` (each production here writes one module, so places keep).
+    #[test]
+    fn a_ring_derives_the_same_from_any_starting_place(
+        word in proptest::collection::vec(prop_oneof![Just('A'), Just('B'), Just('C')], 1..24),
+        k in 0usize..24,
+        steps in 0u32..6,
+    ) {
+        let rules = "#ring\nA < B > C -> A\nB < A -> C\nC > A -> B\nA < C -> A";
+        let turn = |w: &str, by: usize| {
+            let chars: Vec<char> = w.chars().collect();
+            let by = by % chars.len();
+            chars[by..].iter().chain(&chars[..by]).collect::<String>()
+        };
+        let axiom: String = word.iter().collect();
+        let g = LSystem::parse(&format!("axiom: {axiom}\n{rules}")).unwrap();
+        let turned = LSystem::parse(&format!("axiom: {}\n{rules}", turn(&axiom, k))).unwrap();
+        let a = g.derive(steps, 0).unwrap().to_string();
+        let b = turned.derive(steps, 0).unwrap().to_string();
+        prop_assert_eq!(turn(&a, k), b);
+    }
+}

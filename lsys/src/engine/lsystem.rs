@@ -54,6 +54,9 @@ pub struct LSystem {
     pub(crate) block_spans: [Span; 4],
     /// The data files the model reads (functions, curves, contours, surfaces).
     pub(crate) files: Arc<ModelFiles>,
+    /// Whether the word is a ring for contexts (cpfg's `ring lsystem`): the first module's
+    /// left neighbour is the last, the last's right neighbour the first.
+    pub(crate) ring: bool,
 }
 
 impl PartialEq for LSystem {
@@ -70,6 +73,7 @@ impl PartialEq for LSystem {
             && self.subsystems == other.subsystems
             && self.blocks == other.blocks
             && self.files == other.files
+            && self.ring == other.ring
     }
 }
 
@@ -155,6 +159,7 @@ impl LSystem {
             blocks: Blocks::default(),
             block_spans: [(0, 0); 4],
             files: Arc::default(),
+            ring: false,
         })
     }
 
@@ -295,6 +300,31 @@ impl LSystem {
     /// The data files the model reads: its functions, curves, contours and surfaces.
     pub fn files(&self) -> &ModelFiles {
         &self.files
+    }
+
+    /// This system with its word a ring for contexts, or not (cpfg's `ring lsystem`): a
+    /// left context walks on from the word's start to its end, a right context from its end
+    /// to its start.
+    ///
+    /// ```
+    /// use sylva_lsys::LSystem;
+    /// // Information passed round a ring: the A moves one place right each step, and from
+    /// // the last place to the first.
+    /// let ring = LSystem::parse("axiom: BBA\nA < B -> A\nA -> B")?.with_ring(true);
+    /// assert_eq!(ring.derive(1, 0)?.to_string(), "ABB");
+    /// assert_eq!(ring.derive(3, 0)?.to_string(), "BBA");
+    /// let line = ring.with_ring(false);
+    /// assert_eq!(line.derive(1, 0)?.to_string(), "BBB");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_ring(mut self, ring: bool) -> LSystem {
+        self.ring = ring;
+        self
+    }
+
+    /// Whether the word is a ring for contexts ([`LSystem::with_ring`]).
+    pub fn is_ring(&self) -> bool {
+        self.ring
     }
 
     /// This system marked as read from `dialect`.

@@ -216,13 +216,7 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                 "warnings" | "no warnings" => {}
                 // The derivation's seed is the caller's choice here (`derive`'s `seed`).
                 "seed:" => {}
-                "ring lsystem" => {
-                    return Err(unsupported(
-                        n,
-                        indent,
-                        "ring L-systems (a circular word for contexts)",
-                    ));
-                }
+                "ring lsystem" => p.ring = true,
                 "endlsystem" => ended = true,
                 "start:" | "end:" | "starteach:" | "endeach:" => {
                     // The block runs over as many lines as its braces take.

@@ -234,6 +234,9 @@ impl fmt::Display for LSystem {
         if let Some(n) = self.derivation_length {
             writeln!(f, "#derivation {n}")?;
         }
+        if self.ring {
+            writeln!(f, "#ring")?;
+        }
         // Names of several characters, and single characters sylva's notation reserves
         // (modules of other dialects), are declared so that they read back.
         let long: Vec<&str> = a

@@ -89,12 +89,26 @@ impl Deriver<'_> {
     }
 
     /// The nearest module left of `i` a left context can name (`u32::MAX` for none): ignored
-    /// modules and `[` are stepped over, a branch `[...]` is skipped from its `]`.
+    /// modules and `[` are stepped over, a branch `[...]` is skipped from its `]`. In a ring
+    /// L-system the start of the word joins its end: the walk goes on from the last module,
+    /// once round at most.
     fn walk_left(&self, cur: &Word, i: usize) -> u32 {
         let ignored = &self.compiled().ignored;
         let mut j = i;
-        while j > 0 {
+        let mut wrapped = false;
+        loop {
+            if j == 0 {
+                if !self.grammar.ring || wrapped {
+                    return u32::MAX;
+                }
+                wrapped = true;
+                j = cur.len();
+                continue;
+            }
             j -= 1;
+            if wrapped && j < i {
+                return u32::MAX;
+            }
             let s = cur.symbols[j];
             if s == POP {
                 match self.partner[j] {
@@ -105,16 +119,28 @@ impl Deriver<'_> {
                 return j as u32;
             }
         }
-        u32::MAX
     }
 
     /// The nearest module from `from` on that a right context can name (`u32::MAX` for
     /// none): ignored modules and whole branches are stepped over; the end of the current
-    /// branch ends the walk.
+    /// branch ends the walk. In a ring L-system the end of the word joins its start: the
+    /// walk goes on from the first module, once round at most.
     fn walk_right(&self, cur: &Word, from: usize) -> u32 {
         let ignored = &self.compiled().ignored;
         let mut j = from;
-        while j < cur.len() {
+        let mut wrapped = false;
+        loop {
+            if j >= cur.len() {
+                if !self.grammar.ring || wrapped {
+                    return u32::MAX;
+                }
+                wrapped = true;
+                j = 0;
+                continue;
+            }
+            if wrapped && j >= from {
+                return u32::MAX;
+            }
             let s = cur.symbols[j];
             if s == PUSH {
                 match self.partner[j] {
@@ -129,7 +155,6 @@ impl Deriver<'_> {
                 return j as u32;
             }
         }
-        u32::MAX
     }
 
     /// ABOP 1.8: walking right, branches not named by the pattern are skipped; `[` in the

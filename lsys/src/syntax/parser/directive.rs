@@ -1,5 +1,5 @@
-//! Directives of sylva's notation (`#define`, `#ignore`, `#module`, `#derivation`, blocks,
-//! `#decomposition`, `#homomorphism`, `#lsystem`) and the constant values they take.
+//! Directives of sylva's notation (`#define`, `#ignore`, `#module`, `#derivation`, `#ring`,
+//! blocks, `#decomposition`, `#homomorphism`, `#lsystem`) and the constant values they take.
 
 use super::*;
 
@@ -87,6 +87,18 @@ impl GrammarParser {
                     Some(whole_steps(cur, at, id)?)
                 };
                 self.section = Section::Main;
+                Ok(())
+            }
+            Some("ring") => {
+                // `#ring`: the word is a ring for contexts (cpfg's `ring lsystem`).
+                cur.skip_ws();
+                if !cur.at_end() {
+                    return Err(cur.error(format!(
+                        "expected end of line after #ring, found {}",
+                        cur.describe_next()
+                    )));
+                }
+                self.ring = true;
                 Ok(())
             }
             Some("derivation") => {

@@ -129,6 +129,7 @@ impl GrammarParser {
             globals,
             blocks: Blocks::default(),
             derivation_length: None,
+            ring: false,
             consider: None,
             long_names: Vec::new(),
             section: Section::Main,
@@ -197,7 +198,7 @@ impl GrammarParser {
         let productions = main.into_iter().map(|(p, _)| p).collect();
         // The parser checks everything `from_parts` checks, at the place it happens; should a
         // check only `from_parts` makes ever fail, the error still points at the right line.
-        let derivation_length = p.derivation_length;
+        let (derivation_length, ring) = (p.derivation_length, p.ring);
         let mut subsystems: Vec<(u32, Vec<Production>)> = Vec::new();
         let mut locations = production_at.clone();
         let mut sub_productions = std::mem::take(&mut p.sub_productions);
@@ -223,6 +224,7 @@ impl GrammarParser {
             .map(|system| {
                 system
                     .with_derivation_length(derivation_length)
+                    .with_ring(ring)
                     .with_dialect(dialect)
                     .with_locations(locations)
             })
@@ -370,6 +372,8 @@ pub(crate) struct GrammarParser {
     pub(crate) blocks: Blocks,
     /// The derivation length the grammar states (cpfg's `derivation length:`).
     pub(crate) derivation_length: Option<u32>,
+    /// Whether the word is a ring for contexts (cpfg's `ring lsystem`, `#ring`).
+    pub(crate) ring: bool,
     /// cpfg's `consider:` symbols, when given.
     pub(crate) consider: Option<Vec<SymbolId>>,
     /// Symbols of several characters (declared with `#module`, or the dialect's own), longest
