@@ -3,6 +3,8 @@
 //!
 //! Grammars are written with spaces between modules because symbios reads multi-letter names;
 //! sylva ignores the spaces. Throughput counts every module produced over all generations.
+//! Beside each pair, `copy/` copies the same words (each generation's once): the memory
+//! bandwidth bound that rewriting is measured against.
 
 use std::hint::black_box;
 
@@ -218,9 +220,10 @@ fn rewriting(crit: &mut Criterion) {
     group.sample_size(10);
     for case in cases() {
         let grammar = LSystem::parse(&sylva_source(&case)).expect("grammar parses");
-        let produced: u64 = (1..=case.generations)
-            .map(|n| grammar.derive(n, 1).expect("derives").len() as u64)
-            .sum();
+        let words: Vec<_> = (1..=case.generations)
+            .map(|n| grammar.derive(n, 1).expect("derives"))
+            .collect();
+        let produced: u64 = words.iter().map(|w| w.len() as u64).sum();
         // Both engines must agree on the size of what they build, or the ratio of times means
         // nothing; where they need not (see `Case::same_length`), each engine's throughput
         // counts its own modules, so modules per second still compare.
@@ -244,6 +247,15 @@ fn rewriting(crit: &mut Criterion) {
                 grammar
                     .derive(black_box(case.generations), 1)
                     .expect("derives")
+            })
+        });
+        // The limit to measure against: copying the same words, each generation's once
+        // (allocation and all, as a derivation writes its word), in modules per second.
+        group.bench_function(format!("copy/{}", case.name), |b| {
+            b.iter(|| {
+                for w in &words {
+                    black_box(black_box(w).clone());
+                }
             })
         });
         group.throughput(Throughput::Elements(symbios_produced));

@@ -18,6 +18,11 @@ pub(crate) enum Op {
     Gen,
     Unary(UnaryOp),
     Binary(BinaryOp),
+    /// The operator applied to the top of the stack and a parameter: `x + y` is
+    /// `Var(x) WithVar(+, y)`, one push fewer and one pop fewer than `Var Var Binary`.
+    WithVar(BinaryOp, u16),
+    /// The operator applied to the top of the stack and a number.
+    WithNum(BinaryOp, f64),
     Call(Function),
 }
 
@@ -109,8 +114,14 @@ fn compile_folding(e: &Expr, out: &mut Vec<Op>) -> bool {
         }
         Expr::Binary(op, a, b) => {
             let left = compile_folding(a, out);
+            let at = out.len();
             let right = compile_folding(b, out);
-            out.push(Op::Binary(*op));
+            // A right operand that is one parameter or number joins the operator.
+            match out[at..] {
+                [Op::Var(k)] => out[at] = Op::WithVar(*op, k),
+                [Op::Num(v)] => out[at] = Op::WithNum(*op, v),
+                _ => out.push(Op::Binary(*op)),
+            }
             left && right
         }
         Expr::Call(f, args) => {
@@ -211,6 +222,18 @@ pub(crate) fn eval(
                 let r = stack.pop().unwrap_or(0.0);
                 let l = stack.pop().unwrap_or(0.0);
                 stack.push(b.apply(l, r));
+            }
+            // The operand joined to the operator changes the top in place.
+            Op::WithVar(b, k) => {
+                let r = vars.get(k as usize).copied().unwrap_or(0.0);
+                if let Some(top) = stack.last_mut() {
+                    *top = b.apply(*top, r);
+                }
+            }
+            Op::WithNum(b, r) => {
+                if let Some(top) = stack.last_mut() {
+                    *top = b.apply(*top, r);
+                }
             }
             Op::Call(f) => {
                 let n = f.arity();

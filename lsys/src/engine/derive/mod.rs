@@ -349,8 +349,10 @@ impl<'g> Deriver<'g> {
                 // The modules of this symbol that follow, each with one of them as its left
                 // context, stay as they are: copied with what stands between them.
                 let j = self.run_after(cur, i - 1, c);
-                cut_seen |= copy_run(cur, i, j, out);
-                i = j;
+                if j > i {
+                    cut_seen |= copy_run(cur, i, j, out);
+                    i = j;
+                }
             }
         }
         self.sub = None;
