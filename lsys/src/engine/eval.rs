@@ -376,6 +376,30 @@ mod tests {
         )
     }
 
+    /// A right operand that is one parameter or number is joined to its operator, and the
+    /// order of operands holds for operators that do not commute.
+    #[test]
+    fn operands_joined_to_their_operator_keep_their_order() {
+        let chars: Vec<char> = "x * 2 + x".chars().collect();
+        let e = parse_expr(&mut Cursor::new(&chars, 1), &NoNames).unwrap();
+        let mut ops = Vec::new();
+        e.compile(&mut ops);
+        assert_eq!(
+            ops,
+            vec![
+                Op::Var(0),
+                Op::WithNum(BinaryOp::Mul, 2.0),
+                Op::WithVar(BinaryOp::Add, 0)
+            ]
+        );
+        assert_eq!(value("x * 2 + x", 3.0), 9.0);
+        assert_eq!(value("2 - x", 3.0), -1.0);
+        assert_eq!(value("x / 4 - k", 2.0), -9.5);
+        assert_eq!(value("(x + 1) ^ x", 2.0), 9.0);
+        // Both sides constant: folded to one number still.
+        assert_eq!(value("k - 4", 0.0), 6.0);
+    }
+
     /// cpfg's bran(a, b) is a beta draw: its mean is a / (a + b).
     #[test]
     fn beta_and_binomial_draws_have_their_means() {
