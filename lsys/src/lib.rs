@@ -77,6 +77,9 @@
 //! to its dimension as cpfg clamps it. cpfg's `stop(n)` (`n` other than 1) ends the
 //! derivation after the step that called it.
 //!
+//! **Rings** (cpfg's `ring lsystem`, `#ring`, [`LSystem::with_ring`]): the word's ends join
+//! for contexts, the first module's left neighbour being the last.
+//!
 //! **Choices** (a sylva extension): `?(p)<then><otherwise>` in a successor emits `then` with
 //! probability `p` and `otherwise` else, drawn independently each time the production fires.
 //!
@@ -86,9 +89,12 @@
 //! an `Lsystem:` line; [`LSystem::parse_dialect`] names the [`Dialect`] (cpfg, or the
 //! declarative subset of L-Py's `.lpy` files) and [`LSystem::from_file`] goes by extension.
 //! cpfg files pass through a C preprocessor of their own (`#define` with and without
-//! parameters, `#if`, `#ifdef`); their trigonometry is in degrees. What a dialect has that
-//! the engine does not run (sub-L-systems, string predecessors, arrays, Python code) is
-//! refused with an `unsupported: ...` error at its line and column. Every grammar prints in
+//! parameters, `#if`, `#ifdef`); their trigonometry is in degrees. A vlab model is a folder:
+//! [`LSystem::from_model_dir`] reads its `.l` file with the files beside it that it includes
+//! and that its view file names ([`ModelFiles`]: functions for `func`, curves for `curveX`,
+//! `curveY`, `curveZ` and `curveGAL`, contours and surfaces for the turtle). What a dialect
+//! has that the engine does not run (cpfg's file functions, Python code) is refused with an
+//! `unsupported: ...` error at its line and column. Every grammar prints in
 //! sylva's notation and reads back to the same system. [`LSystem::derive_in`] asks an
 //! [`Environment`] to answer query and communication modules between steps.
 //!

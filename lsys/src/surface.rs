@@ -16,6 +16,8 @@ pub const MAX_PATCHES: usize = 4096;
 pub const MAX_SURFACES: usize = 256;
 /// Most quads a patch is cut into along one parameter.
 pub const MAX_DIVISIONS: u32 = 64;
+/// Most quads the surfaces of one model may be cut into, all together (48 MB of corners).
+pub const MAX_QUADS: usize = 1 << 20;
 /// Quads along each parameter when the view file gives no count.
 pub const DEFAULT_DIVISIONS: u32 = 8;
 
@@ -142,6 +144,12 @@ impl Surface {
             return Err("no patches".into());
         }
         Ok(surface)
+    }
+
+    /// How many quads [`Surface::quads`] gives.
+    pub fn quad_count(&self) -> usize {
+        let [s, t] = self.divisions.map(|d| d.clamp(1, MAX_DIVISIONS) as usize);
+        self.patches.len() * s * t
     }
 
     /// The surface as quads (corners in order around each), in the turtle's frame: each

@@ -154,3 +154,31 @@ fn surfaces_and_contours_are_read_with_their_settings() {
     assert_eq!(word.to_string(), "@#(2) ~l(3) ~q");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn surfaces_cut_too_finely_are_refused() {
+    let mut many = patch();
+    // 300 patches cut 64 by 64: 1.2 M quads, past the bound.
+    let rows: String = many.lines().skip(11).map(|l| format!("{l}\n")).collect();
+    for _ in 0..299 {
+        many += "p\n";
+        many += &rows;
+    }
+    let dir = folder(
+        "fine",
+        &[
+            (
+                "plant.l",
+                "Lsystem: 1\nderivation length: 1\nAxiom: ~l\nendlsystem\n",
+            ),
+            ("plant.v", "surface: l leaf.s 1 64 64\n"),
+            ("leaf.s", &many),
+        ],
+    );
+    let e = LSystem::from_model_dir(&dir).unwrap_err().to_string();
+    assert!(
+        e.contains("the surfaces come to 1228800 quads: at most 1048576"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

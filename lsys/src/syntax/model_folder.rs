@@ -10,7 +10,7 @@ use crate::error::GrammarFileError;
 use crate::model::dialect::Dialect;
 use crate::model_files::ModelFiles;
 use crate::spline::{MAX_FUNCTIONS, SplineFunction};
-use crate::surface::{DEFAULT_DIVISIONS, MAX_DIVISIONS, MAX_SURFACES, Surface};
+use crate::surface::{DEFAULT_DIVISIONS, MAX_DIVISIONS, MAX_QUADS, MAX_SURFACES, Surface};
 use crate::syntax::parser::MAX_GRAMMAR_BYTES;
 use crate::syntax::preprocessor::Includes;
 use crate::syntax::read::parse_with;
@@ -212,6 +212,13 @@ fn model_files(
                 };
                 surface.divisions = [divisions(1), divisions(2)];
                 out.surfaces.push(surface);
+                let quads: usize = out.surfaces.iter().map(Surface::quad_count).sum();
+                if quads > MAX_QUADS {
+                    return Err(problem(
+                        k + 1,
+                        format!("the surfaces come to {quads} quads: at most {MAX_QUADS}"),
+                    ));
+                }
             }
         }
         if out.functions.len() > MAX_FUNCTIONS
