@@ -69,14 +69,16 @@ impl Canopy {
 }
 
 impl Species {
-    /// A species from a grammar, with default colours and turtle settings.
+    /// A species from a grammar, with default colours and turtle settings: the grammar's
+    /// dialect's symbols, and for a vlab model its surfaces and contours
+    /// ([`TurtleOptions::for_grammar`]).
     pub fn new(name: impl Into<String>, grammar: LSystem, generations: u32) -> Self {
         Species {
             name: name.into(),
+            turtle: TurtleOptions::for_grammar(&grammar).with_min_radius(0.005),
             grammar,
             generations,
             seedling_generations: generations.saturating_sub(2).max(1),
-            turtle: TurtleOptions::default().with_min_radius(0.005),
             bark: [0.30, 0.20, 0.12],
             leaf: [0.18, 0.42, 0.12],
             leaf_shape: LeafShape::Broadleaf,
