@@ -6,19 +6,13 @@ use std::process::Command;
 
 const SYLVA: &str = env!("CARGO_BIN_EXE_sylva");
 
-/// A flat unit Bézier patch, heading +y, up +z.
+/// A flat unit Bézier patch, heading +y, up +z (lsys's test data).
 fn patch() -> String {
-    let mut s = String::from(
-        "0 1 0 1 0 0\nCONTACT POINT X: 0 Y: 0 Z: 0\nEND POINT X: 0 Y: 1 Z: 0\n\
-         HEADING X: 0 Y: 1 Z: 0\nUP X: 0 Y: 0 Z: 1\nSIZE: 1\np\n",
-    );
-    for i in 0..4 {
-        for j in 0..4 {
-            s += &format!("{} {} 0 ", i as f64 / 3.0, j as f64 / 3.0);
-        }
-        s += "\n";
-    }
-    s
+    include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../lsys/tests/data/flat_patch.s"
+    ))
+    .to_string()
 }
 
 fn write(dir: &PathBuf, name: &str, text: &str) {

@@ -21,20 +21,10 @@ const PROFILE: &str = "version: 1.4\ncontact: 0 0 0\nend: 0 0 0\nheading: 0 1 0\
     size: 1\npoints: 4\nrange: 0.0 1.0\ndimension: 4\ntype: bspline\n0.269398 -0.447751 0 3\n\
     0.274471 -0.109864 0 1\n0.165305 0.175183 0 1\n-0.001478 0.202475 0 3\n";
 
-/// A flat unit patch: heading +y, up +z, contact at the origin.
+/// A flat unit patch: one Bézier patch over [0, 1] x [0, 1] in x and y, heading +y, up +z,
+/// contact at the origin (a `.s` file as vlab's surface editor writes it).
 fn patch() -> String {
-    let mut s = String::from(
-        "0 1 0 1 0 0\nCONTACT POINT X: 0 Y: 0 Z: 0\nEND POINT X: 0 Y: 1 Z: 0\n\
-         HEADING X: 0 Y: 1 Z: 0\nUP X: 0 Y: 0 Z: 1\nSIZE: 1\nblade\n\
-         TOP COLOR: 0 DIFFUSE: 0.00 BOTTOM COLOR: 0 DIFFUSE: 0.00\nAL: ~ A: ~ AR: ~\nL: ~ R: ~\nBL: ~ B: ~ BR: ~\n",
-    );
-    for i in 0..4 {
-        for j in 0..4 {
-            s += &format!("{} {} 0  ", i as f64 / 3.0, j as f64 / 3.0);
-        }
-        s += "\n";
-    }
-    s
+    include_str!("data/flat_patch.s").to_string()
 }
 
 #[test]

@@ -19,19 +19,13 @@ impl GeometrySink for Polygons {
 }
 
 /// A flat unit patch in the file's frame (heading +y, up +z), its contact point at the
-/// origin: one Bézier patch over [0, 1] x [0, 1] in x and y.
+/// origin: one Bézier patch over [0, 1] x [0, 1] in x and y (lsys's test data).
 fn unit_patch(letter: char) -> Surface {
-    let mut text = String::from(
-        "0 1 0 1 0 0\nCONTACT POINT X: 0 Y: 0 Z: 0\nEND POINT X: 0 Y: 1 Z: 0\n\
-         HEADING X: 0 Y: 1 Z: 0\nUP X: 0 Y: 0 Z: 1\nSIZE: 1\np\n",
-    );
-    for i in 0..4 {
-        for j in 0..4 {
-            text += &format!("{} {} 0 ", i as f64 / 3.0, j as f64 / 3.0);
-        }
-        text += "\n";
-    }
-    Surface::parse(&text, letter).unwrap()
+    let text = include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../lsys/tests/data/flat_patch.s"
+    ));
+    Surface::parse(text, letter).unwrap()
 }
 
 fn drawn(axiom: &str, files: ModelFiles) -> Vec<Vec<Vec3>> {
