@@ -109,6 +109,10 @@ impl Curve {
     pub fn point(&self, u: f64) -> [f64; 3] {
         let u = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) };
         let n = self.points.len();
+        // Points changed since [`Curve::new`] checked them may be too few for a span.
+        if n < ORDER {
+            return self.points.first().copied().unwrap_or_default();
+        }
         // An open curve's spans start at each point from the fourth on; a closed one's at
         // every point, the last ones blending the first points again.
         let (first, spans) = if self.closed {
