@@ -60,6 +60,7 @@ mod cli;
 mod coverage;
 mod cull;
 mod draw;
+mod editor;
 mod error;
 mod floor;
 #[cfg(test)]

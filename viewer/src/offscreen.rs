@@ -11,7 +11,7 @@ use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
 /// rendering needs no compositor, so in exactly that case, and only while the adapter is
 /// requested, stderr is silenced; the guard restores it when dropped.
 #[cfg(unix)]
-fn quiet_wayland_probe() -> Option<gag::Gag> {
+pub(crate) fn quiet_wayland_probe() -> Option<gag::Gag> {
     let no_session = std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|d| d.is_empty());
     if no_session {
         gag::Gag::stderr().ok()
@@ -22,7 +22,7 @@ fn quiet_wayland_probe() -> Option<gag::Gag> {
 
 /// Elsewhere there is no Wayland probe to quiet.
 #[cfg(not(unix))]
-fn quiet_wayland_probe() -> Option<()> {
+pub(crate) fn quiet_wayland_probe() -> Option<()> {
     None
 }
 
@@ -36,7 +36,6 @@ pub(crate) struct Offscreen {
     depth: wgpu::TextureView,
     readback: wgpu::Buffer,
     size: (u32, u32),
-    padded_row: u32,
     /// The adapter's name and backend.
     pub(crate) adapter: String,
     /// Wind strength and the moment of the wind's cycle the frames show (seconds).
@@ -61,15 +60,7 @@ impl Offscreen {
         let format = wgpu::TextureFormat::Rgba8UnormSrgb;
         let renderer = Renderer::new(&device, &queue, format, scene)?;
         let (colour, view, depth) = targets(&device, format, width, height, true);
-        // Rows of a texture-to-buffer copy must be 256-byte aligned.
-        let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
+        let readback = readback_buffer(&device, (width, height));
         let info = adapter.get_info();
         Ok(Offscreen {
             device,
@@ -80,7 +71,6 @@ impl Offscreen {
             depth,
             readback,
             size: (width, height),
-            padded_row,
             adapter: format!("{} ({:?})", info.name, info.backend),
             wind: 1.0,
             full_detail: false,
@@ -118,50 +108,88 @@ impl Offscreen {
                 time: self.time,
             },
         );
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &self.colour,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: Some(height),
-                },
-            },
-            wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-        );
-        self.queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(ViewerError::Poll)?;
-        // The callback always runs once the device has been polled to completion.
-        let mapped = rx.recv().unwrap_or(Err(wgpu::BufferAsyncError));
-        mapped.map_err(ViewerError::Readback)?;
-        let row = (width * 4) as usize;
-        let mut pixels = Vec::with_capacity(row * height as usize);
-        {
-            let data = slice.get_mapped_range().map_err(ViewerError::MappedRange)?;
-            for r in 0..height as usize {
-                let start = r * self.padded_row as usize;
-                pixels.extend_from_slice(&data[start..start + row]);
-            }
-        }
-        self.readback.unmap();
+        let pixels = read_back(
+            (&self.device, &self.queue),
+            encoder,
+            Vec::new(),
+            &self.colour,
+            &self.readback,
+            self.size,
+        )?;
         stats.streamed = streamed;
         Ok((pixels, stats))
     }
+}
+
+/// Rows of a texture-to-buffer copy must be 256-byte aligned: the padded length of a row of
+/// `width` RGBA8 pixels.
+fn padded_row(width: u32) -> u32 {
+    (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
+/// A buffer a frame of `size` pixels is copied into to be read.
+pub(crate) fn readback_buffer(device: &wgpu::Device, size: (u32, u32)) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: u64::from(padded_row(size.0)) * u64::from(size.1),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    })
+}
+
+/// Submits `before` and then `encoder` with a copy of `texture` (RGBA8, `size` pixels) into
+/// `readback` after its work, waits, and returns the frame as tightly packed rows.
+pub(crate) fn read_back(
+    (device, queue): (&wgpu::Device, &wgpu::Queue),
+    mut encoder: wgpu::CommandEncoder,
+    before: Vec<wgpu::CommandBuffer>,
+    texture: &wgpu::Texture,
+    readback: &wgpu::Buffer,
+    (width, height): (u32, u32),
+) -> Result<Vec<u8>, ViewerError> {
+    let padded = padded_row(width);
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    queue.submit(before.into_iter().chain([encoder.finish()]));
+    let slice = readback.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(ViewerError::Poll)?;
+    // The callback always runs once the device has been polled to completion.
+    let mapped = rx.recv().unwrap_or(Err(wgpu::BufferAsyncError));
+    mapped.map_err(ViewerError::Readback)?;
+    let row = (width * 4) as usize;
+    let mut pixels = Vec::with_capacity(row * height as usize);
+    {
+        let data = slice.get_mapped_range().map_err(ViewerError::MappedRange)?;
+        for r in 0..height as usize {
+            let start = r * padded as usize;
+            pixels.extend_from_slice(&data[start..start + row]);
+        }
+    }
+    readback.unmap();
+    Ok(pixels)
 }

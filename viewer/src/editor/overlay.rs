@@ -1,0 +1,147 @@
+//! Draws egui's output over a frame with wgpu (egui-wgpu), in the window and headless, and
+//! renders the panel alone headless for its golden image.
+
+use egui_wgpu::{Renderer, RendererOptions, ScreenDescriptor};
+
+use crate::error::ViewerError;
+
+/// egui's renderer for one device and target format.
+pub(crate) struct Overlay {
+    renderer: Renderer,
+}
+
+impl Overlay {
+    pub(crate) fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Overlay {
+        Overlay {
+            renderer: Renderer::new(device, format, RendererOptions::default()),
+        }
+    }
+
+    /// Records egui's `output` drawn over `target` (its contents kept) of `size` pixels;
+    /// returns command buffers to submit before `encoder`'s.
+    pub(crate) fn draw(
+        &mut self,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        ctx: &egui::Context,
+        mut output: egui::FullOutput,
+        size: (u32, u32),
+    ) -> Vec<wgpu::CommandBuffer> {
+        for (id, deltas) in output.textures_delta.set.drain() {
+            for delta in deltas {
+                self.renderer.update_texture(device, queue, id, &delta);
+            }
+        }
+        let primitives = ctx.tessellate(std::mem::take(&mut output.shapes), output.pixels_per_point);
+        let screen = ScreenDescriptor {
+            size_in_pixels: [size.0, size.1],
+            pixels_per_point: output.pixels_per_point,
+        };
+        let commands = self
+            .renderer
+            .update_buffers(device, queue, encoder, &primitives, &screen);
+        {
+            let mut pass = encoder
+                .begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("egui"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: target,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Load,
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    ..Default::default()
+                })
+                .forget_lifetime();
+            self.renderer.render(&mut pass, &primitives, &screen);
+        }
+        for id in output.textures_delta.free.drain() {
+            self.renderer.free_texture(&id);
+        }
+        commands
+    }
+}
+
+/// The panel of `editor` alone, rendered headless at `size` pixels over a dark ground, as
+/// tightly packed RGBA8 (sRGB) rows. Two passes: the first lays the panel out and loads
+/// egui's fonts, the second is drawn.
+pub(crate) fn render_panel(
+    editor: &mut super::Editor,
+    size: (u32, u32),
+) -> Result<Vec<u8>, ViewerError> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let (_, device, queue) = {
+        let _quiet = crate::offscreen::quiet_wayland_probe();
+        pollster::block_on(crate::gpu::device(&instance, None))?
+    };
+    let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("panel"),
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&Default::default());
+    let ctx = egui::Context::default();
+    let input = || egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(size.0 as f32, size.1 as f32),
+        )),
+        ..Default::default()
+    };
+    let mut overlay = Overlay::new(&device, format);
+    let mut pixels = Vec::new();
+    for pass in 0..2 {
+        let output = ctx.run_ui(input(), |ui| super::panel::show(ui, editor));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            // The ground the panel stands on.
+            encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("ground"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color {
+                            r: 0.05,
+                            g: 0.08,
+                            b: 0.05,
+                            a: 1.0,
+                        }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                ..Default::default()
+            });
+        }
+        let before = overlay.draw((&device, &queue), &mut encoder, &view, &ctx, output, size);
+        if pass == 1 {
+            let readback = crate::offscreen::readback_buffer(&device, size);
+            pixels = crate::offscreen::read_back(
+                (&device, &queue),
+                encoder,
+                before,
+                &texture,
+                &readback,
+                size,
+            )?;
+        } else {
+            queue.submit(before.into_iter().chain([encoder.finish()]));
+        }
+    }
+    Ok(pixels)
+}

@@ -1,0 +1,173 @@
+//! The species panel (egui): the forest's species, the selected one's grammar in an editor
+//! with its problems shown at their line and column as the user types, its settings as
+//! sliders, a seed for the preview tree, and undo, redo and save.
+
+use egui::{Color32, RichText, ScrollArea, TextEdit, Ui};
+
+use super::Editor;
+use super::document::{setting, set_setting};
+
+/// Width of the panel, in points.
+const WIDTH: f32 = 430.0;
+
+/// The species-file settings shown as sliders: key, range, step.
+const SLIDERS: &[(&str, f64, f64, f64)] = &[
+    ("generations", 1.0, 12.0, 1.0),
+    ("angle", 0.0, 90.0, 0.5),
+    ("step", 0.05, 5.0, 0.05),
+    ("leaf_facing", 0.0, 1.0, 0.05),
+    ("weight", 0.0, 10.0, 0.5),
+];
+
+/// Draws the panel at the left of `ui` (the window's root) and applies what the user did
+/// to `editor`.
+pub(crate) fn show(ui: &mut Ui, editor: &mut Editor) {
+    egui::Panel::left("species")
+        .exact_size(WIDTH)
+        .resizable(false)
+        .show(ui, |ui| {
+            ui.heading("Species");
+            restore_offer(ui, editor);
+            species_list(ui, editor);
+            ui.separator();
+            ScrollArea::vertical().show(ui, |ui| {
+                grammar(ui, editor);
+                ui.separator();
+                settings(ui, editor);
+                ui.separator();
+                preview(ui, editor);
+                ui.separator();
+                commands(ui, editor);
+            });
+        });
+}
+
+fn restore_offer(ui: &mut Ui, editor: &mut Editor) {
+    let Some(files) = &editor.restorable else {
+        return;
+    };
+    let text = format!(
+        "The last session ended without quitting; its autosave holds {} species.",
+        files.len()
+    );
+    ui.label(RichText::new(text).color(Color32::YELLOW));
+    ui.horizontal(|ui| {
+        if ui.button("Restore").clicked() {
+            editor.restore_autosave();
+        }
+        if ui.button("Discard").clicked() {
+            editor.restorable = None;
+        }
+    });
+}
+
+fn species_list(ui: &mut Ui, editor: &mut Editor) {
+    ui.horizontal_wrapped(|ui| {
+        for k in 0..editor.documents.len() {
+            let d = &editor.documents[k];
+            let mark = if d.outcome.is_ok() { "" } else { " (!)" };
+            if ui
+                .selectable_label(editor.selected == k, format!("{}{mark}", d.name))
+                .clicked()
+            {
+                editor.selected = k;
+            }
+        }
+    });
+}
+
+fn grammar(ui: &mut Ui, editor: &mut Editor) {
+    ui.label(format!("Grammar ({})", editor.current().grammar_file()));
+    let mut text = editor.current().grammar_text.clone();
+    let response = ui.add(
+        TextEdit::multiline(&mut text)
+            .id_salt("grammar")
+            .code_editor()
+            .desired_rows(12)
+            .desired_width(f32::INFINITY),
+    );
+    if response.changed() {
+        editor.edit(|d| d.grammar_text = text);
+    }
+    if let Err(problem) = &editor.current().outcome {
+        ui.label(RichText::new(problem.to_string()).color(Color32::LIGHT_RED));
+    }
+}
+
+fn settings(ui: &mut Ui, editor: &mut Editor) {
+    ui.label("Settings");
+    for &(key, low, high, step) in SLIDERS {
+        let text = &editor.current().species_text;
+        let Some(mut value) = setting(text, key).and_then(|v| v.parse::<f64>().ok()) else {
+            // A setting the file does not give, or gives as something else: shown as text.
+            ui.label(format!("{key}: {}", setting(text, key).unwrap_or_else(|| "-".into())));
+            continue;
+        };
+        let slider = egui::Slider::new(&mut value, low..=high).step_by(step).text(key);
+        if ui.add(slider).changed() {
+            let value = if step >= 1.0 {
+                format!("{}", value.round())
+            } else {
+                format!("{value}")
+            };
+            editor.edit(|d| set_setting(&mut d.species_text, key, &value));
+        }
+    }
+    ui.collapsing("Species file", |ui| {
+        let mut text = editor.current().species_text.clone();
+        let response = ui.add(
+            TextEdit::multiline(&mut text)
+                .id_salt("species")
+                .code_editor()
+                .desired_rows(8)
+                .desired_width(f32::INFINITY),
+        );
+        if response.changed() {
+            editor.edit(|d| d.species_text = text);
+        }
+    });
+}
+
+fn preview(ui: &mut Ui, editor: &mut Editor) {
+    ui.horizontal(|ui| {
+        let mut seed = editor.current().seed;
+        ui.label("Seed");
+        if ui.add(egui::DragValue::new(&mut seed)).changed() {
+            editor.edit(|d| d.seed = seed);
+        }
+        if ui.button("Next seed").clicked() {
+            editor.edit(|d| d.seed = d.seed.wrapping_add(1));
+        }
+    });
+    let line = match &editor.current().outcome {
+        Ok(p) => format!("Preview: {} triangles, built in {:.0} ms", p.triangles, p.millis),
+        Err(_) => "Preview: none while the texts do not read".to_string(),
+    };
+    ui.label(line);
+}
+
+fn commands(ui: &mut Ui, editor: &mut Editor) {
+    ui.horizontal(|ui| {
+        if ui
+            .add_enabled(editor.can_undo(), egui::Button::new("Undo"))
+            .clicked()
+        {
+            editor.undo();
+        }
+        if ui
+            .add_enabled(editor.can_redo(), egui::Button::new("Redo"))
+            .clicked()
+        {
+            editor.redo();
+        }
+        if ui.button("Save").clicked() {
+            editor.save();
+        }
+        if editor.unsaved {
+            ui.label("unsaved edits");
+        }
+    });
+    if !editor.status.is_empty() {
+        ui.label(&editor.status);
+    }
+}

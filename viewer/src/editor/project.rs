@@ -1,0 +1,83 @@
+//! The editor's project folder: species files and their grammars saved side by side, so
+//! that `sylva forest --species DIR/NAME.species` and the server take them; an autosave
+//! beside them, and a mark that says a session is running, so that the next start after a
+//! crash can offer the autosave back.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The autosave's folder inside a project.
+const AUTOSAVE: &str = ".autosave";
+/// The file that marks a session running; a clean quit removes it.
+const RUNNING: &str = "running";
+
+/// Writes each (species name, species text, grammar file, grammar text) into `folder`,
+/// every file atomically (a crash mid-save leaves the old file or the new, never half).
+pub(crate) fn save(folder: &Path, documents: &[(String, String, String, String)]) -> Result<(), String> {
+    std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    for (name, species, grammar_file, grammar) in documents {
+        write(&folder.join(format!("{name}.species")), species)?;
+        write(&folder.join(grammar_file), grammar)?;
+    }
+    Ok(())
+}
+
+fn write(path: &Path, text: &str) -> Result<(), String> {
+    sylva::base::file::write(path, |f| f.write_all(text.as_bytes())).map_err(|e| e.to_string())
+}
+
+/// The autosave folder of a project.
+pub(crate) fn autosave_folder(project: &Path) -> PathBuf {
+    project.join(AUTOSAVE)
+}
+
+/// Marks a session running in `project` (an autosave left by one that never quit is
+/// offered back at the next start).
+pub(crate) fn mark_running(project: &Path) -> Result<(), String> {
+    let folder = autosave_folder(project);
+    std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    write(&folder.join(RUNNING), &std::process::id().to_string())
+}
+
+/// Clears the running mark: the session ended as it should.
+pub(crate) fn mark_quit(project: &Path) {
+    let _ = std::fs::remove_file(autosave_folder(project).join(RUNNING));
+}
+
+/// The species files of an autosave a crashed session left in `project`, if any: the last
+/// session never quit, and it saved something.
+pub(crate) fn crashed_autosave(project: &Path) -> Option<Vec<PathBuf>> {
+    let folder = autosave_folder(project);
+    if !folder.join(RUNNING).is_file() {
+        return None;
+    }
+    let mut species: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "species"))
+        .collect();
+    species.sort();
+    (!species.is_empty()).then_some(species)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_autosave_is_offered_only_after_a_session_that_never_quit() {
+        let project = std::env::temp_dir().join(format!("sylva-project-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&project);
+        let docs = vec![("bush".to_string(), "name: bush\ngrammar: bush.lsys\n".to_string(), "bush.lsys".to_string(), "axiom: F\n".to_string())];
+        save(&project, &docs).unwrap();
+        assert!(project.join("bush.species").is_file() && project.join("bush.lsys").is_file());
+        mark_running(&project).unwrap();
+        save(&autosave_folder(&project), &docs).unwrap();
+        // Still running (or killed): the autosave is there to restore.
+        assert_eq!(crashed_autosave(&project), Some(vec![autosave_folder(&project).join("bush.species")]));
+        mark_quit(&project);
+        assert_eq!(crashed_autosave(&project), None);
+        let _ = std::fs::remove_dir_all(&project);
+    }
+}
