@@ -14,6 +14,9 @@ pub(crate) enum ViewerError {
     /// A flag or its value is wrong; the message says which and what is expected.
     #[error("{0}")]
     Usage(String),
+    /// The species editor could not open its species or its project folder.
+    #[error("the species editor: {0}")]
+    Editor(String),
     /// Building the forest or streaming its cells failed.
     #[error(transparent)]
     Forest(#[from] ForestError),

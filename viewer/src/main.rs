@@ -6,7 +6,7 @@
 //!     [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M]
 //!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--full-detail]
 //!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
-//!     [--wind S] [--time T]]
+//!     [--wind S] [--time T]] [--editor | --editor-screenshot PATH] [--project DIR]
 //! ```
 //!
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
@@ -46,6 +46,19 @@
 //! round it, level with its middle, to `PATH_0000.png` and on, with a contact sheet of the
 //! views (four a row, half size) at `PATH`. Without a GPU it runs on Mesa's
 //! software drivers (lavapipe, or `WGPU_BACKEND=gl`).
+//!
+//! The species editor (Carey's L-system tab): `--editor` opens a panel at the left of the
+//! window (F2 hides or shows it) with the forest's species (the `--species` files, or the
+//! bundled ones), the selected one's grammar in a text editor whose problems are shown at
+//! their line and column as you type, its settings as sliders, a seed and "Next seed" for
+//! the preview tree (its triangles and build time in the panel and the window's title),
+//! undo, redo and save. Saves write each species file and its grammar (`NAME.species`,
+//! `NAME.lsys`) atomically into the project folder (`--project DIR`, `sylva_project` by
+//! default), which `sylva forest --species DIR/NAME.species` reads. Species and grammar
+//! files changed in your own editor are read again while the viewer runs, their problems
+//! shown in the panel. The project is autosaved every 30 s and on quit into `DIR/.autosave`;
+//! after a crash, or a quit with edits never saved, the next start offers it back.
+//! `--editor-screenshot PATH` renders the panel alone, headless.
 //!
 //! A forest over time: `--year N` draws year N of the forest grown from bare ground
 //! (`sylva succession`'s model with this seed: trees of every age, dead standing trees,
@@ -141,12 +154,21 @@ struct Args {
     paint: Option<std::path::PathBuf>,
     /// A time-lapse of a forest over time: the years of its frames, ascending.
     years: Option<Vec<u32>>,
+    /// The species editor's panel in the window (`--editor`).
+    editor: bool,
+    /// Renders the editor's panel alone, headless, to this PNG (`--editor-screenshot`).
+    editor_screenshot: Option<String>,
+    /// The editor's project folder (`--project`).
+    project: std::path::PathBuf,
+    /// The species files the editor opens (`--species`; none: the bundled species).
+    species_files: Vec<std::path::PathBuf>,
 }
 
 const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
                      [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M] [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
                      [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]] \
-                     [--year N | --years A..B [--every K] | --years Y1,Y2,...]";
+                     [--year N | --years A..B [--every K] | --years Y1,Y2,...] \
+                     [--editor | --editor-screenshot PATH] [--project DIR]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -178,6 +200,9 @@ fn parse() -> Result<Args, String> {
     let mut crop: Option<Window> = None;
     let mut max_slope = 35.0f32;
     let mut max_height = f32::INFINITY;
+    let mut editor = false;
+    let mut editor_screenshot: Option<String> = None;
+    let mut project = std::path::PathBuf::from("sylva_project");
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
         match a.as_str() {
@@ -234,6 +259,9 @@ fn parse() -> Result<Args, String> {
             "--crop" => crop = Some(flags.value("--crop")?),
             "--max-slope" => max_slope = flags.value("--max-slope")?,
             "--max-height" => max_height = flags.value("--max-height")?,
+            "--editor" => editor = true,
+            "--editor-screenshot" => editor_screenshot = Some(flags.value("--editor-screenshot")?),
+            "--project" => project = flags.value::<String>("--project")?.into(),
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -340,6 +368,17 @@ fn parse() -> Result<Args, String> {
             "a forest over time (--year, --years) is grown, not painted: not with --paint or --turntable\n{USAGE}"
         ));
     }
+    if (editor || editor_screenshot.is_some()) && grammar.is_some() {
+        return Err(format!(
+            "the editor edits species files (--species, or the bundled species), not --grammar\n{USAGE}"
+        ));
+    }
+    if editor && screenshot.is_some() {
+        return Err(format!(
+            "--editor opens the panel in the window; headless, render it with --editor-screenshot PATH\n{USAGE}"
+        ));
+    }
+    let species_files: Vec<std::path::PathBuf> = files.iter().map(Into::into).collect();
     let species = match (grammar, files.is_empty()) {
         (Some(_), false) => return Err(format!("give --grammar or --species, not both\n{USAGE}")),
         (Some(name), true) => SpeciesSource::Preset(name),
@@ -382,11 +421,27 @@ fn parse() -> Result<Args, String> {
         turntable,
         paint,
         years,
+        editor,
+        editor_screenshot,
+        project,
+        species_files,
     })
 }
 
 fn run() -> Result<(), ViewerError> {
     let mut args = parse().map_err(ViewerError::Usage)?;
+    if let Some(path) = &args.editor_screenshot {
+        return editor_screenshot(&args, path);
+    }
+    // The editor opens first: a species it cannot read is an error before the world is built.
+    let editor = if args.editor {
+        let editor = editor::Editor::open(&args.species_files, args.project.clone())
+            .map_err(ViewerError::Editor)?;
+        editor::project::mark_running(&args.project).map_err(ViewerError::Editor)?;
+        Some(editor)
+    } else {
+        None
+    };
     args.scene.species = std::mem::replace(&mut args.species, SpeciesSource::Bundled).load()?;
     let start = Instant::now();
     let mut scene = Scene::build(args.scene)?;
@@ -504,8 +559,30 @@ fn run() -> Result<(), ViewerError> {
             args.camera,
             args.frames,
             args.paint.unwrap_or_else(|| "paint_masks".into()),
+            editor,
         ),
     }
+}
+
+/// `--editor-screenshot PATH`: the species panel alone, headless, at `--size`; prints what
+/// its preview says.
+fn editor_screenshot(args: &Args, path: &str) -> Result<(), ViewerError> {
+    let mut editor = editor::Editor::open(&args.species_files, args.project.clone())
+        .map_err(ViewerError::Editor)?;
+    let pixels = editor::overlay::render_panel(&mut editor, args.size)?;
+    write_png(path, args.size, &pixels)?;
+    let d = editor.current();
+    match &d.outcome {
+        Ok(p) => println!(
+            "editor: {} species; {}: {} triangles, previewed in {:.0} ms; wrote {path}",
+            editor.documents.len(),
+            d.name,
+            p.triangles,
+            p.millis
+        ),
+        Err(problem) => println!("editor: {}: {problem}; wrote {path}", d.name),
+    }
+    Ok(())
 }
 
 /// The median of `values` (the upper one of an even count), sorting them; `None` when empty.

@@ -11,6 +11,8 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
+use crate::editor::Editor;
+use crate::editor::in_window::EditorWindow;
 use crate::error::ViewerError;
 use crate::gpu::targets;
 use crate::guide::Guide;
@@ -59,6 +61,9 @@ struct App {
     /// The right button is down: mouse motion looks around while painting.
     looking: bool,
     modifiers: Modifiers,
+    /// The species editor, waiting for the window, then in it (F2 shows or hides it).
+    waiting_editor: Option<Editor>,
+    editor: Option<EditorWindow>,
 }
 
 /// Opens the window and runs until it closes. Errors (no display, no adapter, a lost device)
@@ -67,12 +72,14 @@ struct App {
 /// Keys: P paints (then 1 to 9 pick the species, E erases, T turns trees into the species,
 /// `[` `]` size the brush, `-` `=` set its strength, Ctrl+Z undo, Ctrl+Y redo, Ctrl+S saves
 /// the masks to `save_to`; the left button paints, the right one looks around); G walks
-/// guided (the mouse looks around, A and D lean left and right, Shift hurries).
+/// guided (the mouse looks around, A and D lean left and right, Shift hurries). With an
+/// `editor`, its species panel stands at the left (F2 shows or hides it).
 pub(crate) fn run(
     scene: Scene,
     camera: Option<Camera>,
     max_frames: u32,
     save_to: std::path::PathBuf,
+    editor: Option<Editor>,
 ) -> Result<(), ViewerError> {
     let event_loop = EventLoop::new().map_err(ViewerError::NoDisplay)?;
     let camera = camera.unwrap_or_else(|| Camera::overview(scene.side(), 1.7));
@@ -98,6 +105,8 @@ pub(crate) fn run(
         cursor: (0.0, 0.0),
         looking: false,
         modifiers: Modifiers::default(),
+        waiting_editor: editor,
+        editor: None,
     };
     event_loop
         .run_app(&mut app)
@@ -237,7 +246,18 @@ impl App {
                 time: self.started.elapsed().as_secs_f32(),
             },
         );
-        gpu.queue.submit([encoder.finish()]);
+        let before = match &mut self.editor {
+            Some(editor) => editor.draw(
+                &gpu.window,
+                (&gpu.device, &gpu.queue),
+                &mut encoder,
+                &view,
+                (gpu.config.width, gpu.config.height),
+            ),
+            None => Vec::new(),
+        };
+        gpu.queue
+            .submit(before.into_iter().chain([encoder.finish()]));
         gpu.queue.present(frame);
         self.frame_ms = 0.9 * self.frame_ms + 0.1 * elapsed * 1e3;
         if self.max_frames > 0 {
@@ -255,6 +275,11 @@ impl App {
                 event_loop.exit();
             }
         }
+        let editing = self
+            .editor
+            .as_ref()
+            .map(EditorWindow::title)
+            .unwrap_or_default();
         let mut mode = match (&self.painting, self.paint_mode, &self.guide) {
             (Some(p), true, _) => format!("{}; ", p.status()),
             (_, _, Some(_)) => "guided walk (G to stop); ".to_string(),
@@ -264,7 +289,7 @@ impl App {
             mode.push_str(&format!("year {year} (Y: +10, Shift+Y: +1); "));
         }
         gpu.window.set_title(&format!(
-            "sylva: {mode}{} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
+            "sylva: {editing}{mode}{} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
             stats.draws,
             stats.instances,
             stats.triangles as f64 / 1e6,
@@ -367,15 +392,45 @@ impl ApplicationHandler for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.gpu.is_none() {
             match self.init(event_loop) {
-                Ok(gpu) => self.gpu = Some(gpu),
+                Ok(gpu) => {
+                    if let Some(editor) = self.waiting_editor.take() {
+                        self.editor = Some(EditorWindow::new(
+                            editor,
+                            &gpu.window,
+                            &gpu.device,
+                            gpu.config.format,
+                        ));
+                    }
+                    self.gpu = Some(gpu);
+                }
                 Err(e) => self.fail(event_loop, e),
             }
         }
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        // Input the panel takes (typing in its editor, dragging its sliders) is not the walk's.
+        let input = matches!(
+            event,
+            WindowEvent::KeyboardInput { .. }
+                | WindowEvent::MouseInput { .. }
+                | WindowEvent::CursorMoved { .. }
+                | WindowEvent::MouseWheel { .. }
+                | WindowEvent::Ime(_)
+        );
+        if let (Some(editor), Some(gpu)) = (&mut self.editor, &self.gpu)
+            && editor.on_event(&gpu.window, &event)
+            && input
+        {
+            return;
+        }
         match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::CloseRequested => {
+                if let Some(editor) = &mut self.editor {
+                    editor.quit();
+                }
+                event_loop.exit();
+            }
             WindowEvent::Resized(size) => {
                 if let Some(gpu) = &mut self.gpu {
                     // A minimised window has size zero: keep the old surface until it returns.
@@ -405,6 +460,11 @@ impl ApplicationHandler for App {
                         }
                         match code {
                             KeyCode::Escape => self.capture(false),
+                            KeyCode::F2 if !event.repeat => {
+                                if let Some(editor) = &mut self.editor {
+                                    editor.visible = !editor.visible;
+                                }
+                            }
                             KeyCode::KeyP if !event.repeat => self.toggle_painting(),
                             KeyCode::KeyG if !event.repeat => self.toggle_guide(),
                             KeyCode::KeyY => {

@@ -18,18 +18,23 @@ pub(crate) struct Problem {
 
 impl std::fmt::Display for Problem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let text = if self.in_grammar { "grammar" } else { "species" };
+        let text = if self.in_grammar {
+            "grammar"
+        } else {
+            "species"
+        };
         match self.at {
-            Some((line, column)) => write!(f, "{text}, line {line}, column {column}: {}", self.message),
+            Some((line, column)) => {
+                write!(f, "{text}, line {line}, column {column}: {}", self.message)
+            }
             None => write!(f, "{text}: {}", self.message),
         }
     }
 }
 
-/// A species that reads, and one tree of it.
+/// One tree of a species that reads.
 #[derive(Debug, Clone)]
 pub(crate) struct Preview {
-    pub(crate) species: Species,
     pub(crate) triangles: usize,
     /// How long reading the texts, deriving and meshing took.
     pub(crate) millis: f64,
@@ -84,11 +89,17 @@ impl Document {
                         path.display()
                     ));
                 }
-                let text = sylva::base::text_file::read(&file, sylva::lsys::MAX_GRAMMAR_BYTES as u64)
-                    .map_err(|e| e.to_string())?;
+                let text =
+                    sylva::base::text_file::read(&file, sylva::lsys::MAX_GRAMMAR_BYTES as u64)
+                        .map_err(|e| e.to_string())?;
                 (text, Some(file))
             }
-            None => return Err(format!("{}: grammar '{grammar_ref}' is not bundled", path.display())),
+            None => {
+                return Err(format!(
+                    "{}: grammar '{grammar_ref}' is not bundled",
+                    path.display()
+                ));
+            }
         };
         set_setting(&mut species_text, "grammar", &format!("{name}.lsys"));
         let mut document = Document {
@@ -126,14 +137,8 @@ impl Document {
                 Ok(Preview {
                     triangles: mesh.triangle_count(),
                     millis: started.elapsed().as_secs_f64() * 1e3,
-                    species,
                 })
             });
-    }
-
-    /// The species as it reads now, if it does.
-    pub(crate) fn species(&self) -> Option<&Species> {
-        self.outcome.as_ref().ok().map(|p| &p.species)
     }
 }
 
@@ -210,7 +215,10 @@ mod tests {
     fn a_bundled_species_opens_with_its_grammar_as_text() {
         let d = oak();
         assert_eq!(d.name, "oak");
-        assert_eq!(setting(&d.species_text, "grammar").as_deref(), Some("oak.lsys"));
+        assert_eq!(
+            setting(&d.species_text, "grammar").as_deref(),
+            Some("oak.lsys")
+        );
         // The preset's angle came along, so the tree is the bundled one.
         let preview = d.outcome.as_ref().unwrap();
         let bundled = sylva::presets::species().unwrap().remove(0);
@@ -241,10 +249,16 @@ mod tests {
         let lines = d.species_text.lines().count();
         set_setting(&mut d.species_text, "generations", "5");
         assert_eq!(d.species_text.lines().count(), lines);
-        assert_eq!(setting(&d.species_text, "generations").as_deref(), Some("5"));
+        assert_eq!(
+            setting(&d.species_text, "generations").as_deref(),
+            Some("5")
+        );
         d.rebuild();
         assert!(d.outcome.as_ref().unwrap().triangles < before);
         set_setting(&mut d.species_text, "weight", "2");
-        assert!(d.species_text.ends_with("weight: 2\n") || setting(&d.species_text, "weight").as_deref() == Some("2"));
+        assert!(
+            d.species_text.ends_with("weight: 2\n")
+                || setting(&d.species_text, "weight").as_deref() == Some("2")
+        );
     }
 }

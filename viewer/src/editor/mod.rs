@@ -5,6 +5,7 @@
 
 pub(crate) mod document;
 mod history;
+pub(crate) mod in_window;
 pub(crate) mod overlay;
 pub(crate) mod panel;
 pub(crate) mod project;
@@ -27,8 +28,10 @@ pub(crate) struct Editor {
     history: History,
     /// The project folder saves go to.
     pub(crate) project: PathBuf,
-    /// Edits since the last save (or autosave).
+    /// Edits since the last save.
     pub(crate) unsaved: bool,
+    /// Edits since the last autosave.
+    since_autosave: bool,
     last_autosave: Instant,
     watch: Option<Watch>,
     /// What the editor last did or found ("saved", "reloaded oak.species", an error).
@@ -50,8 +53,11 @@ impl Editor {
             paths
                 .iter()
                 .map(|p| {
-                    let text = sylva::base::text_file::read(p, sylva::forest::limits::MAX_SPECIES_FILE_BYTES)
-                        .map_err(|e| e.to_string())?;
+                    let text = sylva::base::text_file::read(
+                        p,
+                        sylva::forest::limits::MAX_SPECIES_FILE_BYTES,
+                    )
+                    .map_err(|e| e.to_string())?;
                     Document::open(p, &text, true)
                 })
                 .collect::<Result<Vec<_>, _>>()?
@@ -61,7 +67,13 @@ impl Editor {
             .flat_map(|d| [d.species_path.clone(), d.grammar_path.clone()])
             .flatten()
             .filter_map(|p| p.parent().map(Path::to_path_buf))
-            .map(|p| if p.as_os_str().is_empty() { PathBuf::from(".") } else { p })
+            .map(|p| {
+                if p.as_os_str().is_empty() {
+                    PathBuf::from(".")
+                } else {
+                    p
+                }
+            })
             .collect();
         folders.sort();
         folders.dedup();
@@ -69,13 +81,14 @@ impl Editor {
             Ok(w) => (Some(w), String::new()),
             Err(e) => (None, format!("files are not watched: {e}")),
         };
-        let restorable = project::crashed_autosave(&project);
+        let restorable = project::offered_autosave(&project);
         Ok(Editor {
             documents,
             selected: 0,
             history: History::default(),
             project,
             unsaved: false,
+            since_autosave: false,
             last_autosave: Instant::now(),
             watch: (!folders.is_empty()).then_some(watch).flatten(),
             status,
@@ -103,14 +116,18 @@ impl Editor {
         let before = self.snapshot(self.selected);
         let document = &mut self.documents[self.selected];
         change(document);
-        if (&document.species_text, &document.grammar_text, document.seed)
-            == (&before.species_text, &before.grammar_text, before.seed)
+        if (
+            &document.species_text,
+            &document.grammar_text,
+            document.seed,
+        ) == (&before.species_text, &before.grammar_text, before.seed)
         {
             return;
         }
         self.history.record(before, Instant::now());
         document.rebuild();
         self.unsaved = true;
+        self.since_autosave = true;
     }
 
     fn restore(&mut self, s: Snapshot) {
@@ -121,6 +138,7 @@ impl Editor {
         d.seed = s.seed;
         d.rebuild();
         self.unsaved = true;
+        self.since_autosave = true;
     }
 
     /// Undoes the last edit (of whichever species), selecting that species.
@@ -152,7 +170,14 @@ impl Editor {
     fn files(&self) -> Vec<(String, String, String, String)> {
         self.documents
             .iter()
-            .map(|d| (d.name.clone(), d.species_text.clone(), d.grammar_file(), d.grammar_text.clone()))
+            .map(|d| {
+                (
+                    d.name.clone(),
+                    d.species_text.clone(),
+                    d.grammar_file(),
+                    d.grammar_text.clone(),
+                )
+            })
             .collect()
     }
 
@@ -161,21 +186,22 @@ impl Editor {
         match project::save(&self.project, &self.files()) {
             Ok(()) => {
                 self.unsaved = false;
+                project::mark_saved(&self.project);
                 self.status = format!("saved to {}", self.project.display());
             }
             Err(e) => self.status = format!("not saved: {e}"),
         }
     }
 
-    /// Autosaves into the project's autosave folder when there are edits and the interval
-    /// has passed, or at once with `now`.
+    /// Autosaves into the project's autosave folder when there are edits since the last
+    /// autosave and the interval has passed (at once with `now`).
     pub(crate) fn autosave(&mut self, now: bool) {
-        if !self.unsaved || (!now && self.last_autosave.elapsed() < AUTOSAVE_EVERY) {
+        if !self.since_autosave || (!now && self.last_autosave.elapsed() < AUTOSAVE_EVERY) {
             return;
         }
         self.last_autosave = Instant::now();
-        let folder = project::autosave_folder(&self.project);
-        if let Err(e) = project::save(&folder, &self.files()) {
+        self.since_autosave = false;
+        if let Err(e) = project::autosave(&self.project, &self.files()) {
             self.status = format!("autosave failed: {e}");
         }
     }
@@ -201,6 +227,7 @@ impl Editor {
             }
         }
         self.unsaved = restored > 0;
+        self.since_autosave = self.unsaved;
         self.status = format!("restored {restored} species from the autosave");
     }
 
@@ -299,7 +326,10 @@ mod tests {
         assert!(!e.unsaved, "{}", e.status);
         // The project's species files are what sylva forest reads.
         let oak = sylva::forest::Species::from_file(project.join("oak.species")).unwrap();
-        assert_eq!(oak.mesh(oak.generations, 1).unwrap().triangle_count(), edited);
+        assert_eq!(
+            oak.mesh(oak.generations, 1).unwrap().triangle_count(),
+            edited
+        );
         let again = Editor::open(&[project.join("oak.species")], project.clone()).unwrap();
         assert_eq!(again.current().outcome.as_ref().unwrap().triangles, edited);
         let _ = std::fs::remove_dir_all(&project);
@@ -311,8 +341,10 @@ mod tests {
         let mut e = Editor::open(&[], project.clone()).unwrap();
         e.save();
         let file = project.join("oak.species");
-        let mut watched = Editor::open(&[file.clone()], project.clone()).unwrap();
-        let text = std::fs::read_to_string(&file).unwrap().replace("generations: 8", "generations: eight");
+        let mut watched = Editor::open(std::slice::from_ref(&file), project.clone()).unwrap();
+        let text = std::fs::read_to_string(&file)
+            .unwrap()
+            .replace("generations: 8", "generations: eight");
         std::fs::write(&file, text).unwrap();
         // The change arrives after the debounce: wait for it, a bounded while.
         let until = Instant::now() + Duration::from_secs(10);
@@ -321,7 +353,10 @@ mod tests {
             watched.reload_changed();
         }
         let problem = watched.current().outcome.as_ref().unwrap_err();
-        assert!(!problem.in_grammar && problem.at.map(|a| a.0).is_some(), "{problem}");
+        assert!(
+            !problem.in_grammar && problem.at.map(|a| a.0).is_some(),
+            "{problem}"
+        );
         assert!(watched.status.starts_with("reloaded"), "{}", watched.status);
         let _ = std::fs::remove_dir_all(&project);
     }

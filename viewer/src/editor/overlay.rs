@@ -33,7 +33,8 @@ impl Overlay {
                 self.renderer.update_texture(device, queue, id, &delta);
             }
         }
-        let primitives = ctx.tessellate(std::mem::take(&mut output.shapes), output.pixels_per_point);
+        let primitives =
+            ctx.tessellate(std::mem::take(&mut output.shapes), output.pixels_per_point);
         let screen = ScreenDescriptor {
             size_in_pixels: [size.0, size.1],
             pixels_per_point: output.pixels_per_point,
@@ -73,7 +74,8 @@ pub(crate) fn render_panel(
     editor: &mut super::Editor,
     size: (u32, u32),
 ) -> Result<Vec<u8>, ViewerError> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let (_, device, queue) = {
         let _quiet = crate::offscreen::quiet_wayland_probe();
         pollster::block_on(crate::gpu::device(&instance, None))?
@@ -144,4 +146,61 @@ pub(crate) fn render_panel(
         }
     }
     Ok(pixels)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The panel, or `None` (after saying why) where no adapter is available and the
+    /// environment does not require one.
+    fn panel(editor: &mut super::super::Editor, size: (u32, u32)) -> Option<Vec<u8>> {
+        match render_panel(editor, size) {
+            Ok(pixels) => Some(pixels),
+            Err(e) if std::env::var_os("SYLVA_REQUIRE_GPU").is_none() => {
+                eprintln!("skipping the headless panel: {e}");
+                None
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    /// Pixels of the panel's strip (the left third) that are reddish: the problem line.
+    fn red(pixels: &[u8], size: (u32, u32)) -> usize {
+        pixels
+            .chunks_exact(4)
+            .enumerate()
+            .filter(|(k, p)| {
+                (*k as u32 % size.0) < size.0 / 3 && p[0] > 180 && p[1] < 150 && p[2] < 150
+            })
+            .count()
+    }
+
+    /// The panel draws its text over its ground, and a grammar that does not read shows its
+    /// problem in red below the grammar.
+    #[test]
+    fn the_panel_shows_a_problem_in_red() {
+        let project = std::env::temp_dir().join(format!("sylva-panel-{}", std::process::id()));
+        let mut editor = super::super::Editor::open(&[], project.clone()).unwrap();
+        let size = (1280, 720);
+        let Some(clean) = panel(&mut editor, size) else {
+            return;
+        };
+        // Light text on the dark panel: many bright pixels in its strip.
+        let bright = clean
+            .chunks_exact(4)
+            .enumerate()
+            .filter(|(k, p)| (*k as u32 % size.0) < size.0 / 3 && p[0] > 200 && p[1] > 200)
+            .count();
+        assert!(bright > 2000, "{bright} bright pixels");
+        assert_eq!(red(&clean, size), 0);
+        editor.edit(|d| d.grammar_text.push_str("\nA -> B(1,"));
+        let broken = panel(&mut editor, size).expect("rendered once already");
+        assert!(
+            red(&broken, size) > 100,
+            "{} red pixels",
+            red(&broken, size)
+        );
+        let _ = std::fs::remove_dir_all(&project);
+    }
 }

@@ -5,10 +5,12 @@
 use egui::{Color32, RichText, ScrollArea, TextEdit, Ui};
 
 use super::Editor;
-use super::document::{setting, set_setting};
+use super::document::{set_setting, setting};
 
 /// Width of the panel, in points.
 const WIDTH: f32 = 430.0;
+/// Height of the grammar's text box, in points.
+const GRAMMAR_HEIGHT: f32 = 300.0;
 
 /// The species-file settings shown as sliders: key, range, step.
 const SLIDERS: &[(&str, f64, f64, f64)] = &[
@@ -79,13 +81,20 @@ fn species_list(ui: &mut Ui, editor: &mut Editor) {
 fn grammar(ui: &mut Ui, editor: &mut Editor) {
     ui.label(format!("Grammar ({})", editor.current().grammar_file()));
     let mut text = editor.current().grammar_text.clone();
-    let response = ui.add(
-        TextEdit::multiline(&mut text)
-            .id_salt("grammar")
-            .code_editor()
-            .desired_rows(12)
-            .desired_width(f32::INFINITY),
-    );
+    // The text scrolls in a box of its own, so the settings stay in view below it.
+    let response = ScrollArea::vertical()
+        .id_salt("grammar scroll")
+        .max_height(GRAMMAR_HEIGHT)
+        .show(ui, |ui| {
+            ui.add(
+                TextEdit::multiline(&mut text)
+                    .id_salt("grammar")
+                    .code_editor()
+                    .desired_rows(12)
+                    .desired_width(f32::INFINITY),
+            )
+        })
+        .inner;
     if response.changed() {
         editor.edit(|d| d.grammar_text = text);
     }
@@ -100,10 +109,15 @@ fn settings(ui: &mut Ui, editor: &mut Editor) {
         let text = &editor.current().species_text;
         let Some(mut value) = setting(text, key).and_then(|v| v.parse::<f64>().ok()) else {
             // A setting the file does not give, or gives as something else: shown as text.
-            ui.label(format!("{key}: {}", setting(text, key).unwrap_or_else(|| "-".into())));
+            ui.label(format!(
+                "{key}: {}",
+                setting(text, key).unwrap_or_else(|| "-".into())
+            ));
             continue;
         };
-        let slider = egui::Slider::new(&mut value, low..=high).step_by(step).text(key);
+        let slider = egui::Slider::new(&mut value, low..=high)
+            .step_by(step)
+            .text(key);
         if ui.add(slider).changed() {
             let value = if step >= 1.0 {
                 format!("{}", value.round())
@@ -115,13 +129,19 @@ fn settings(ui: &mut Ui, editor: &mut Editor) {
     }
     ui.collapsing("Species file", |ui| {
         let mut text = editor.current().species_text.clone();
-        let response = ui.add(
-            TextEdit::multiline(&mut text)
-                .id_salt("species")
-                .code_editor()
-                .desired_rows(8)
-                .desired_width(f32::INFINITY),
-        );
+        let response = ScrollArea::vertical()
+            .id_salt("species scroll")
+            .max_height(GRAMMAR_HEIGHT)
+            .show(ui, |ui| {
+                ui.add(
+                    TextEdit::multiline(&mut text)
+                        .id_salt("species")
+                        .code_editor()
+                        .desired_rows(8)
+                        .desired_width(f32::INFINITY),
+                )
+            })
+            .inner;
         if response.changed() {
             editor.edit(|d| d.species_text = text);
         }
@@ -140,7 +160,10 @@ fn preview(ui: &mut Ui, editor: &mut Editor) {
         }
     });
     let line = match &editor.current().outcome {
-        Ok(p) => format!("Preview: {} triangles, built in {:.0} ms", p.triangles, p.millis),
+        Ok(p) => format!(
+            "Preview: {} triangles, built in {:.0} ms",
+            p.triangles, p.millis
+        ),
         Err(_) => "Preview: none while the texts do not read".to_string(),
     };
     ui.label(line);

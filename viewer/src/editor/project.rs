@@ -1,7 +1,8 @@
 //! The editor's project folder: species files and their grammars saved side by side, so
 //! that `sylva forest --species DIR/NAME.species` and the server take them; an autosave
-//! beside them, and a mark that says a session is running, so that the next start after a
-//! crash can offer the autosave back.
+//! beside them, with marks that say a session is running and that the autosave holds edits
+//! never saved, so that the next start (after a crash, or a quit without saving) offers the
+//! autosave back.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -10,10 +11,15 @@ use std::path::{Path, PathBuf};
 const AUTOSAVE: &str = ".autosave";
 /// The file that marks a session running; a clean quit removes it.
 const RUNNING: &str = "running";
+/// The file that marks the autosave as holding edits never saved; a save removes it.
+const UNSAVED: &str = "unsaved";
 
 /// Writes each (species name, species text, grammar file, grammar text) into `folder`,
 /// every file atomically (a crash mid-save leaves the old file or the new, never half).
-pub(crate) fn save(folder: &Path, documents: &[(String, String, String, String)]) -> Result<(), String> {
+pub(crate) fn save(
+    folder: &Path,
+    documents: &[(String, String, String, String)],
+) -> Result<(), String> {
     std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
     for (name, species, grammar_file, grammar) in documents {
         write(&folder.join(format!("{name}.species")), species)?;
@@ -44,11 +50,26 @@ pub(crate) fn mark_quit(project: &Path) {
     let _ = std::fs::remove_file(autosave_folder(project).join(RUNNING));
 }
 
-/// The species files of an autosave a crashed session left in `project`, if any: the last
-/// session never quit, and it saved something.
-pub(crate) fn crashed_autosave(project: &Path) -> Option<Vec<PathBuf>> {
+/// Writes the autosave of `documents` and marks it as holding edits never saved.
+pub(crate) fn autosave(
+    project: &Path,
+    documents: &[(String, String, String, String)],
+) -> Result<(), String> {
     let folder = autosave_folder(project);
-    if !folder.join(RUNNING).is_file() {
+    save(&folder, documents)?;
+    write(&folder.join(UNSAVED), "")
+}
+
+/// Clears the unsaved mark: the project's own files hold every edit.
+pub(crate) fn mark_saved(project: &Path) {
+    let _ = std::fs::remove_file(autosave_folder(project).join(UNSAVED));
+}
+
+/// The species files of an autosave to offer back in `project`, if any: the last session
+/// never quit (a crash) or quit with edits it never saved, and the autosave holds species.
+pub(crate) fn offered_autosave(project: &Path) -> Option<Vec<PathBuf>> {
+    let folder = autosave_folder(project);
+    if !folder.join(UNSAVED).is_file() && !folder.join(RUNNING).is_file() {
         return None;
     }
     let mut species: Vec<PathBuf> = std::fs::read_dir(&folder)
@@ -66,18 +87,28 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_autosave_is_offered_only_after_a_session_that_never_quit() {
+    fn an_autosave_is_offered_after_a_crash_or_unsaved_edits_only() {
         let project = std::env::temp_dir().join(format!("sylva-project-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&project);
-        let docs = vec![("bush".to_string(), "name: bush\ngrammar: bush.lsys\n".to_string(), "bush.lsys".to_string(), "axiom: F\n".to_string())];
+        let docs = vec![(
+            "bush".to_string(),
+            "name: bush\ngrammar: bush.lsys\n".to_string(),
+            "bush.lsys".to_string(),
+            "axiom: F\n".to_string(),
+        )];
         save(&project, &docs).unwrap();
         assert!(project.join("bush.species").is_file() && project.join("bush.lsys").is_file());
         mark_running(&project).unwrap();
-        save(&autosave_folder(&project), &docs).unwrap();
+        autosave(&project, &docs).unwrap();
+        let offered = Some(vec![autosave_folder(&project).join("bush.species")]);
         // Still running (or killed): the autosave is there to restore.
-        assert_eq!(crashed_autosave(&project), Some(vec![autosave_folder(&project).join("bush.species")]));
+        assert_eq!(offered_autosave(&project), offered);
+        // Quit with edits never saved: still offered.
         mark_quit(&project);
-        assert_eq!(crashed_autosave(&project), None);
+        assert_eq!(offered_autosave(&project), offered);
+        // Saved, and quit: nothing to offer.
+        mark_saved(&project);
+        assert_eq!(offered_autosave(&project), None);
         let _ = std::fs::remove_dir_all(&project);
     }
 }

@@ -176,7 +176,7 @@ impl GrammarParser {
             }
             _ => Err(cur.error_at(
                 at,
-                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#start { ... }' (or #starteach, #endeach, #end), '#array name[n] = {...}', '#decomposition [depth N]' or '#homomorphism [depth N]'",
+                "unknown directive: expected '#define NAME value', '#ignore: symbols', '#module names', '#derivation N', '#ring', '#start { ... }' (or #starteach, #endeach, #end), '#array name[n] = {...}', '#decomposition [depth N]' or '#homomorphism [depth N]'",
             )),
         }
     }

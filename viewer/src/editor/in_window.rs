@@ -1,0 +1,96 @@
+//! The editor in the viewer's window: egui's input from winit, the panel drawn over each
+//! frame, F2 to show or hide it, files reloaded and the project autosaved as frames pass.
+
+use winit::event::WindowEvent;
+use winit::window::Window;
+
+use super::Editor;
+use super::overlay::Overlay;
+
+/// The editor with what it needs to live in a window.
+pub(crate) struct EditorWindow {
+    pub(crate) editor: Editor,
+    ctx: egui::Context,
+    input: egui_winit::State,
+    overlay: Overlay,
+    /// Whether the panel is shown (F2).
+    pub(crate) visible: bool,
+}
+
+impl EditorWindow {
+    pub(crate) fn new(
+        editor: Editor,
+        window: &Window,
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+    ) -> EditorWindow {
+        let ctx = egui::Context::default();
+        let input = egui_winit::State::new(
+            ctx.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(device.limits().max_texture_dimension_2d as usize),
+        );
+        EditorWindow {
+            editor,
+            ctx,
+            input,
+            overlay: Overlay::new(device, format),
+            visible: true,
+        }
+    }
+
+    /// Gives the panel a window event; whether the panel used it (the walk must not).
+    pub(crate) fn on_event(&mut self, window: &Window, event: &WindowEvent) -> bool {
+        if !self.visible {
+            return false;
+        }
+        self.input.on_window_event(window, event).consumed
+    }
+
+    /// Runs the panel for this frame and records it over `target`; returns command buffers
+    /// to submit before `encoder`'s. Files changed on disk are read again first, and the
+    /// project is autosaved when its interval has passed.
+    pub(crate) fn draw(
+        &mut self,
+        window: &Window,
+        gpu: (&wgpu::Device, &wgpu::Queue),
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        size: (u32, u32),
+    ) -> Vec<wgpu::CommandBuffer> {
+        self.editor.reload_changed();
+        self.editor.autosave(false);
+        if !self.visible {
+            return Vec::new();
+        }
+        let raw = self.input.take_egui_input(window);
+        let editor = &mut self.editor;
+        let mut output = self.ctx.run_ui(raw, |ui| super::panel::show(ui, editor));
+        let platform = std::mem::take(&mut output.platform_output);
+        self.input.handle_platform_output(window, platform);
+        self.overlay
+            .draw(gpu, encoder, target, &self.ctx, output, size)
+    }
+
+    /// The line the window's title shows of the editor: the species and its preview, or its
+    /// problem (scripts driving the window read it).
+    pub(crate) fn title(&self) -> String {
+        let d = self.editor.current();
+        match &d.outcome {
+            Ok(p) => format!(
+                "editing {}: {} triangles in {:.0} ms; ",
+                d.name, p.triangles, p.millis
+            ),
+            Err(problem) => format!("editing {}: {problem}; ", d.name),
+        }
+    }
+
+    /// The window closes: unsaved edits are autosaved and the session marked as ended.
+    pub(crate) fn quit(&mut self) {
+        self.editor.autosave(true);
+        super::project::mark_quit(&self.editor.project);
+    }
+}
