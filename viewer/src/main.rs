@@ -7,6 +7,7 @@
 //!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--full-detail]
 //!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
 //!     [--wind S] [--time T]] [--editor | --editor-screenshot PATH] [--project DIR]
+//!     [--autosave-seconds S]
 //! ```
 //!
 //! The world is streamed: only the cells of it near the camera are generated and kept, fine
@@ -56,7 +57,8 @@
 //! `NAME.lsys`) atomically into the project folder (`--project DIR`, `sylva_project` by
 //! default), which `sylva forest --species DIR/NAME.species` reads. Species and grammar
 //! files changed in your own editor are read again while the viewer runs, their problems
-//! shown in the panel. The project is autosaved every 30 s and on quit into `DIR/.autosave`;
+//! shown in the panel. The project is autosaved every 30 s (`--autosave-seconds`) and on
+//! quit into `DIR/.autosave`;
 //! after a crash, or a quit with edits never saved, the next start offers it back.
 //! `--editor-screenshot PATH` renders the panel alone, headless.
 //!
@@ -160,6 +162,8 @@ struct Args {
     editor_screenshot: Option<String>,
     /// The editor's project folder (`--project`).
     project: std::path::PathBuf,
+    /// How often the editor autosaves (`--autosave-seconds`).
+    autosave_every: std::time::Duration,
     /// The species files the editor opens (`--species`; none: the bundled species).
     species_files: Vec<std::path::PathBuf>,
 }
@@ -168,7 +172,7 @@ const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] 
                      [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M] [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
                      [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]] \
                      [--year N | --years A..B [--every K] | --years Y1,Y2,...] \
-                     [--editor | --editor-screenshot PATH] [--project DIR]";
+                     [--editor | --editor-screenshot PATH] [--project DIR] [--autosave-seconds S]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -203,6 +207,7 @@ fn parse() -> Result<Args, String> {
     let mut editor = false;
     let mut editor_screenshot: Option<String> = None;
     let mut project = std::path::PathBuf::from("sylva_project");
+    let mut autosave_seconds = editor::AUTOSAVE_EVERY.as_secs_f64();
     let mut flags = cli::Flags::from_env();
     while let Some(a) = flags.next_flag() {
         match a.as_str() {
@@ -262,6 +267,7 @@ fn parse() -> Result<Args, String> {
             "--editor" => editor = true,
             "--editor-screenshot" => editor_screenshot = Some(flags.value("--editor-screenshot")?),
             "--project" => project = flags.value::<String>("--project")?.into(),
+            "--autosave-seconds" => autosave_seconds = flags.value("--autosave-seconds")?,
             "--help" | "-h" => cli::print_help(USAGE),
             s => return Err(format!("unknown argument {s}\n{USAGE}")),
         }
@@ -378,6 +384,11 @@ fn parse() -> Result<Args, String> {
             "--editor opens the panel in the window; headless, render it with --editor-screenshot PATH\n{USAGE}"
         ));
     }
+    if !(0.5..=3600.0).contains(&autosave_seconds) {
+        return Err(format!(
+            "--autosave-seconds {autosave_seconds}: expected 0.5 to 3600"
+        ));
+    }
     let species_files: Vec<std::path::PathBuf> = files.iter().map(Into::into).collect();
     let species = match (grammar, files.is_empty()) {
         (Some(_), false) => return Err(format!("give --grammar or --species, not both\n{USAGE}")),
@@ -424,6 +435,7 @@ fn parse() -> Result<Args, String> {
         editor,
         editor_screenshot,
         project,
+        autosave_every: std::time::Duration::from_secs_f64(autosave_seconds),
         species_files,
     })
 }
@@ -435,8 +447,9 @@ fn run() -> Result<(), ViewerError> {
     }
     // The editor opens first: a species it cannot read is an error before the world is built.
     let editor = if args.editor {
-        let editor = editor::Editor::open(&args.species_files, args.project.clone())
+        let mut editor = editor::Editor::open(&args.species_files, args.project.clone())
             .map_err(ViewerError::Editor)?;
+        editor.autosave_every = args.autosave_every;
         editor::project::mark_running(&args.project).map_err(ViewerError::Editor)?;
         Some(editor)
     } else {
@@ -571,6 +584,33 @@ fn editor_screenshot(args: &Args, path: &str) -> Result<(), ViewerError> {
         .map_err(ViewerError::Editor)?;
     let pixels = editor::overlay::render_panel(&mut editor, args.size)?;
     write_png(path, args.size, &pixels)?;
+    if let Some(files) = &editor.restorable {
+        println!(
+            "editor: the last session left an autosave of {} species to restore",
+            files.len()
+        );
+    }
+    // The preview's update time, as the panel sees it after an edit: every species at seeds
+    // 1 to 11, the median of each.
+    for k in 0..editor.documents.len() {
+        let mut document = editor.documents[k].clone();
+        let mut times: Vec<f64> = (1..=11)
+            .filter_map(|seed| {
+                document.seed = seed;
+                document.rebuild();
+                document.outcome.as_ref().ok().map(|p| p.millis)
+            })
+            .collect();
+        if let Some(ms) = median(&mut times) {
+            println!(
+                "editor: {} previews in {ms:.1} ms (median of {} seeds, {:.1} to {:.1})",
+                document.name,
+                times.len(),
+                times[0],
+                times[times.len() - 1]
+            );
+        }
+    }
     let d = editor.current();
     match &d.outcome {
         Ok(p) => println!(

@@ -15,6 +15,8 @@ pub(crate) struct EditorWindow {
     overlay: Overlay,
     /// Whether the panel is shown (F2).
     pub(crate) visible: bool,
+    /// Where the cursor is, in physical pixels.
+    cursor_x: f32,
 }
 
 impl EditorWindow {
@@ -39,15 +41,25 @@ impl EditorWindow {
             input,
             overlay: Overlay::new(device, format),
             visible: true,
+            cursor_x: f32::INFINITY,
         }
     }
 
-    /// Gives the panel a window event; whether the panel used it (the walk must not).
+    /// Gives the panel a window event; whether the panel used it (the walk must not). A
+    /// button or wheel over the panel is its own even before egui has seen the cursor there
+    /// (egui judges by the frame before: a first click would start the walk's mouse look).
     pub(crate) fn on_event(&mut self, window: &Window, event: &WindowEvent) -> bool {
         if !self.visible {
             return false;
         }
-        self.input.on_window_event(window, event).consumed
+        if let WindowEvent::CursorMoved { position, .. } = event {
+            self.cursor_x = position.x as f32;
+        }
+        let over_panel = matches!(
+            event,
+            WindowEvent::MouseInput { .. } | WindowEvent::MouseWheel { .. }
+        ) && self.cursor_x < super::panel::WIDTH * window.scale_factor() as f32;
+        self.input.on_window_event(window, event).consumed || over_panel
     }
 
     /// Runs the panel for this frame and records it over `target`; returns command buffers
@@ -79,12 +91,17 @@ impl EditorWindow {
     /// problem (scripts driving the window read it).
     pub(crate) fn title(&self) -> String {
         let d = self.editor.current();
+        let offer = if self.editor.restorable.is_some() {
+            "an autosave to restore; "
+        } else {
+            ""
+        };
         match &d.outcome {
             Ok(p) => format!(
-                "editing {}: {} triangles in {:.0} ms; ",
+                "{offer}editing {}: {} triangles in {:.0} ms; ",
                 d.name, p.triangles, p.millis
             ),
-            Err(problem) => format!("editing {}: {problem}; ", d.name),
+            Err(problem) => format!("{offer}editing {}: {problem}; ", d.name),
         }
     }
 

@@ -18,8 +18,8 @@ use document::Document;
 use history::{History, Snapshot};
 use watch::Watch;
 
-/// How often the project is autosaved while it has unsaved edits.
-const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
+/// How often the project is autosaved while it has unsaved edits, unless told otherwise.
+pub(crate) const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
 
 /// The species being edited, and what the editor knows of them.
 pub(crate) struct Editor {
@@ -33,6 +33,8 @@ pub(crate) struct Editor {
     /// Edits since the last autosave.
     since_autosave: bool,
     last_autosave: Instant,
+    /// How often edits are autosaved ([`AUTOSAVE_EVERY`] unless set).
+    pub(crate) autosave_every: Duration,
     watch: Option<Watch>,
     /// What the editor last did or found ("saved", "reloaded oak.species", an error).
     pub(crate) status: String,
@@ -90,6 +92,7 @@ impl Editor {
             unsaved: false,
             since_autosave: false,
             last_autosave: Instant::now(),
+            autosave_every: AUTOSAVE_EVERY,
             watch: (!folders.is_empty()).then_some(watch).flatten(),
             status,
             restorable,
@@ -196,7 +199,7 @@ impl Editor {
     /// Autosaves into the project's autosave folder when there are edits since the last
     /// autosave and the interval has passed (at once with `now`).
     pub(crate) fn autosave(&mut self, now: bool) {
-        if !self.since_autosave || (!now && self.last_autosave.elapsed() < AUTOSAVE_EVERY) {
+        if !self.since_autosave || (!now && self.last_autosave.elapsed() < self.autosave_every) {
             return;
         }
         self.last_autosave = Instant::now();

@@ -8,7 +8,7 @@ use super::Editor;
 use super::document::{set_setting, setting};
 
 /// Width of the panel, in points.
-const WIDTH: f32 = 430.0;
+pub(crate) const WIDTH: f32 = 430.0;
 /// Height of the grammar's text box, in points.
 const GRAMMAR_HEIGHT: f32 = 300.0;
 
@@ -29,6 +29,7 @@ pub(crate) fn show(ui: &mut Ui, editor: &mut Editor) {
         .resizable(false)
         .show(ui, |ui| {
             ui.heading("Species");
+            commands(ui, editor);
             restore_offer(ui, editor);
             species_list(ui, editor);
             ui.separator();
@@ -38,8 +39,6 @@ pub(crate) fn show(ui: &mut Ui, editor: &mut Editor) {
                 settings(ui, editor);
                 ui.separator();
                 preview(ui, editor);
-                ui.separator();
-                commands(ui, editor);
             });
         });
 }
@@ -186,11 +185,14 @@ fn commands(ui: &mut Ui, editor: &mut Editor) {
         if ui.button("Save").clicked() {
             editor.save();
         }
-        if editor.unsaved {
-            ui.label("unsaved edits");
-        }
+        // One line, truncated, so that the controls below never move.
+        let status = if editor.unsaved && editor.status.is_empty() {
+            "unsaved edits".to_string()
+        } else if editor.unsaved {
+            format!("unsaved edits; {}", editor.status)
+        } else {
+            editor.status.clone()
+        };
+        ui.add(egui::Label::new(status).truncate());
     });
-    if !editor.status.is_empty() {
-        ui.label(&editor.status);
-    }
 }
