@@ -108,9 +108,13 @@ pub(crate) fn run(
         waiting_editor: editor,
         editor: None,
     };
-    event_loop
-        .run_app(&mut app)
-        .map_err(ViewerError::EventLoop)?;
+    let ran = event_loop.run_app(&mut app);
+    // However the loop ended (closed, --frames done, an error), the session ended as it
+    // should: edits are autosaved and the running mark goes.
+    if let Some(editor) = &mut app.editor {
+        editor.quit();
+    }
+    ran.map_err(ViewerError::EventLoop)?;
     app.error.map_or(Ok(()), Err)
 }
 
@@ -425,12 +429,7 @@ impl ApplicationHandler for App {
             return;
         }
         match event {
-            WindowEvent::CloseRequested => {
-                if let Some(editor) = &mut self.editor {
-                    editor.quit();
-                }
-                event_loop.exit();
-            }
+            WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
                 if let Some(gpu) = &mut self.gpu {
                     // A minimised window has size zero: keep the old surface until it returns.

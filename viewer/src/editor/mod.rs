@@ -105,13 +105,7 @@ impl Editor {
     }
 
     fn snapshot(&self, k: usize) -> Snapshot {
-        let d = &self.documents[k];
-        Snapshot {
-            document: k,
-            species_text: d.species_text.clone(),
-            grammar_text: d.grammar_text.clone(),
-            seed: d.seed,
-        }
+        snapshot_of(&self.documents, k)
     }
 
     /// Applies `change` to the selected document (undoably), then reads and previews it.
@@ -279,6 +273,8 @@ impl Editor {
     }
 }
 
+/// Document `k` as it stands, for the history (a free function: undo borrows the history
+/// and the documents apart).
 fn snapshot_of(documents: &[Document], k: usize) -> Snapshot {
     let d = &documents[k];
     Snapshot {
