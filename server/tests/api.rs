@@ -73,6 +73,7 @@ async fn a_served_world_is_the_batch_writers_world() {
         );
     }
     server.stop().await;
+    let _ = std::fs::remove_dir_all(&batch);
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

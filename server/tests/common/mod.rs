@@ -27,7 +27,8 @@ pub(crate) struct Running {
 }
 
 impl Running {
-    /// Stops the server and waits for it.
+    /// Stops the server, waits for it, and removes its scratch cache (a load test's is
+    /// about 100 MB; left behind, runs fill the disk).
     pub(crate) async fn stop(mut self) {
         if let Some(s) = self.stop.take() {
             let _ = s.send(());
@@ -35,6 +36,7 @@ impl Running {
         if let Some(t) = self.task.take() {
             let _ = t.await;
         }
+        let _ = std::fs::remove_dir_all(&self.cache);
     }
 }
 
