@@ -63,15 +63,16 @@ pub fn plane(side: f32) -> FlatPlane {
     }
 }
 
-/// A file path (`forest.glb`) in a fresh temporary directory named after the test binary,
-/// this process and `name`.
+/// A file path (`forest.glb`) in a fresh temporary directory named after the test binary
+/// (its hash included) and `name`, emptied first: each run reuses its folders rather than
+/// leaving a new set behind (the export tests' come to tens of megabytes a run).
 pub fn scratch(name: &str) -> std::path::PathBuf {
     let binary = std::env::current_exe()
         .ok()
         .and_then(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
         .unwrap_or_else(|| "test".into());
-    let dir =
-        std::env::temp_dir().join(format!("sylva-test-{binary}-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("sylva-test-{binary}-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir.join("forest.glb")
 }
