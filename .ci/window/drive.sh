@@ -8,6 +8,7 @@
 # usage: .ci/window/drive.sh VIEWER FOREST_EXAMPLE WORKDIR
 # Needs Debian's xvfb and xdotool, and a Vulkan or GL driver (Mesa's lavapipe will do).
 set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
 viewer="$(realpath "$1")"; sylva="$(realpath "$2")"; work="$3"
 mkdir -p "$work"; cd "$work"; rm -rf paint_masks
 display=":$((100 + RANDOM % 400))"
@@ -33,19 +34,8 @@ find_window() {
   echo "$found"
 }
 window=$(find_window viewer.err)
-title() { xdotool getwindowname "$window"; }
+source "$here/title.sh"
 trees() { title | sed -n 's/.*; \([0-9]*\) trees in .*/\1/p'; }
-fail() { echo "$1; the title reads: $(title)" >&2; cat viewer.err >&2; exit 1; }
-# wait_until COMMAND...: polls until the command succeeds, four minutes at most (a frame
-# takes about a second on a software driver, and the title shows the frame before).
-wait_until() {
-  for _ in $(seq 1 480); do
-    if "$@"; then return 0; fi
-    sleep 0.5
-  done
-  fail "timed out waiting for: $*"
-}
-shows() { [[ "$(title)" == *"$1"* ]]; }
 settled() { shows " trees in 4 cells" && ! shows "coming"; }
 trees_are() { [ "$(trees)" = "$1" ]; }
 fewer_than() { local n; n=$(trees); [ -n "$n" ] && [ "$n" -lt "$1" ]; }

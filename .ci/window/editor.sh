@@ -9,6 +9,7 @@
 # usage: .ci/window/editor.sh VIEWER WORKDIR
 # Needs Debian's xvfb and xdotool, and a Vulkan or GL driver (Mesa's lavapipe will do).
 set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
 viewer="$(realpath "$1")"; work="$2"
 mkdir -p "$work"; cd "$work"; rm -rf proj
 display=":$((100 + RANDOM % 400))"
@@ -33,16 +34,7 @@ start() {
   [ -n "$window" ] || { echo "the viewer opened no window" >&2; cat viewer.err >&2; exit 1; }
   xdotool windowfocus --sync "$window"
 }
-title() { xdotool getwindowname "$window"; }
-fail() { echo "$1; the title reads: $(title)" >&2; cat viewer.err >&2; exit 1; }
-wait_until() {
-  for _ in $(seq 1 480); do
-    if "$@"; then return 0; fi
-    sleep 0.25
-  done
-  fail "timed out waiting for: $*"
-}
-shows() { [[ "$(title)" == *"$1"* ]]; }
+source "$here/title.sh"
 triangles() { title | sed -n 's/.*editing oak: \([0-9]*\) triangles.*/\1/p'; }
 other_than() { local n; n=$(triangles); [ -n "$n" ] && [ "$n" != "$1" ]; }
 # Where the panel's controls stand (points from the window's top left; the panel's layout is
