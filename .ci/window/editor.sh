@@ -76,15 +76,16 @@ xdotool key shift+Home
 sleep 2
 xdotool key BackSpace BackSpace
 wait_until shows "editing oak: $first triangles"
-# Generations 1 to 12 over the slider's 100 points from x = 8: x = 53 is 6 generations.
-press 53 "$generations_slider_y"
+# The oak's generations run from 5 (past its 4 seedling generations) to 12 over the slider's
+# 100 points from x = 8: x = 23 is 6 generations, x = 37 is 7.
+press 23 "$generations_slider_y"
 wait_until other_than "$first"
 saved=$(triangles)
 echo "editor: the slider moved; $saved triangles"
 tap "${save_button[@]}"
 wait_until test -f proj/oak.species
 grep -q "^generations: " proj/oak.species || fail "the saved species has no generations"
-press 62 "$generations_slider_y"
+press 37 "$generations_slider_y"
 wait_until other_than "$saved"
 unsaved=$(triangles)
 echo "editor: moved again, not saved; $unsaved triangles"

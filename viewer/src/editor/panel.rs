@@ -12,13 +12,14 @@ pub(crate) const WIDTH: f32 = 430.0;
 /// Height of the grammar's text box, in points.
 const GRAMMAR_HEIGHT: f32 = 300.0;
 
-/// The species-file settings shown as sliders: key, range, step.
-const SLIDERS: &[(&str, f64, f64, f64)] = &[
-    ("generations", 1.0, 12.0, 1.0),
-    ("angle", 0.0, 90.0, 0.5),
-    ("step", 0.05, 5.0, 0.05),
-    ("leaf_facing", 0.0, 1.0, 0.05),
-    ("weight", 0.0, 10.0, 0.5),
+/// The species-file settings shown as sliders: key, range, step, and the value a species
+/// file that does not give it has (the species reader's default).
+const SLIDERS: &[(&str, f64, f64, f64, f64)] = &[
+    ("generations", 1.0, 12.0, 1.0, 5.0),
+    ("angle", 0.0, 90.0, 0.5, 22.5),
+    ("step", 0.05, 5.0, 0.05, 1.0),
+    ("leaf_facing", 0.0, 1.0, 0.05, 0.0),
+    ("weight", 0.0, 10.0, 0.5, 1.0),
 ];
 
 /// Draws the panel at the left of `ui` (the window's root) and applies what the user did
@@ -104,15 +105,23 @@ fn grammar(ui: &mut Ui, editor: &mut Editor) {
 
 fn settings(ui: &mut Ui, editor: &mut Editor) {
     ui.label("Settings");
-    for &(key, low, high, step) in SLIDERS {
+    for &(key, low, high, step, default) in SLIDERS {
         let text = &editor.current().species_text;
-        let Some(mut value) = setting(text, key).and_then(|v| v.parse::<f64>().ok()) else {
-            // A setting the file does not give, or gives as something else: shown as text.
-            ui.label(format!(
-                "{key}: {}",
-                setting(text, key).unwrap_or_else(|| "-".into())
-            ));
+        let given = setting(text, key);
+        let Some(mut value) = given
+            .as_deref()
+            .map_or(Some(default), |v| v.parse::<f64>().ok())
+        else {
+            // A setting given as something other than a number: shown as it stands.
+            ui.label(format!("{key}: {}", given.unwrap_or_default()));
             continue;
+        };
+        // A canopy tree grows past its seedlings: generations start above them.
+        let low = match key {
+            "generations" => setting(text, "seedling_generations")
+                .and_then(|s| s.parse::<f64>().ok())
+                .map_or(low, |s| (s + 1.0).clamp(low, high)),
+            _ => low,
         };
         let slider = egui::Slider::new(&mut value, low..=high)
             .step_by(step)
