@@ -298,7 +298,8 @@ mod tests {
 
     #[test]
     fn edits_undo_and_redo_across_species() {
-        let mut e = Editor::open(&[], scratch("undo")).unwrap();
+        let project = scratch("undo");
+        let mut e = Editor::open(&[], project.clone()).unwrap();
         let oak = e.current().outcome.as_ref().unwrap().triangles;
         e.edit(|d| document::set_setting(&mut d.species_text, "generations", "5"));
         let fewer = e.current().outcome.as_ref().unwrap().triangles;
@@ -313,6 +314,7 @@ mod tests {
         e.redo();
         assert_eq!(e.current().outcome.as_ref().unwrap().triangles, fewer);
         assert!(e.can_redo());
+        let _ = std::fs::remove_dir_all(&project);
     }
 
     #[test]
