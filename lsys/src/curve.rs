@@ -247,10 +247,7 @@ impl Curve {
                 numbers[1],
                 numbers.get(2).copied().unwrap_or(0.0),
             ];
-            points.extend(std::iter::repeat_n(point, times));
-            if points.len() > MAX_CURVE_POINTS {
-                return Err(lines.at(format!("more than {MAX_CURVE_POINTS} points")));
-            }
+            lines.repeat(&mut points, point, times, MAX_CURVE_POINTS)?;
         }
         let samples = samples.or(own_samples).unwrap_or(DEFAULT_CURVE_SAMPLES);
         Curve::new(name, points, closed, samples).map_err(|e| lines.at(e))

@@ -62,4 +62,20 @@ impl<'a> Lines<'a> {
             .collect::<Option<Vec<f64>>>()
             .ok_or_else(|| self.at(format!("'{line}': expected {what}")))
     }
+
+    /// Appends `point` `times` times (its multiplicity) to `points`; an error at this line
+    /// when they come to more than `max`.
+    pub(crate) fn repeat<T: Copy>(
+        &self,
+        points: &mut Vec<T>,
+        point: T,
+        times: usize,
+        max: usize,
+    ) -> Result<(), String> {
+        points.extend(std::iter::repeat_n(point, times));
+        if points.len() > max {
+            return Err(self.at(format!("more than {max} points")));
+        }
+        Ok(())
+    }
 }

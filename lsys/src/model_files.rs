@@ -35,14 +35,6 @@ impl ModelFiles {
         contour_sides: None,
     };
 
-    /// Whether the model reads no files.
-    pub fn is_empty(&self) -> bool {
-        self.functions.is_empty()
-            && self.curves.is_empty()
-            && self.contours.is_empty()
-            && self.surfaces.is_empty()
-    }
-
     /// The contour `@#(id)` selects.
     pub fn contour(&self, id: u32) -> Option<&Curve> {
         self.contours.iter().find(|c| c.0 == id).map(|c| &c.1)

@@ -247,12 +247,7 @@ impl Lines<'_> {
                 (3, true) if numbers[2] >= 1.0 && numbers[2] <= 4.0 => numbers[2] as usize,
                 _ => return Err(self.at(format!("'{line}': expected x y"))),
             };
-            for _ in 0..times {
-                points.push([numbers[0], numbers[1]]);
-            }
-            if points.len() > MAX_POINTS {
-                return Err(self.at(format!("more than {MAX_POINTS} points")));
-            }
+            self.repeat(&mut points, [numbers[0], numbers[1]], times, MAX_POINTS)?;
         }
         Ok(points)
     }

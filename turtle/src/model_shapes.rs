@@ -81,11 +81,6 @@ impl ModelShapes {
         ModelShapes { surfaces, contours }
     }
 
-    /// Whether there is nothing to draw.
-    pub fn is_empty(&self) -> bool {
-        self.surfaces.is_empty() && self.contours.is_empty()
-    }
-
     pub(crate) fn contour(&self, id: u32) -> Option<&Contour> {
         self.contours.iter().find(|c| c.0 == id).map(|c| &c.1)
     }

@@ -179,18 +179,14 @@ pub(crate) fn read(src: &[char], p: &mut GrammarParser) -> Result<(), ParseError
                             .iter()
                             .take_while(|l| !ends_statement(l))
                             .count();
-                    // A production's block may hold blank lines before its arrow: the
-                    // statement the next line starts is read whole to see.
+                    // Whether a production starts: the statement the next line starts is
+                    // read whole (its block may hold blank lines before its arrow), and it
+                    // holds the first arrow of the run if there is one.
                     let production_follows = run > i + 1
                         && lines[i + 1..continuation(&lines, i + 1)]
                             .iter()
                             .any(|l| has_arrow(l));
-                    let end =
-                        if production_follows || lines[i + 1..run].iter().any(|l| has_arrow(l)) {
-                            i + 1
-                        } else {
-                            run
-                        };
+                    let end = if production_follows { i + 1 } else { run };
                     let joined = Joined::new(&lines[i..end], n);
                     let mut cur = Cursor::new(&joined.chars, n);
                     cur.set_pos(after);
@@ -267,21 +263,24 @@ fn braces_close(lines: &[&[char]], i: usize) -> usize {
     let mut depth = 0i64;
     let mut opened = false;
     for (k, line) in lines.iter().enumerate().skip(i) {
-        for &c in line.iter() {
-            match c {
-                '{' => {
-                    depth += 1;
-                    opened = true;
-                }
-                '}' => depth -= 1,
-                _ => {}
-            }
-        }
+        depth += brace_balance(line);
+        opened |= line.contains(&'{');
         if opened && depth <= 0 {
             return k + 1;
         }
     }
     lines.len()
+}
+
+/// The braces a line opens, less those it closes.
+fn brace_balance(line: &[char]) -> i64 {
+    line.iter()
+        .map(|&c| match c {
+            '{' => 1,
+            '}' => -1,
+            _ => 0,
+        })
+        .sum()
 }
 
 fn ends_statement(line: &[char]) -> bool {
@@ -296,16 +295,7 @@ fn continuation(lines: &[&[char]], i: usize) -> usize {
     let mut arrow = has_arrow(lines[i]);
     // Inside a statement block a blank line (a comment's, once comments are gone) is part
     // of the block.
-    let braces = |line: &[char]| {
-        line.iter()
-            .map(|&c| match c {
-                '{' => 1i64,
-                '}' => -1,
-                _ => 0,
-            })
-            .sum::<i64>()
-    };
-    let mut open = braces(lines[i]);
+    let mut open = brace_balance(lines[i]);
     let mut j = i + 1;
     while j < lines.len() {
         let line = lines[j];
@@ -316,7 +306,7 @@ fn continuation(lines: &[&[char]], i: usize) -> usize {
         if ends_statement(line) {
             break;
         }
-        open += braces(line);
+        open += brace_balance(line);
         if arrow && has_arrow(line) {
             break;
         }
