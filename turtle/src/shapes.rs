@@ -38,16 +38,7 @@ pub(crate) fn sphere(centre: Vec3, radius: f32, frame: &Frame) -> Vec<Vec<Vec3>>
                 point(ring + 1, next),
                 point(ring, next),
             ];
-            // At a pole two corners meet: a triangle.
-            let mut face: Vec<Vec3> = Vec::with_capacity(4);
-            for p in quad {
-                if face
-                    .last()
-                    .is_none_or(|q: &Vec3| q.distance(p) > 1e-6 * (1.0 + radius))
-                {
-                    face.push(p);
-                }
-            }
+            let mut face = distinct_corners(quad, |_| 1e-6 * (1.0 + radius));
             if face.len() > 3 && face[0].distance(face[face.len() - 1]) <= 1e-6 * (1.0 + radius) {
                 face.pop();
             }
@@ -57,6 +48,34 @@ pub(crate) fn sphere(centre: Vec3, radius: f32, frame: &Frame) -> Vec<Vec<Vec3>>
         }
     }
     out
+}
+
+/// A quad's corners, each that repeats the one before it dropped: where a sphere or a patch
+/// narrows to a point two corners meet, and the quad is a triangle. Corners within
+/// `tolerance(corner)` of each other are one.
+fn distinct_corners(quad: [Vec3; 4], tolerance: impl Fn(Vec3) -> f32) -> Vec<Vec3> {
+    let mut face: Vec<Vec3> = Vec::with_capacity(4);
+    for p in quad {
+        if face.last().is_none_or(|q| q.distance(p) > tolerance(p)) {
+            face.push(p);
+        }
+    }
+    face
+}
+
+/// A model's surface ([`crate::ModelShapes`]: quads as heading, left and up offsets) placed
+/// at `frame`, `size` times as large: its faces of three or four corners.
+pub(crate) fn placed(quads: &[[Vec3; 4]], frame: &Frame, size: f32) -> Vec<Vec<Vec3>> {
+    let axes = [frame.heading(), frame.left(), frame.up()];
+    quads
+        .iter()
+        .map(|quad| {
+            let corners = quad
+                .map(|p| frame.position + (axes[0] * p.x + axes[1] * p.y + axes[2] * p.z) * size);
+            distinct_corners(corners, |q| 1e-7 * (1.0 + q.length()))
+        })
+        .filter(|face| face.len() >= 3)
+        .collect()
 }
 
 /// A disc of `radius` around `centre` across the turtle's heading (in its left-up plane).

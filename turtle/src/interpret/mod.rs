@@ -1,15 +1,15 @@
 //! The turtle itself: walks a word and drives a `GeometrySink`.
 
 use glam::Vec3;
-use sylva_base::hash::{mix, unit_f32};
 use sylva_lsys::Word;
 
+mod organs;
 mod stem;
 
 use crate::error::TurtleError;
 use crate::frame::Frame;
 use crate::options::{Tropism, TurtleOptions};
-use crate::sink::{GeometrySink, Segment};
+use crate::sink::GeometrySink;
 use crate::symbols::{Command, Sign};
 
 /// Largest distance from the origin the turtle may reach.
@@ -339,143 +339,6 @@ impl<'o, 's, S: GeometrySink + ?Sized> Turtle<'o, 's, S> {
             _ => {}
         }
         Ok(())
-    }
-
-    /// A leaf (parameter: its scale), a sphere or a disc (parameter: the diameter, in width
-    /// units) at the turtle.
-    fn organ(&mut self, command: Command, args: Args) -> Result<(), TurtleError> {
-        let (options, frame) = (self.options, self.state.frame);
-        if self.state.broken {
-            return Ok(());
-        }
-        if command == Command::Leaf {
-            self.leaves_seen = self.leaves_seen.wrapping_add(1);
-            if options.leaf_keep < 1.0
-                && unit_f32(mix(u64::from(self.leaves_seen) ^ LEAF_KEEP_SALT))
-                    >= options.leaf_keep.max(0.0)
-            {
-                return Ok(());
-            }
-            let scale = args.get(0)?.unwrap_or(1.0).abs();
-            self.sink.leaf(
-                &frame.facing_sky(options.leaf_facing),
-                [options.leaf_size[0] * scale, options.leaf_size[1] * scale],
-            );
-            self.stats.leaves += 1;
-            return Ok(());
-        }
-        let diameter = args
-            .get(0)?
-            .map_or(self.state.width, |d| d * options.width_unit);
-        let radius = (diameter * 0.5).abs().max(options.min_radius);
-        let faces = if command == Command::Sphere {
-            crate::shapes::sphere(frame.position, radius, &frame)
-        } else {
-            vec![crate::shapes::disc(frame.position, radius, &frame)]
-        };
-        for face in &faces {
-            self.sink.polygon(face);
-        }
-        self.stats.polygons = self.stats.polygons.saturating_add(faces.len() as u32);
-        Ok(())
-    }
-
-    /// `~l(s)`: the model's surface `k` at the turtle, `s` (default 1) times its size.
-    fn surface(&mut self, k: usize, args: Args) -> Result<(), TurtleError> {
-        let size = args.get(0)?.unwrap_or(1.0) * self.scale * self.options.length_unit;
-        let Some((_, quads)) = self.options.shapes.surfaces.get(k) else {
-            return Ok(());
-        };
-        if self.state.broken {
-            return Ok(());
-        }
-        let frame = self.state.frame;
-        let axes = [frame.heading(), frame.left(), frame.up()];
-        let mut drawn = 0u32;
-        for quad in quads.iter() {
-            let mut face: Vec<Vec3> = Vec::with_capacity(4);
-            for p in quad {
-                let q = frame.position + (axes[0] * p.x + axes[1] * p.y + axes[2] * p.z) * size;
-                // Where a patch narrows to a point two corners meet: a triangle.
-                if face
-                    .last()
-                    .is_none_or(|last| last.distance(q) > 1e-7 * (1.0 + q.length()))
-                {
-                    face.push(q);
-                }
-            }
-            if face.len() >= 3 {
-                self.sink.polygon(&face);
-                drawn += 1;
-            }
-        }
-        self.stats.polygons = self.stats.polygons.saturating_add(drawn);
-        Ok(())
-    }
-
-    /// A generalized cylinder: started, a control point added, or ended and emitted as
-    /// segments along the smooth curve through its points.
-    fn curve(&mut self, command: Command) {
-        let radius = self.radius();
-        let position = self.state.frame.position;
-        if command == Command::CurveStart {
-            self.curve = Some(OpenCylinder {
-                points: vec![(position, radius)],
-                frame: self.state.frame,
-                contour: self.state.contour,
-            });
-            return;
-        }
-        if let Some(OpenCylinder { points, .. }) = &mut self.curve
-            && points.last().map(|p| p.0) != Some(position)
-            && points.len() < MAX_CURVE_POINTS
-        {
-            points.push((position, radius));
-        }
-        if command != Command::CurveEnd {
-            return;
-        }
-        let Some(OpenCylinder {
-            points,
-            frame,
-            contour,
-        }) = self.curve.take()
-        else {
-            return;
-        };
-        let pieces = crate::shapes::curve(&points, &frame);
-        // A contour's cylinder is a sheet of quads the sink takes as polygons; a circle's
-        // is segments, tubes like the branches'.
-        if let Some(contour) = self.options.shapes.contour(contour).filter(|_| contour > 0) {
-            if self.state.broken {
-                return;
-            }
-            let faces = crate::shapes::sweep(&pieces, contour);
-            for face in &faces {
-                self.sink.polygon(face);
-            }
-            self.stats.polygons = self.stats.polygons.saturating_add(faces.len() as u32);
-            return;
-        }
-        let mut parent = self.state.last;
-        for (k, piece) in pieces.iter().enumerate() {
-            self.sink.segment(&Segment {
-                id: self.next_id,
-                parent,
-                continues_parent: k > 0,
-                frame: piece.frame,
-                length: piece.length,
-                start_radius: piece.radii.0,
-                end_radius: piece.radii.1,
-                depth: self.state.depth,
-            });
-            parent = Some(self.next_id);
-            self.next_id = self.next_id.saturating_add(1);
-            self.stats.segments += 1;
-        }
-        if let Some(id) = parent.filter(|_| points.len() > 1) {
-            self.sink.axis_end(id);
-        }
     }
 
     /// `;` and `,`: the colour index set (parameter) or stepped up or down.
