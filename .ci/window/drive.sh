@@ -11,13 +11,8 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 viewer="$(realpath "$1")"; sylva="$(realpath "$2")"; work="$3"
 mkdir -p "$work"; cd "$work"; rm -rf paint_masks
-display=":$((100 + RANDOM % 400))"
-Xvfb "$display" -screen 0 800x600x24 -nolisten tcp > xvfb.log 2>&1 &
-xvfb=$!
-export DISPLAY="$display"
-export XDG_RUNTIME_DIR="$PWD/run"
-mkdir -p -m 700 "$XDG_RUNTIME_DIR"
-sleep 1
+source "$here/common.sh"
+virtual_display
 "$viewer" --area 150 > viewer.out 2> viewer.err &
 viewer_pid=$!
 trap 'kill $viewer_pid $xvfb 2>/dev/null || true' EXIT
@@ -34,7 +29,6 @@ find_window() {
   echo "$found"
 }
 window=$(find_window viewer.err)
-source "$here/title.sh"
 trees() { title | sed -n 's/.*; \([0-9]*\) trees in .*/\1/p'; }
 settled() { shows " trees in 4 cells" && ! shows "coming"; }
 trees_are() { [ "$(trees)" = "$1" ]; }

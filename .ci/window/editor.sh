@@ -12,15 +12,10 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 viewer="$(realpath "$1")"; work="$2"
 mkdir -p "$work"; cd "$work"; rm -rf proj
-display=":$((100 + RANDOM % 400))"
-Xvfb "$display" -screen 0 800x600x24 -nolisten tcp > xvfb.log 2>&1 &
-xvfb=$!
-export DISPLAY="$display"
-export XDG_RUNTIME_DIR="$PWD/run"
-mkdir -p -m 700 "$XDG_RUNTIME_DIR"
+source "$here/common.sh"
+virtual_display
 viewer_pid=""
 trap 'kill -9 $viewer_pid 2>/dev/null || true; kill $xvfb 2>/dev/null || true' EXIT
-sleep 1
 
 start() {
   "$viewer" --area 150 --editor --project proj --autosave-seconds 1 > viewer.out 2> viewer.err &
@@ -34,7 +29,6 @@ start() {
   [ -n "$window" ] || { echo "the viewer opened no window" >&2; cat viewer.err >&2; exit 1; }
   xdotool windowfocus --sync "$window"
 }
-source "$here/title.sh"
 triangles() { title | sed -n 's/.*editing oak: \([0-9]*\) triangles.*/\1/p'; }
 other_than() { local n; n=$(triangles); [ -n "$n" ] && [ "$n" != "$1" ]; }
 # Where the panel's controls stand (points from the window's top left; the panel's layout is

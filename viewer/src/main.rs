@@ -443,15 +443,15 @@ fn parse() -> Result<Args, String> {
 fn run() -> Result<(), ViewerError> {
     let mut args = parse().map_err(ViewerError::Usage)?;
     if let Some(path) = &args.editor_screenshot {
-        return editor_screenshot(&args, path);
+        return editor::launch::screenshot(&args.species_files, &args.project, args.size, path);
     }
     // The editor opens first: a species it cannot read is an error before the world is built.
     let editor = if args.editor {
-        let mut editor = editor::Editor::open(&args.species_files, args.project.clone())
-            .map_err(ViewerError::Editor)?;
-        editor.autosave_every = args.autosave_every;
-        editor::project::mark_running(&args.project).map_err(ViewerError::Editor)?;
-        Some(editor)
+        Some(editor::launch::session(
+            &args.species_files,
+            &args.project,
+            args.autosave_every,
+        )?)
     } else {
         None
     };
@@ -575,54 +575,6 @@ fn run() -> Result<(), ViewerError> {
             editor,
         ),
     }
-}
-
-/// `--editor-screenshot PATH`: the species panel alone, headless, at `--size`; prints what
-/// its preview says.
-fn editor_screenshot(args: &Args, path: &str) -> Result<(), ViewerError> {
-    let mut editor = editor::Editor::open(&args.species_files, args.project.clone())
-        .map_err(ViewerError::Editor)?;
-    let pixels = editor::overlay::render_panel(&mut editor, args.size)?;
-    write_png(path, args.size, &pixels)?;
-    if let Some(files) = &editor.restorable {
-        println!(
-            "editor: the last session left an autosave of {} species to restore",
-            files.len()
-        );
-    }
-    // The preview's update time, as the panel sees it after an edit: every species at seeds
-    // 1 to 11, the median of each.
-    for k in 0..editor.documents.len() {
-        let mut document = editor.documents[k].clone();
-        let mut times: Vec<f64> = (1..=11)
-            .filter_map(|seed| {
-                document.seed = seed;
-                document.rebuild();
-                document.outcome.as_ref().ok().map(|p| p.millis)
-            })
-            .collect();
-        if let Some(ms) = median(&mut times) {
-            println!(
-                "editor: {} previews in {ms:.1} ms (median of {} seeds, {:.1} to {:.1})",
-                document.name,
-                times.len(),
-                times[0],
-                times[times.len() - 1]
-            );
-        }
-    }
-    let d = editor.current();
-    match &d.outcome {
-        Ok(p) => println!(
-            "editor: {} species; {}: {} triangles, previewed in {:.0} ms; wrote {path}",
-            editor.documents.len(),
-            d.name,
-            p.triangles,
-            p.millis
-        ),
-        Err(problem) => println!("editor: {}: {problem}; wrote {path}", d.name),
-    }
-    Ok(())
 }
 
 /// The median of `values` (the upper one of an even count), sorting them; `None` when empty.

@@ -3,12 +3,13 @@
 //! edits; saved as a project folder; autosaved and offered back after a crash; files changed
 //! in the user's own editor reloaded. The panel that shows it is [`panel`].
 
-pub(crate) mod document;
+mod document;
 mod history;
 pub(crate) mod in_window;
-pub(crate) mod overlay;
-pub(crate) mod panel;
-pub(crate) mod project;
+pub(crate) mod launch;
+mod overlay;
+mod panel;
+mod project;
 mod watch;
 
 use std::path::{Path, PathBuf};

@@ -9,8 +9,8 @@ use super::document::{set_setting, setting};
 
 /// Width of the panel, in points.
 pub(crate) const WIDTH: f32 = 430.0;
-/// Height of the grammar's text box, in points.
-const GRAMMAR_HEIGHT: f32 = 300.0;
+/// Height of the text boxes (the grammar, the species file), in points.
+const TEXT_HEIGHT: f32 = 300.0;
 
 /// The species-file settings shown as sliders: key, range, step, and the value a species
 /// file that does not give it has (the species reader's default).
@@ -81,26 +81,30 @@ fn species_list(ui: &mut Ui, editor: &mut Editor) {
 fn grammar(ui: &mut Ui, editor: &mut Editor) {
     ui.label(format!("Grammar ({})", editor.current().grammar_file()));
     let mut text = editor.current().grammar_text.clone();
-    // The text scrolls in a box of its own, so the settings stay in view below it.
-    let response = ScrollArea::vertical()
-        .id_salt("grammar scroll")
-        .max_height(GRAMMAR_HEIGHT)
-        .show(ui, |ui| {
-            ui.add(
-                TextEdit::multiline(&mut text)
-                    .id_salt("grammar")
-                    .code_editor()
-                    .desired_rows(12)
-                    .desired_width(f32::INFINITY),
-            )
-        })
-        .inner;
-    if response.changed() {
+    if text_box(ui, "grammar", &mut text, 12).changed() {
         editor.edit(|d| d.grammar_text = text);
     }
     if let Err(problem) = &editor.current().outcome {
         ui.label(RichText::new(problem.to_string()).color(Color32::LIGHT_RED));
     }
+}
+
+/// A code editor of `rows` rows at least for `text`, scrolling in a box of its own so that
+/// what stands below it stays in view.
+fn text_box(ui: &mut Ui, id: &str, text: &mut String, rows: usize) -> egui::Response {
+    ScrollArea::vertical()
+        .id_salt(format!("{id} scroll"))
+        .max_height(TEXT_HEIGHT)
+        .show(ui, |ui| {
+            ui.add(
+                TextEdit::multiline(text)
+                    .id_salt(id)
+                    .code_editor()
+                    .desired_rows(rows)
+                    .desired_width(f32::INFINITY),
+            )
+        })
+        .inner
 }
 
 fn settings(ui: &mut Ui, editor: &mut Editor) {
@@ -137,20 +141,7 @@ fn settings(ui: &mut Ui, editor: &mut Editor) {
     }
     ui.collapsing("Species file", |ui| {
         let mut text = editor.current().species_text.clone();
-        let response = ScrollArea::vertical()
-            .id_salt("species scroll")
-            .max_height(GRAMMAR_HEIGHT)
-            .show(ui, |ui| {
-                ui.add(
-                    TextEdit::multiline(&mut text)
-                        .id_salt("species")
-                        .code_editor()
-                        .desired_rows(8)
-                        .desired_width(f32::INFINITY),
-                )
-            })
-            .inner;
-        if response.changed() {
+        if text_box(ui, "species", &mut text, 8).changed() {
             editor.edit(|d| d.species_text = text);
         }
     });
