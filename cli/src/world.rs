@@ -10,6 +10,8 @@ use sylva::terrain::Heightmap;
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::terrain::glam::Vec2;
 
+use sylva_server::project::Project;
+
 use crate::Failure;
 use crate::progress::{bar, phase};
 
@@ -70,6 +72,15 @@ pub(crate) struct WorldArgs {
     /// standing trees, broken tops and fallen trees, instead of placed at two ages.
     #[arg(long, value_name = "N", conflicts_with = "paint")]
     year: Option<u32>,
+    /// A project folder as the viewer's editor saves it: its world.json (species, terrain,
+    /// area, seed, density: the description `sylva serve` takes), the elevation model it
+    /// names, and its painted masks if it has them.
+    #[arg(
+        long,
+        value_name = "DIR",
+        conflicts_with_all = ["area", "trees", "terrain", "species", "seed", "density", "paint", "budget_mb"]
+    )]
+    project: Option<PathBuf>,
 }
 
 /// A world made from its flags.
@@ -136,6 +147,9 @@ impl WorldArgs {
                 "--min-height {lowest} --max-height {highest}: expected the lower below the higher"
             )));
         }
+        if let Some(dir) = &self.project {
+            return self.project_world(dir, lowest, highest, quiet);
+        }
         let budget = budget_bytes(self.budget_mb)?;
         let species = if self.species.is_empty() {
             sylva::presets::species()?
@@ -196,6 +210,54 @@ impl WorldArgs {
             region,
             side,
             seed: self.seed,
+            hero_time,
+            siting,
+        })
+    }
+}
+
+impl WorldArgs {
+    /// The world of a project folder (`--project`), with the flags that say where trees may
+    /// stand and which year to draw.
+    fn project_world(
+        &self,
+        dir: &Path,
+        lowest: f32,
+        highest: f32,
+        quiet: bool,
+    ) -> Result<World, Failure> {
+        let project = Project::read(dir).map_err(|e| Failure::job(e.to_string()))?;
+        let description = &project.description;
+        // The ground first: a missing model is reported before seconds of hero trees.
+        let (ground, _) = phase(quiet, "making the project's terrain", || project.ground());
+        let (map, extent) = ground.map_err(|e| Failure::job(e.to_string()))?;
+        let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
+            description.builder_with(|config| {
+                config.all_ages = self.year.is_some();
+                config.constraints = Constraints::default()
+                    .with_max_slope_degrees(self.max_slope)
+                    .with_height_range(lowest, highest);
+            })
+        });
+        let mut builder =
+            builder.map_err(|e| Failure::job(format!("{}: {}", dir.display(), e.message)))?;
+        if let Some(masks) = project.masks() {
+            builder = sylva::paint::with_masks(&builder, &masks, &map)?;
+        }
+        let region = Rect::new(Vec2::ZERO, Vec2::new(extent[0], extent[1]));
+        if let Some(year) = self.year {
+            builder = builder_at_year(&builder, region, year, quiet)?;
+        }
+        let siting = builder.siting(&map, region)?;
+        if !quiet && let Some(note) = siting_note(&siting, &builder.config().constraints) {
+            eprintln!("{note}");
+        }
+        Ok(World {
+            builder,
+            map,
+            region,
+            side: extent[0].max(extent[1]),
+            seed: description.seed,
             hero_time,
             siting,
         })

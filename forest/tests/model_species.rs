@@ -14,7 +14,7 @@ fn patch() -> String {
 
 #[test]
 fn a_model_species_draws_its_surfaces() {
-    let dir = std::env::temp_dir().join(format!("sylva-model-species-{}", std::process::id()));
+    let dir = std::env::temp_dir().join("sylva-model-species");
     let model = dir.join("herb");
     std::fs::create_dir_all(&model).unwrap();
     std::fs::write(

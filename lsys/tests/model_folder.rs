@@ -7,7 +7,7 @@ use sylva_lsys::{GrammarFileError, LSystem};
 
 /// A fresh folder of this name holding `files` (name, text).
 fn folder(name: &str, files: &[(&str, &str)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sylva-model-{name}-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("sylva-model-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     for (file, text) in files {

@@ -89,6 +89,11 @@ pub enum TerrainDescription {
         /// Gaussian smoothing, in samples (0 for none).
         #[serde(default = "default_smoothing")]
         smoothing: f32,
+        /// Hydraulic erosion after smoothing, as rain droplets per sample (0 for none, up
+        /// to 4; 1 cuts gullies). Left out of the canonical form when 0, so worlds described
+        /// before erosion keep their ids.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        erosion: f32,
     },
     /// A heightmap uploaded with `POST /heightmaps`.
     Heightmap {
@@ -112,6 +117,11 @@ fn default_relief() -> f32 {
 fn default_smoothing() -> f32 {
     2.0
 }
+fn is_zero(x: &f32) -> bool {
+    *x == 0.0
+}
+/// Most hydraulic-erosion droplets per sample.
+pub const MAX_EROSION: f32 = 4.0;
 
 impl Default for TerrainDescription {
     fn default() -> Self {
@@ -120,6 +130,7 @@ impl Default for TerrainDescription {
             roughness: default_roughness(),
             relief: default_relief(),
             smoothing: default_smoothing(),
+            erosion: 0.0,
         }
     }
 }
@@ -235,6 +246,7 @@ impl WorldDescription {
                 roughness,
                 relief,
                 smoothing,
+                erosion,
                 ..
             } => {
                 if !(0.0..=1.0).contains(roughness) {
@@ -245,6 +257,11 @@ impl WorldDescription {
                 }
                 if !(0.0..=64.0).contains(smoothing) {
                     return bad(format!("terrain smoothing {smoothing}: expected 0 to 64"));
+                }
+                if !(0.0..=MAX_EROSION).contains(erosion) {
+                    return bad(format!(
+                        "terrain erosion {erosion}: expected 0 to {MAX_EROSION} droplets per sample"
+                    ));
                 }
             }
             TerrainDescription::Heightmap {
@@ -370,6 +387,7 @@ mod tests {
                 r#"{"terrain": {"generated": {"roughness": 3}}}"#,
                 "roughness",
             ),
+            (r#"{"terrain": {"generated": {"erosion": 9}}}"#, "erosion"),
             (r#"[1, 2"#, "description"),
         ] {
             let e = WorldDescription::parse(json.as_bytes()).unwrap_err();
@@ -387,6 +405,17 @@ mod tests {
             WorldDescription::parse(&big).unwrap_err().status.as_u16(),
             413
         );
+    }
+
+    #[test]
+    fn no_erosion_keeps_the_ids_of_worlds_described_before_it() {
+        let before = r#"{"terrain": {"generated": {"seed": 3}}}"#;
+        let zero = r#"{"terrain": {"generated": {"seed": 3, "erosion": 0}}}"#;
+        let some = r#"{"terrain": {"generated": {"seed": 3, "erosion": 1}}}"#;
+        let id = |j: &str| WorldDescription::parse(j.as_bytes()).unwrap().id();
+        assert_eq!(id(before), id(zero));
+        assert_ne!(id(before), id(some));
+        assert!(!WorldDescription::default().canonical().contains("erosion"));
     }
 
     #[test]

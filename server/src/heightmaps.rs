@@ -9,14 +9,12 @@ use axum::extract::{Request, State};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
-use sha2::{Digest, Sha256};
 use sylva::terrain::dem::{ElevationModel, ReadOptions};
 
 use crate::cache::write_whole;
 use crate::error::ApiError;
-use crate::id::WorldId;
+use crate::ground::model_format;
 use crate::state::Server;
-use crate::world::upload_format;
 
 /// Most bytes an upload may have.
 pub const MAX_HEIGHTMAP_BYTES: usize = 64 << 20;
@@ -38,7 +36,7 @@ fn png_size(bytes: &[u8]) -> Option<(u32, u32)> {
 /// no larger than [`MAX_HEIGHTMAP_SIDE`] a side that decodes whole. Blocking (decoding).
 fn check(bytes: &[u8]) -> Result<(), ApiError> {
     let bad = |m: String| ApiError::bad_request("bad_heightmap", m);
-    let format = upload_format(bytes).ok_or_else(|| {
+    let format = model_format(bytes).ok_or_else(|| {
         bad(
             "a heightmap is a GeoTIFF, an SRTM .hgt, an ESRI ASCII grid or a 16-bit grayscale PNG"
                 .into(),
@@ -72,7 +70,7 @@ pub(crate) async fn upload(
     request: Request,
 ) -> Result<Response, ApiError> {
     let body = crate::body::read(request, MAX_HEIGHTMAP_BYTES).await?;
-    let id = WorldId::of(&Sha256::digest(&body));
+    let id = crate::project::model_id(&body);
     let path = server.cache.heightmap_path(&id);
     if !tokio::fs::try_exists(&path).await.unwrap_or(false) {
         let key = format!("heightmap/{id}");

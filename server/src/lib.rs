@@ -34,10 +34,12 @@ mod cache;
 mod description;
 mod error;
 mod files;
+mod ground;
 mod heightmaps;
 mod id;
 mod jobs;
 mod page;
+pub mod project;
 mod state;
 mod trees;
 mod world;
@@ -56,7 +58,7 @@ use axum::routing::{get, post};
 pub use body::BODY_TIMEOUT;
 pub use cache::{Cache, GENERATOR};
 pub use description::{
-    BUNDLED_SPECIES, MAX_DESCRIPTION_BYTES, MAX_SIDE, MAX_SPECIES, SpeciesEntry,
+    BUNDLED_SPECIES, MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_SIDE, MAX_SPECIES, SpeciesEntry,
     TerrainDescription, WorldDescription,
 };
 pub use error::ApiError;

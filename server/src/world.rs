@@ -6,13 +6,12 @@ use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use sylva::export::{TileScheme, TilesetOptions};
-use sylva::forest::{ForestBuilder, ForestConfig, Rect};
-use sylva::terrain::dem::{DemFormat, ElevationModel, ReadOptions};
+use sylva::forest::{ForestBuilder, Rect};
+use sylva::terrain::Heightmap;
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{DiamondSquare, EdgeMode, Heightmap};
 
 use crate::cache::Cache;
-use crate::description::{MAX_SIDE, TerrainDescription, WorldDescription};
+use crate::description::WorldDescription;
 use crate::error::ApiError;
 use crate::id::WorldId;
 
@@ -29,100 +28,11 @@ pub(crate) struct BuiltWorld {
     pub(crate) options: TilesetOptions,
 }
 
-/// The format of an uploaded elevation model, from its first bytes (or, for SRTM `.hgt`,
-/// which has none, its length).
-pub(crate) fn upload_format(bytes: &[u8]) -> Option<DemFormat> {
-    let hgt = [2 * 1201 * 1201, 2 * 3601 * 3601].contains(&bytes.len());
-    DemFormat::of(std::path::Path::new(""), &bytes[..bytes.len().min(16)])
-        .or(hgt.then_some(DemFormat::Hgt))
-}
-
-/// Reads an uploaded elevation model with the description's spacing and height range for
-/// what the file does not say; answers its square heightmap and its own extent. Blocking.
-fn uploaded_terrain(
-    cache: &Cache,
-    id: &str,
-    spacing: Option<f32>,
-    range: Option<[f32; 2]>,
-) -> Result<(Heightmap, [f32; 2]), ApiError> {
-    let id = WorldId::parse(id)
-        .ok_or_else(|| ApiError::bad_request("bad_description", "bad heightmap id"))?;
-    let bytes = std::fs::read(cache.heightmap_path(&id)).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => ApiError::bad_request(
-            "unknown_heightmap",
-            format!("no heightmap {id}: upload it with POST /heightmaps first"),
-        ),
-        _ => ApiError::internal(format!("heightmap {id}: {e}")),
-    })?;
-    let bad = |m: String| ApiError::bad_request("bad_heightmap", format!("heightmap {id}: {m}"));
-    let format = upload_format(&bytes).ok_or_else(|| bad("not an elevation model".into()))?;
-    let options = ReadOptions {
-        spacing,
-        height_range: range,
-        raw_size: None,
-    };
-    let model = ElevationModel::parse(&bytes, format, &options).map_err(|e| bad(e.to_string()))?;
-    if !model.spacing_from_file && spacing.is_none() {
-        return Err(bad(
-            "the file does not say how far apart its samples are: give \"spacing\" in the terrain"
-                .into(),
-        ));
-    }
-    model.to_heightmap().map_err(|e| bad(e.to_string()))
-}
-
 /// Builds a world (seconds: hero trees for every species). Blocking.
 pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<BuiltWorld, ApiError> {
-    let fail = |e: &(dyn std::error::Error + 'static)| ApiError::generation(e, "the world");
-    let species = description.species()?;
     // The world is the model's own extent, which the square map covers.
-    let (map, side) = match &description.terrain {
-        TerrainDescription::Heightmap {
-            id,
-            spacing,
-            height_range,
-        } => {
-            let (map, extent) = uploaded_terrain(cache, id, *spacing, *height_range)?;
-            if !extent.iter().all(|e| (10.0..=MAX_SIDE).contains(e)) {
-                return Err(ApiError::bad_request(
-                    "bad_heightmap",
-                    format!(
-                        "the heightmap covers {:.0} x {:.0} m: expected 10 to {MAX_SIDE} a side (set its spacing)",
-                        extent[0], extent[1]
-                    ),
-                ));
-            }
-            (map, extent)
-        }
-        TerrainDescription::Generated {
-            seed,
-            roughness,
-            relief,
-            smoothing,
-        } => {
-            let side = description.area;
-            // The batch tools' default terrain (`sylva::presets::terrain`) when left as is.
-            let mut map = DiamondSquare::new(257)
-                .with_seed(seed.unwrap_or(description.seed))
-                .with_spacing(side / 256.0)
-                .with_roughness(*roughness)
-                .with_amplitude(side * relief)
-                .generate()
-                .map_err(|e| fail(&e))?;
-            if *smoothing > 0.0 {
-                map.smooth(*smoothing, EdgeMode::Mirror)
-                    .map_err(|e| fail(&e))?;
-            }
-            (map, [side, side])
-        }
-    };
-    let mut config = ForestConfig::new(species);
-    config.seed = description.seed;
-    config.budget = description.budget_mb as usize * (1 << 20);
-    let mut builder = ForestBuilder::new(config).map_err(|e| fail(&e))?;
-    if let Some(d) = description.density {
-        builder.density_mut().patch = (10_000.0 / d).sqrt();
-    }
+    let (map, side) = description.ground(|id| uploaded_model(cache, id))?;
+    let builder = description.builder()?;
     let region = Rect::new(Vec2::ZERO, Vec2::new(side[0], side[1]));
     let scheme = TileScheme::new(region, description.tile_size, description.group)
         .map_err(|e| ApiError::bad_request("bad_description", e.to_string()))?;
@@ -133,6 +43,17 @@ pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<Bui
         map,
         scheme,
         options,
+    })
+}
+
+/// The bytes of the elevation model uploaded as `id`.
+fn uploaded_model(cache: &Cache, id: &WorldId) -> Result<Vec<u8>, ApiError> {
+    std::fs::read(cache.heightmap_path(id)).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => ApiError::bad_request(
+            "unknown_heightmap",
+            format!("no heightmap {id}: upload it with POST /heightmaps first"),
+        ),
+        _ => ApiError::internal(format!("heightmap {id}: {e}")),
     })
 }
 

@@ -93,7 +93,7 @@ pub fn export_case() -> (ForestBuilder, sylva_terrain::Heightmap, Rect) {
 /// A species whose grammar never moves the turtle: its trees draw nothing.
 pub fn bare_species() -> Species {
     let text = "name: bare\ngrammar: bare.lsys\ngenerations: 3\n";
-    let dir = std::env::temp_dir().join(format!("sylva-bare-{}", std::process::id()));
+    let dir = std::env::temp_dir().join("sylva-bare");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("bare.lsys"), "axiom: A\nA -> [+A][-A]A").unwrap();
     Species::parse_file(text, &dir.join("bare.species")).unwrap()
