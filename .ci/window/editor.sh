@@ -5,12 +5,14 @@
 # it back, moves the generations slider, saves the project and reads it back with
 # `sylva forest`'s species reader (the headless panel), moves the slider again and kills the
 # viewer (SIGKILL) once the edit is autosaved; the next start offers the autosave, and
-# Restore brings the edit back.
-# usage: .ci/window/editor.sh VIEWER WORKDIR
+# Restore brings the edit back. Then the forest tab: the terrain's roughness moved, the world
+# is built again while frames go on, swapped in, saved, and `sylva forest --project` makes
+# the saved project's forest.
+# usage: .ci/window/editor.sh VIEWER SYLVA WORKDIR
 # Needs Debian's xvfb and xdotool, and a Vulkan or GL driver (Mesa's lavapipe will do).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-viewer="$(realpath "$1")"; work="$2"
+viewer="$(realpath "$1")"; sylva="$(realpath "$2")"; work="$3"
 mkdir -p "$work"; cd "$work"; rm -rf proj
 source "$here/common.sh"
 virtual_display
@@ -33,23 +35,36 @@ triangles() { title | sed -n 's/.*editing oak: \([0-9]*\) triangles.*/\1/p'; }
 other_than() { local n; n=$(triangles); [ -n "$n" ] && [ "$n" != "$1" ]; }
 # Where the panel's controls stand (points from the window's top left; the panel's layout is
 # fixed, see viewer/src/editor/panel.rs).
-grammar_box=(200 200); generations_slider_y=439; save_button=(138 36); restore_button=(38 77)
+grammar_box=(200 200); generations_slider_y=443; save_button=(138 40); restore_button=(38 81)
+forest_tab=(125 14); roughness_slider_y=159
+# frames N: waits until N more frames have been drawn (the title changes every frame: it
+# carries the frame time), however slow frames are (a rebuild shares the cores).
+frames() {
+  local k before
+  for k in $(seq 1 "$1"); do
+    before=$(title)
+    wait_until changed "$before"
+  done
+}
+changed() { [ "$(title)" != "$1" ]; }
 # tap X Y: a click at (X, Y) once the panel has seen the cursor there, as a button takes it.
 tap() {
   xdotool mousemove --window "$window" "$1" "$2"
-  sleep 1.5
+  frames 2
   xdotool click 1
+  # What the click changed is laid out in the frames after it.
+  frames 2
 }
-# press X Y: the left button held over a frame at (X, Y), as a slider needs to take it
-# (a button takes a press that long as no click).
+# press X Y: the left button held over frames at (X, Y), as a slider needs to take it (a
+# button takes a press that long as no click).
 press() {
   xdotool mousemove --window "$window" "$1" "$2"
-  sleep 1.5
+  frames 2
   xdotool mousedown 1
-  sleep 2.5
+  frames 2
   xdotool mouseup 1
-  # The release gets a frame of its own: a move in the same frame would drag on.
-  sleep 2.5
+  # The release gets frames of its own: a move in the same frame would drag on.
+  frames 2
 }
 
 start
@@ -71,15 +86,15 @@ sleep 2
 xdotool key BackSpace BackSpace
 wait_until shows "editing oak: $first triangles"
 # The oak's generations run from 5 (past its 4 seedling generations) to 12 over the slider's
-# 100 points from x = 8: x = 23 is 6 generations, x = 37 is 7.
-press 23 "$generations_slider_y"
+# 190 points from x = 8: x = 35 is 6 generations, x = 62 is 7.
+press 35 "$generations_slider_y"
 wait_until other_than "$first"
 saved=$(triangles)
 echo "editor: the slider moved; $saved triangles"
 tap "${save_button[@]}"
 wait_until test -f proj/oak.species
 grep -q "^generations: " proj/oak.species || fail "the saved species has no generations"
-press 37 "$generations_slider_y"
+press 62 "$generations_slider_y"
 wait_until other_than "$saved"
 unsaved=$(triangles)
 echo "editor: moved again, not saved; $unsaved triangles"
@@ -97,3 +112,21 @@ tap "${restore_button[@]}"
 wait_until shows "editing oak: $unsaved triangles"
 shows "an autosave to restore" && fail "the offer stayed after Restore"
 echo "editor: restored the autosave; $unsaved triangles again"
+
+# The species restored, the forest follows them: built again in the background.
+wait_until shows "(build 1,"
+# The forest tab: roughness runs from 0 to 1 over the slider's 190 points from x = 8, so
+# x = 65 is 0.3. The world is built again in the background, frames going on meanwhile,
+# then swapped in.
+tap "${forest_tab[@]}"
+press 65 "$roughness_slider_y"
+wait_until shows "(build 2,"
+built=$(title | sed -n 's/.*\(forest built in [^;]*\).*/\1/p')
+echo "editor: the terrain's roughness moved; $built"
+[[ "$built" =~ \ ([1-9][0-9]*)\ frames\ drawn ]] || fail "no frames were drawn while the forest was built"
+tap "${save_button[@]}"
+rough() { grep -q '"roughness": 0\.[0-6]' proj/world.json 2>/dev/null; }
+wait_until rough
+"$sylva" forest --project proj --out forest.glb --quiet > forest.out 2>&1 || { cat forest.out >&2; fail "sylva forest did not take the project"; }
+[ -s forest.glb ] || fail "sylva forest wrote nothing"
+echo "editor: saved; sylva forest --project made its forest ($(stat -c %s forest.glb) bytes)"

@@ -156,7 +156,7 @@ impl Project {
     pub fn ground(&self) -> Result<(Heightmap, [f32; 2]), ProjectError> {
         let mut missing = None;
         let ground = self.description.ground(|id| {
-            self.model(id).ok_or_else(|| {
+            self.model_bytes(id).ok_or_else(|| {
                 missing = Some(id.as_str().to_owned());
                 ApiError::bad_request("unknown_heightmap", "")
             })
@@ -173,8 +173,20 @@ impl Project {
         })
     }
 
+    /// The folder's file holding the elevation model the terrain names, if the terrain
+    /// names one and the folder holds it.
+    pub fn model(&self) -> Option<PathBuf> {
+        let TerrainDescription::Heightmap { id, .. } = &self.description.terrain else {
+            return None;
+        };
+        let id = WorldId::parse(id)?;
+        model_files(&self.folder)
+            .into_iter()
+            .find(|p| read_bounded(p, MAX_HEIGHTMAP_BYTES as u64).is_ok_and(|b| model_id(&b) == id))
+    }
+
     /// The bytes of the folder's model file whose id is `id`.
-    fn model(&self, id: &WorldId) -> Option<Vec<u8>> {
+    fn model_bytes(&self, id: &WorldId) -> Option<Vec<u8>> {
         model_files(&self.folder)
             .into_iter()
             .filter_map(|p| read_bounded(&p, MAX_HEIGHTMAP_BYTES as u64).ok())
@@ -241,6 +253,7 @@ mod tests {
         assert_eq!(*id, model_id(&bytes).as_str());
         assert!(dir.join("heightmap.asc").is_file());
         let project = Project::read(&dir).unwrap();
+        assert_eq!(project.model(), Some(dir.join("heightmap.asc")));
         assert_eq!(project.description, written);
         let (map, extent) = project.ground().unwrap();
         assert!(extent[0] > 10.0 && map.size() > 2);

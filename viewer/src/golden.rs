@@ -46,6 +46,8 @@ fn default_scene() -> Scene {
         year: None,
         constraints: Default::default(),
         terrain: None,
+        ground: None,
+        density: None,
     })
     .expect("default scene builds")
 }
@@ -188,6 +190,8 @@ fn wind_sways_trees_and_still_air_does_not() {
         year: None,
         constraints: Default::default(),
         terrain: None,
+        ground: None,
+        density: None,
     })
     .expect("birch stand builds");
     let size = (160, 90);
@@ -240,6 +244,8 @@ fn a_view_streamed_again_is_the_same_picture() {
         year: None,
         constraints: Default::default(),
         terrain: None,
+        ground: None,
+        density: None,
     })
     .expect("world builds");
     let size = (160, 90);
@@ -290,6 +296,8 @@ fn a_turntable_frames_its_tree_from_every_side() {
         year: None,
         constraints: Default::default(),
         terrain: None,
+        ground: None,
+        density: None,
     })
     .expect("a turntable's world builds");
     let (builder, _) = scene.world.forest();

@@ -48,19 +48,27 @@
 //! views (four a row, half size) at `PATH`. Without a GPU it runs on Mesa's
 //! software drivers (lavapipe, or `WGPU_BACKEND=gl`).
 //!
-//! The species editor (Carey's L-system tab): `--editor` opens a panel at the left of the
-//! window (F2 hides or shows it) with the forest's species (the `--species` files, or the
-//! bundled ones), the selected one's grammar in a text editor whose problems are shown at
-//! their line and column as you type, its settings as sliders, a seed and "Next seed" for
-//! the preview tree (its triangles and build time in the panel and the window's title),
-//! undo, redo and save. Saves write each species file and its grammar (`NAME.species`,
-//! `NAME.lsys`) atomically into the project folder (`--project DIR`, `sylva_project` by
-//! default), which `sylva forest --species DIR/NAME.species` reads. Species and grammar
-//! files changed in your own editor are read again while the viewer runs, their problems
-//! shown in the panel. The project is autosaved every 30 s (`--autosave-seconds`) and on
-//! quit into `DIR/.autosave`;
+//! The editor (Carey's tool): `--editor` opens a panel at the left of the window (F2 hides
+//! or shows it) with three tabs. Species: the forest's species (the `--species` files, the
+//! project's, or the bundled ones), the selected one's grammar in a text editor whose
+//! problems are shown at their line and column as you type, its settings as sliders, a seed
+//! and "Next seed" for the preview tree (its triangles and build time in the panel and the
+//! window's title). Forest: the world's seed and side, its terrain (generated: roughness,
+//! relief, smoothing, erosion, a seed of its own; or an elevation model's file) and its
+//! density. Paint and walk: the painting tool's brush and the guided walk. A change of the
+//! species or the forest builds the world again in the background once the edits pause;
+//! the walk goes on in the old one until the new one, with the cells around the camera, is
+//! swapped in. Undo and redo span species edits, forest settings and strokes. Saves write
+//! each species file and its grammar (`NAME.species`, `NAME.lsys`), the world file
+//! (`world.json`: the description `sylva serve` takes, species inline, the elevation model
+//! beside it) and the painted masks (`masks/`) atomically into the project folder
+//! (`--project DIR`, `sylva_project` by default), which `sylva forest --project DIR` reads
+//! whole; the viewer opens it again as it was. Species and grammar files changed in your
+//! own editor are read again while the viewer runs, their problems shown in the panel. The
+//! project is autosaved every 30 s (`--autosave-seconds`) and on quit into `DIR/.autosave`;
 //! after a crash, or a quit with edits never saved, the next start offers it back.
-//! `--editor-screenshot PATH` renders the panel alone, headless.
+//! `--editor-screenshot PATH [--editor-tab species|forest|tools]` renders the panel alone,
+//! headless.
 //!
 //! A forest over time: `--year N` draws year N of the forest grown from bare ground
 //! (`sylva succession`'s model with this seed: trees of every age, dead standing trees,
@@ -87,6 +95,7 @@ mod materials;
 mod offscreen;
 mod painting;
 mod pipelines;
+mod rebuild;
 mod render;
 mod scene;
 mod shadow;
@@ -158,8 +167,10 @@ struct Args {
     years: Option<Vec<u32>>,
     /// The species editor's panel in the window (`--editor`).
     editor: bool,
-    /// Renders the editor's panel alone, headless, to this PNG (`--editor-screenshot`).
+    /// Renders the editor's panel alone, headless, to this PNG (`--editor-screenshot`),
+    /// showing this tab (`--editor-tab`).
     editor_screenshot: Option<String>,
+    editor_tab: editor::Tab,
     /// The editor's project folder (`--project`).
     project: std::path::PathBuf,
     /// How often the editor autosaves (`--autosave-seconds`).
@@ -172,7 +183,7 @@ const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] 
                      [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M] [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
                      [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]] \
                      [--year N | --years A..B [--every K] | --years Y1,Y2,...] \
-                     [--editor | --editor-screenshot PATH] [--project DIR] [--autosave-seconds S]";
+                     [--editor | --editor-screenshot PATH [--editor-tab species|forest|tools]] [--project DIR] [--autosave-seconds S]";
 
 fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
@@ -206,6 +217,7 @@ fn parse() -> Result<Args, String> {
     let mut max_height = f32::INFINITY;
     let mut editor = false;
     let mut editor_screenshot: Option<String> = None;
+    let mut editor_tab = editor::Tab::Species;
     let mut project = std::path::PathBuf::from("sylva_project");
     let mut autosave_seconds = editor::AUTOSAVE_EVERY.as_secs_f64();
     let mut flags = cli::Flags::from_env();
@@ -266,6 +278,7 @@ fn parse() -> Result<Args, String> {
             "--max-height" => max_height = flags.value("--max-height")?,
             "--editor" => editor = true,
             "--editor-screenshot" => editor_screenshot = Some(flags.value("--editor-screenshot")?),
+            "--editor-tab" => editor_tab = flags.value("--editor-tab")?,
             "--project" => project = flags.value::<String>("--project")?.into(),
             "--autosave-seconds" => autosave_seconds = flags.value("--autosave-seconds")?,
             "--help" | "-h" => cli::print_help(USAGE),
@@ -416,6 +429,8 @@ fn parse() -> Result<Args, String> {
                 spacing,
                 crop,
             }),
+            ground: None,
+            density: None,
         },
         species,
         camera,
@@ -434,6 +449,7 @@ fn parse() -> Result<Args, String> {
         years,
         editor,
         editor_screenshot,
+        editor_tab,
         project,
         autosave_every: std::time::Duration::from_secs_f64(autosave_seconds),
         species_files,
@@ -443,19 +459,29 @@ fn parse() -> Result<Args, String> {
 fn run() -> Result<(), ViewerError> {
     let mut args = parse().map_err(ViewerError::Usage)?;
     if let Some(path) = &args.editor_screenshot {
-        return editor::launch::screenshot(&args.species_files, &args.project, args.size, path);
+        return editor::launch::screenshot(
+            &args.species_files,
+            &args.project,
+            &args.scene,
+            (args.editor_tab, args.size),
+            path,
+        );
     }
     // The editor opens first: a species it cannot read is an error before the world is built.
     let editor = if args.editor {
-        Some(editor::launch::session(
+        let (editor, scene) = editor::launch::session(
             &args.species_files,
             &args.project,
             args.autosave_every,
-        )?)
+            &args.scene,
+        )?;
+        args.scene = scene;
+        Some(editor)
     } else {
+        args.scene.species = std::mem::replace(&mut args.species, SpeciesSource::Bundled).load()?;
         None
     };
-    args.scene.species = std::mem::replace(&mut args.species, SpeciesSource::Bundled).load()?;
+    let base = args.scene.clone();
     let start = Instant::now();
     let mut scene = Scene::build(args.scene)?;
     eprintln!(
@@ -569,6 +595,7 @@ fn run() -> Result<(), ViewerError> {
         }
         None => window::run(
             scene,
+            base,
             args.camera,
             args.frames,
             args.paint.unwrap_or_else(|| "paint_masks".into()),

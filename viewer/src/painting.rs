@@ -126,11 +126,10 @@ impl Painting {
             ("z", true) => self.edit(scene, |c| c.undo()),
             ("y", true) => self.edit(scene, |c| c.redo()),
             ("s", true) => {
-                let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
-                self.message = match save_masks(self.canvas.layer(), &names, &self.save_to) {
-                    Ok(()) => format!("masks saved to {}", self.save_to.display()),
-                    Err(e) => format!("not saved: {e}"),
-                };
+                let folder = self.save_to.clone();
+                if let Err(e) = self.save_into(&folder) {
+                    self.message = format!("not saved: {e}");
+                }
             }
             (digit, false) if digit.len() == 1 && ("1"..="9").contains(&digit) => {
                 let s = digit.parse::<usize>().unwrap_or(1) - 1;
@@ -187,9 +186,84 @@ impl Painting {
         }
     }
 
-    /// The button came up: the stroke can be undone.
-    pub(crate) fn release(&mut self) {
-        self.canvas.end_stroke();
+    /// The button came up: the stroke can be undone. Whether it was kept (it changed
+    /// something).
+    pub(crate) fn release(&mut self) -> bool {
+        self.canvas.end_stroke()
+    }
+
+    /// Undoes the last stroke.
+    pub(crate) fn undo(&mut self, scene: &mut Scene) {
+        self.edit(scene, PaintCanvas::undo);
+    }
+
+    /// Redoes the last undone stroke.
+    pub(crate) fn redo(&mut self, scene: &mut Scene) {
+        self.edit(scene, PaintCanvas::redo);
+    }
+
+    /// The brush: the species, its action, its radius and strength.
+    pub(crate) fn brush(&self) -> (usize, BrushAction, f32, f32) {
+        (
+            self.species,
+            self.brush.action,
+            self.brush.radius,
+            self.brush.strength,
+        )
+    }
+
+    /// Sets the brush: species `species` (if there is one) with `action` (its species is
+    /// `species`'s), radius and strength within the keys' ranges.
+    pub(crate) fn set_brush(
+        &mut self,
+        species: usize,
+        action: BrushAction,
+        radius: f32,
+        strength: f32,
+    ) {
+        if species < self.names.len() {
+            self.species = species;
+        }
+        let s = self.species;
+        self.brush.action = match action {
+            BrushAction::Add { .. } => BrushAction::Add { species: s },
+            BrushAction::Species { .. } => BrushAction::Species { species: s },
+            BrushAction::Erase => BrushAction::Erase,
+        };
+        self.brush.radius = radius.clamp(1.0, 200.0);
+        self.brush.strength = strength.clamp(0.1, 1.0);
+    }
+
+    /// Saves the masks into `folder`; the message says how it went.
+    pub(crate) fn save_into(&mut self, folder: &std::path::Path) -> Result<(), String> {
+        let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
+        save_masks(self.canvas.layer(), &names, folder).map_err(|e| e.to_string())?;
+        self.message = format!("masks saved to {}", folder.display());
+        Ok(())
+    }
+
+    /// Paints `scene` (a world built again) with the tool's layer, keeping its strokes for
+    /// undo; an error when the new world's species or ground no longer fit the layer.
+    pub(crate) fn attach(&mut self, scene: &mut Scene) -> Result<(), String> {
+        let (forest, _) = scene.world.forest();
+        let (lo, hi) = scene.world.heightmap.bounds();
+        let layer = self.canvas.shared_layer();
+        let names: Vec<String> = forest
+            .config()
+            .species
+            .iter()
+            .map(|s| s.name.clone())
+            .collect();
+        if names.len() != self.names.len() || layer.bounds() != Rect::new(lo, hi) {
+            return Err("the painted masks do not fit the new species or ground".into());
+        }
+        let version = scene.world.repaint(layer).map_err(|e| e.to_string())?;
+        scene
+            .cells
+            .repaint(&scene.world, Rect::new(lo, hi), version)
+            .map_err(|e| e.to_string())?;
+        self.names = names;
+        Ok(())
     }
 
     fn edit(&mut self, scene: &mut Scene, edit: impl FnOnce(&mut PaintCanvas) -> Option<Change>) {

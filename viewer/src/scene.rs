@@ -119,6 +119,15 @@ impl Camera {
         self.z = (self.z + s * metres).clamp(0.0, side);
     }
 
+    /// The camera moved inside a world of side `side`, where it stands outside it.
+    pub(crate) fn inside(self, side: f32) -> Camera {
+        Camera {
+            x: self.x.clamp(0.0, side),
+            z: self.z.clamp(0.0, side),
+            ..self
+        }
+    }
+
     pub(crate) fn forward(&self) -> Vec3 {
         Vec3::new(
             self.yaw.cos() * self.pitch.cos(),

@@ -11,14 +11,20 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
+mod editing;
+
 use crate::editor::Editor;
+use crate::editor::forest::ForestSettings;
 use crate::editor::in_window::EditorWindow;
 use crate::error::ViewerError;
 use crate::gpu::targets;
 use crate::guide::Guide;
 use crate::painting::{Painting, pick};
+use crate::rebuild::Rebuild;
 use crate::render::{Mode, Renderer, View};
 use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
+use crate::world::SceneOptions;
+use sylva::forest::Species;
 use sylva::terrain::glam::Vec2;
 use winit::event::Modifiers;
 use winit::keyboard::Key;
@@ -64,6 +70,15 @@ struct App {
     /// The species editor, waiting for the window, then in it (F2 shows or hides it).
     waiting_editor: Option<Editor>,
     editor: Option<EditorWindow>,
+    /// The options the world was built from, which the editor's rebuilds start from.
+    base: SceneOptions,
+    /// The world being built again after the editor's changes, and the change that waits
+    /// for it to finish.
+    rebuild: Option<Rebuild>,
+    waiting_forest: Option<(Vec<Species>, ForestSettings)>,
+    /// Frames drawn so far, and rebuilds finished (the status line counts both).
+    frames: u64,
+    rebuilds: u64,
 }
 
 /// Opens the window and runs until it closes. Errors (no display, no adapter, a lost device)
@@ -73,14 +88,21 @@ struct App {
 /// `[` `]` size the brush, `-` `=` set its strength, Ctrl+Z undo, Ctrl+Y redo, Ctrl+S saves
 /// the masks to `save_to`; the left button paints, the right one looks around); G walks
 /// guided (the mouse looks around, A and D lean left and right, Shift hurries). With an
-/// `editor`, its species panel stands at the left (F2 shows or hides it).
+/// `editor`, its panel stands at the left (F2 shows or hides it): the world is built again
+/// from `base` when its species or forest settings change, masks save into its project, and
+/// Ctrl+Z and Ctrl+Y undo and redo strokes and edits in one history.
 pub(crate) fn run(
     scene: Scene,
+    base: SceneOptions,
     camera: Option<Camera>,
     max_frames: u32,
     save_to: std::path::PathBuf,
     editor: Option<Editor>,
 ) -> Result<(), ViewerError> {
+    let save_to = match &editor {
+        Some(e) => e.project.join(sylva_server::project::MASKS_FOLDER),
+        None => save_to,
+    };
     let event_loop = EventLoop::new().map_err(ViewerError::NoDisplay)?;
     let camera = camera.unwrap_or_else(|| Camera::overview(scene.side(), 1.7));
     let mut app = App {
@@ -107,6 +129,11 @@ pub(crate) fn run(
         modifiers: Modifiers::default(),
         waiting_editor: editor,
         editor: None,
+        base,
+        rebuild: None,
+        waiting_forest: None,
+        frames: 0,
+        rebuilds: 0,
     };
     let ran = event_loop.run_app(&mut app);
     // However the loop ended (closed, --frames done, an error), the session ended as it
@@ -204,6 +231,8 @@ impl App {
         // Movement steps at most 0.1 s at a time, so a slow frame does not jump the camera;
         // the frame time shown and measured is the real one.
         self.walk(elapsed.min(0.1) as f32);
+        self.frames += 1;
+        self.tend_editor();
         // Cells arrive from the loader thread; until a fine cell comes its coarse one stands
         // in.
         let streamed = match self
@@ -326,6 +355,18 @@ impl App {
         };
         let state = self.modifiers.state();
         let key = text.to_lowercase();
+        // With the editor, strokes undo in its one history, in turn with its edits.
+        if let Some(w) = &mut self.editor
+            && state.control_key()
+            && (key == "z" || key == "y")
+        {
+            if key == "y" || state.shift_key() {
+                w.editor.redo();
+            } else {
+                w.editor.undo();
+            }
+            return true;
+        }
         let used = painting.key(
             &mut self.scene,
             &key,
@@ -505,8 +546,11 @@ impl ApplicationHandler for App {
                     }
                 }
                 (MouseButton::Left, ElementState::Released) => {
-                    if let Some(p) = &mut self.painting {
-                        p.release();
+                    if let Some(p) = &mut self.painting
+                        && p.release()
+                        && let Some(w) = &mut self.editor
+                    {
+                        w.editor.record_stroke();
                     }
                 }
                 (MouseButton::Left, ElementState::Pressed) => self.capture(true),

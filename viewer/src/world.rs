@@ -153,6 +153,12 @@ pub(crate) struct SceneOptions {
     /// The user's elevation model instead of generated terrain (`side` and `trees` are not
     /// used): the largest square of its own land.
     pub(crate) terrain: Option<TerrainFile>,
+    /// Ground made already (the editor's forest tab): a square heightmap and the extent the
+    /// world covers on it, instead of generated terrain or `terrain` (`side` and `trees` are
+    /// not used).
+    pub(crate) ground: Option<(Heightmap, [f32; 2])>,
+    /// Canopy trees per hectare (sets the density's patch size); `None` keeps the species'.
+    pub(crate) density: Option<f32>,
 }
 
 /// An elevation model from a file, as `--terrain`, `--spacing` and `--crop` give it.
@@ -215,6 +221,8 @@ impl SceneOptions {
             year: None,
             constraints: Constraints::default(),
             terrain: None,
+            ground: None,
+            density: None,
         }
     }
 }
@@ -237,12 +245,19 @@ impl World {
         config.all_ages = options.year.is_some();
         config.constraints = options.constraints;
         let mut builder = ForestBuilder::new(config)?;
+        if let Some(d) = options.density {
+            builder.density_mut().patch = (10_000.0 / d).sqrt();
+        }
         let patch = builder.density().patch;
-        let user_map = options
-            .terrain
-            .as_ref()
-            .map(TerrainFile::heightmap)
-            .transpose()?;
+        // A square world: the larger side of the ground's extent.
+        let user_map = match options.ground {
+            Some((map, _)) => Some(map),
+            None => options
+                .terrain
+                .as_ref()
+                .map(TerrainFile::heightmap)
+                .transpose()?,
+        };
         let side = match (&user_map, options.trees) {
             (Some(map), _) => (map.size() - 1) as f32 * map.spacing(),
             _ if options.specimen => crate::turntable::world_patches(patch) as f32 * patch,

@@ -101,12 +101,56 @@ impl Document {
                 ));
             }
         };
+        let species_path = on_disk.then(|| path.to_path_buf());
+        Ok(Document::new(
+            name,
+            species_text,
+            grammar_text,
+            species_path,
+            grammar_path,
+        ))
+    }
+
+    /// A document of a project's species given inline (its world file's species file and
+    /// grammar texts); the project's own files of that name, when there, are the ones
+    /// watched.
+    pub(crate) fn inline(
+        folder: &Path,
+        species_text: &str,
+        grammar_text: Option<&str>,
+    ) -> Result<Document, String> {
+        let name = setting(species_text, "name")
+            .ok_or_else(|| format!("{}: a species without a 'name:' line", folder.display()))?;
+        let species_path = folder.join(format!("{name}.species"));
+        let Some(grammar_text) = grammar_text else {
+            // A preset grammar: opened as a bundled species is.
+            return Document::open(&species_path, species_text, false);
+        };
+        let grammar_path = folder.join(format!("{name}.lsys"));
+        let existing = |p: PathBuf| p.is_file().then_some(p);
+        Ok(Document::new(
+            name,
+            species_text.to_string(),
+            grammar_text.to_string(),
+            existing(species_path),
+            existing(grammar_path),
+        ))
+    }
+
+    /// A document of these texts, read and previewed; its grammar line names `NAME.lsys`.
+    fn new(
+        name: String,
+        mut species_text: String,
+        grammar_text: String,
+        species_path: Option<PathBuf>,
+        grammar_path: Option<PathBuf>,
+    ) -> Document {
         set_setting(&mut species_text, "grammar", &format!("{name}.lsys"));
         let mut document = Document {
             name,
             species_text,
             grammar_text,
-            species_path: on_disk.then(|| path.to_path_buf()),
+            species_path,
             grammar_path,
             seed: 1,
             outcome: Err(Problem {
@@ -116,7 +160,17 @@ impl Document {
             }),
         };
         document.rebuild();
-        Ok(document)
+        document
+    }
+
+    /// The species the texts make, or what is wrong with them.
+    pub(crate) fn species(&self) -> Result<Species, Problem> {
+        Species::parse_detached(
+            &self.species_text,
+            Path::new(&self.name),
+            Some(&self.grammar_text),
+        )
+        .map_err(problem)
     }
 
     /// The name the grammar's text is saved under, beside the species file.
@@ -127,18 +181,15 @@ impl Document {
     /// Reads the texts again and, when they read, derives and meshes one tree.
     pub(crate) fn rebuild(&mut self) {
         let started = Instant::now();
-        let path = Path::new(&self.name);
-        self.outcome = Species::parse_detached(&self.species_text, path, Some(&self.grammar_text))
-            .map_err(problem)
-            .and_then(|species| {
-                let mesh = species
-                    .mesh(species.generations, self.seed)
-                    .map_err(problem)?;
-                Ok(Preview {
-                    triangles: mesh.triangle_count(),
-                    millis: started.elapsed().as_secs_f64() * 1e3,
-                })
-            });
+        self.outcome = self.species().and_then(|species| {
+            let mesh = species
+                .mesh(species.generations, self.seed)
+                .map_err(problem)?;
+            Ok(Preview {
+                triangles: mesh.triangle_count(),
+                millis: started.elapsed().as_secs_f64() * 1e3,
+            })
+        });
     }
 }
 

@@ -96,12 +96,18 @@ impl EditorWindow {
         } else {
             ""
         };
+        let forest = &self.editor.tools.forest;
+        let forest = if forest.is_empty() {
+            String::new()
+        } else {
+            format!("{forest}; ")
+        };
         match &d.outcome {
             Ok(p) => format!(
-                "{offer}editing {}: {} triangles in {:.0} ms; ",
+                "{offer}editing {}: {} triangles in {:.0} ms; {forest}",
                 d.name, p.triangles, p.millis
             ),
-            Err(problem) => format!("{offer}editing {}: {problem}; ", d.name),
+            Err(problem) => format!("{offer}editing {}: {problem}; {forest}", d.name),
         }
     }
 

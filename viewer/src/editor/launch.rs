@@ -5,31 +5,66 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use super::Editor;
+use super::forest::ForestSettings;
 use crate::error::ViewerError;
+use crate::world::SceneOptions;
 
-/// `--editor`: the editor of `species` (none: the bundled ones) saving to `project`,
-/// autosaving every `autosave_every`, its session marked running so that a crash leaves its
-/// autosave to restore.
+/// `--editor`: the editor of `species` (none: the project's, else the bundled ones) saving
+/// to `project`, autosaving every `autosave_every`, its session marked running so that a
+/// crash leaves its autosave to restore; and the world's options made from its species and
+/// forest settings (the project's, else those of the viewer's flags in `scene`).
 pub(crate) fn session(
     species: &[PathBuf],
     project: &Path,
     autosave_every: Duration,
-) -> Result<Editor, ViewerError> {
-    let mut editor = Editor::open(species, project.to_path_buf()).map_err(ViewerError::Editor)?;
+    scene: &SceneOptions,
+) -> Result<(Editor, SceneOptions), ViewerError> {
+    let mut editor = Editor::open(species, project.to_path_buf(), flags_forest(scene)?)
+        .map_err(ViewerError::Editor)?;
     editor.autosave_every = autosave_every;
     super::project::mark_running(project).map_err(ViewerError::Editor)?;
-    Ok(editor)
+    let species = editor
+        .documents
+        .iter()
+        .map(|d| d.species().map_err(|p| format!("{}: {p}", d.name)))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(ViewerError::Editor)?;
+    let options = editor
+        .forest
+        .scene_options(scene, species)
+        .map_err(ViewerError::Editor)?;
+    Ok((editor, options))
 }
 
-/// `--editor-screenshot PATH`: the species panel alone, headless, at `size`; prints what
-/// its preview says, and how long a preview takes.
+/// The forest settings of the viewer's flags: its seed, side and budget, and its elevation
+/// model (which a project keeps whole: a cropped one cannot be kept).
+fn flags_forest(scene: &SceneOptions) -> Result<ForestSettings, ViewerError> {
+    let mut settings = ForestSettings::of_flags(scene.seed, scene.side, scene.budget >> 20);
+    if let Some(file) = &scene.terrain {
+        if file.crop.is_some() {
+            return Err(ViewerError::Usage(
+                "--editor keeps the whole elevation model in its project: crop the file itself rather than give --crop".into(),
+            ));
+        }
+        settings
+            .use_model(&file.path, file.spacing)
+            .map_err(ViewerError::Editor)?;
+    }
+    Ok(settings)
+}
+
+/// `--editor-screenshot PATH`: the panel alone, headless, at `size`, showing `tab`; prints
+/// what its preview says, and how long a preview takes.
 pub(crate) fn screenshot(
     species: &[PathBuf],
     project: &Path,
-    size: (u32, u32),
+    scene: &SceneOptions,
+    (tab, size): (super::Tab, (u32, u32)),
     path: &str,
 ) -> Result<(), ViewerError> {
-    let mut editor = Editor::open(species, project.to_path_buf()).map_err(ViewerError::Editor)?;
+    let mut editor = Editor::open(species, project.to_path_buf(), flags_forest(scene)?)
+        .map_err(ViewerError::Editor)?;
+    editor.tab = tab;
     let pixels = super::overlay::render_panel(&mut editor, size)?;
     crate::write_png(path, size, &pixels)?;
     if let Some(files) = &editor.restorable {

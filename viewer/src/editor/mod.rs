@@ -1,26 +1,105 @@
 //! Carey's editing tool inside the viewer: the forest's species, each as its species file
-//! and its grammar's text, checked and previewed as they change; undo and redo across
-//! edits; saved as a project folder; autosaved and offered back after a crash; files changed
-//! in the user's own editor reloaded. The panel that shows it is [`panel`].
+//! and its grammar's text, checked and previewed as they change; the forest's terrain,
+//! density and region; undo and redo across species edits, forest settings and paint
+//! strokes; saved as a project folder that `sylva forest --project` and the server take;
+//! autosaved and offered back after a crash; files changed in the user's own editor
+//! reloaded. The panel that shows it is [`panel`]; the window carries out what it asks of
+//! the world (a rebuild, a stroke undone) through [`Request`]s.
 
 mod document;
+pub(crate) mod forest;
+mod forest_tab;
 mod history;
 pub(crate) mod in_window;
 pub(crate) mod launch;
 mod overlay;
 mod panel;
 mod project;
+mod tools_tab;
 mod watch;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use document::Document;
-use history::{History, Snapshot};
+use forest::ForestSettings;
+use history::{History, Snapshot, Subject};
+use sylva::forest::Species;
 use watch::Watch;
 
 /// How often the project is autosaved while it has unsaved edits, unless told otherwise.
 pub(crate) const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
+/// How long the forest waits after the last edit before it is built again (a slider's drag
+/// or a burst of typing is one rebuild).
+const REBUILD_AFTER: Duration = Duration::from_millis(700);
+
+/// The panel's tabs (`--editor-tab` names them: species, forest, tools).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Tab {
+    /// The species, their grammars and the preview.
+    #[default]
+    Species,
+    /// The terrain, density and region.
+    Forest,
+    /// The painting tool and the guided walk.
+    Tools,
+}
+
+impl std::str::FromStr for Tab {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Tab, String> {
+        match s {
+            "species" => Ok(Tab::Species),
+            "forest" => Ok(Tab::Forest),
+            "tools" => Ok(Tab::Tools),
+            _ => Err("expected species, forest or tools".into()),
+        }
+    }
+}
+
+/// What the panel asks of the window, which holds the world, the painting tool and the
+/// guided walk.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Request {
+    /// Undo the painting tool's last stroke (the editor's history reached it).
+    UndoStroke,
+    /// Redo the painting tool's last undone stroke.
+    RedoStroke,
+    /// Turn the painting tool on or off.
+    TogglePainting,
+    /// Paint with species `k`: adding it, or turning trees into it.
+    PaintSpecies(usize),
+    /// The brush's action: add, turn into, or erase.
+    PaintAction(PaintAction),
+    /// The brush's radius in metres and strength.
+    Brush { radius: f32, strength: f32 },
+    /// Save the painted masks into the project (its `masks` folder).
+    SaveMasks,
+    /// Start or stop the guided walk.
+    ToggleGuide,
+}
+
+/// What the brush does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PaintAction {
+    Add,
+    Turn,
+    Erase,
+}
+
+/// What the window tells the panel of the tools it holds, each frame.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ToolsState {
+    /// The painting tool's status line, if it is on.
+    pub(crate) painting: Option<String>,
+    /// The brush: species, action, radius and strength.
+    pub(crate) brush: Option<(usize, PaintAction, f32, f32)>,
+    /// The guided walk's summary, if it is on.
+    pub(crate) guide: Option<String>,
+    /// The forest's build: what the last rebuild did, or that one is under way.
+    pub(crate) forest: String,
+}
 
 /// The species being edited, and what the editor knows of them.
 pub(crate) struct Editor {
@@ -41,13 +120,48 @@ pub(crate) struct Editor {
     pub(crate) status: String,
     /// A crashed session's autosave, offered until restored or dismissed.
     pub(crate) restorable: Option<Vec<PathBuf>>,
+    /// The world's settings (the forest tab).
+    pub(crate) forest: ForestSettings,
+    /// The tab shown.
+    pub(crate) tab: Tab,
+    /// When the species or the forest last changed, while the forest has not been built
+    /// from the change.
+    forest_changed: Option<Instant>,
+    /// How long the edits must pause before the forest is built again ([`REBUILD_AFTER`]).
+    pub(crate) rebuild_after: Duration,
+    /// What the panel asked of the window, taken each frame.
+    pub(crate) requests: Vec<Request>,
+    /// What the window holds, for the tools tab.
+    pub(crate) tools: ToolsState,
+    /// Strokes painted since the last save (the masks are saved with the project).
+    pub(crate) strokes_unsaved: bool,
+    /// The elevation model's path as typed in the forest tab, and whether the tab shows
+    /// the model's picker.
+    pub(crate) model_input: String,
+    pub(crate) choosing_model: bool,
 }
 
 impl Editor {
-    /// An editor of species files on disk (`paths`), or of the bundled species when there
-    /// are none; saves go to `project`. Files on disk are watched for changes.
-    pub(crate) fn open(paths: &[PathBuf], project: PathBuf) -> Result<Editor, String> {
-        let documents = if paths.is_empty() {
+    /// An editor of species files on disk (`paths`); without them, of the species of the
+    /// project's world file if it has one, else of the bundled species. The forest's
+    /// settings are the project's, else `forest`. Saves go to `project`; files on disk are
+    /// watched for changes.
+    pub(crate) fn open(
+        paths: &[PathBuf],
+        project: PathBuf,
+        forest: ForestSettings,
+    ) -> Result<Editor, String> {
+        let saved = ForestSettings::of_project(&project)?;
+        let (forest, inline) = match saved {
+            Some((settings, species)) => (settings, species),
+            None => (forest, Vec::new()),
+        };
+        let documents = if paths.is_empty() && !inline.is_empty() {
+            inline
+                .iter()
+                .map(|(file, grammar)| Document::inline(&project, file, grammar.as_deref()))
+                .collect::<Result<Vec<_>, _>>()?
+        } else if paths.is_empty() {
             sylva::presets::SPECIES_FILES
                 .iter()
                 .map(|(path, text)| Document::open(Path::new(path), text, false))
@@ -97,6 +211,15 @@ impl Editor {
             watch: (!folders.is_empty()).then_some(watch).flatten(),
             status,
             restorable,
+            forest,
+            tab: Tab::default(),
+            forest_changed: None,
+            rebuild_after: REBUILD_AFTER,
+            requests: Vec::new(),
+            tools: ToolsState::default(),
+            strokes_unsaved: false,
+            model_input: String::new(),
+            choosing_model: false,
         })
     }
 
@@ -105,55 +228,135 @@ impl Editor {
         &self.documents[self.selected]
     }
 
-    fn snapshot(&self, k: usize) -> Snapshot {
-        snapshot_of(&self.documents, k)
+    fn snapshot(&self, subject: Subject) -> Snapshot {
+        snapshot_of(&self.documents, &self.forest, subject)
     }
 
     /// Applies `change` to the selected document (undoably), then reads and previews it.
+    /// A change of its texts builds the forest again once the edits pause.
     pub(crate) fn edit(&mut self, change: impl FnOnce(&mut Document)) {
-        let before = self.snapshot(self.selected);
+        let before = self.snapshot(Subject::Species(self.selected));
         let document = &mut self.documents[self.selected];
         change(document);
-        if (
-            &document.species_text,
-            &document.grammar_text,
-            document.seed,
-        ) == (&before.species_text, &before.grammar_text, before.seed)
-        {
+        let Snapshot::Species {
+            species_text,
+            grammar_text,
+            seed,
+            ..
+        } = &before
+        else {
+            return;
+        };
+        let texts =
+            (species_text, grammar_text) != (&document.species_text, &document.grammar_text);
+        if !texts && *seed == document.seed {
             return;
         }
         self.history.record(before, Instant::now());
         document.rebuild();
+        self.changed(texts);
+    }
+
+    /// Applies `change` to the forest's settings (undoably); the forest is built again once
+    /// the edits pause.
+    pub(crate) fn edit_forest(&mut self, change: impl FnOnce(&mut ForestSettings)) {
+        let before = self.forest.clone();
+        change(&mut self.forest);
+        if self.forest == before {
+            return;
+        }
+        self.history
+            .record(Snapshot::Forest(Box::new(before)), Instant::now());
+        self.changed(true);
+    }
+
+    /// A stroke was painted: it undoes in turn with the edits, and the masks are unsaved.
+    pub(crate) fn record_stroke(&mut self) {
+        self.history.record(Snapshot::Stroke, Instant::now());
+        self.strokes_unsaved = true;
+        self.unsaved = true;
+    }
+
+    /// Marks unsaved edits; `forest`: the forest must be built again.
+    fn changed(&mut self, forest: bool) {
         self.unsaved = true;
         self.since_autosave = true;
+        if forest {
+            self.forest_changed = Some(Instant::now());
+        }
     }
 
     fn restore(&mut self, s: Snapshot) {
-        self.selected = s.document;
-        let d = &mut self.documents[s.document];
-        d.species_text = s.species_text;
-        d.grammar_text = s.grammar_text;
-        d.seed = s.seed;
-        d.rebuild();
-        self.unsaved = true;
-        self.since_autosave = true;
+        match s {
+            Snapshot::Species {
+                document,
+                species_text,
+                grammar_text,
+                seed,
+            } => {
+                self.selected = document;
+                self.tab = Tab::Species;
+                let d = &mut self.documents[document];
+                d.species_text = species_text;
+                d.grammar_text = grammar_text;
+                d.seed = seed;
+                d.rebuild();
+                self.changed(true);
+            }
+            Snapshot::Forest(settings) => {
+                self.forest = *settings;
+                self.tab = Tab::Forest;
+                self.changed(true);
+            }
+            // The stroke itself is the painting tool's: the window undoes or redoes it.
+            Snapshot::Stroke => self.changed(false),
+        }
     }
 
-    /// Undoes the last edit (of whichever species), selecting that species.
+    /// Undoes the last edit (of whichever species, the forest, or a stroke), showing it.
     pub(crate) fn undo(&mut self) {
-        let documents = &self.documents;
-        let back = self.history.undo(|k| snapshot_of(documents, k));
+        let (documents, forest) = (&self.documents, &self.forest);
+        let back = self.history.undo(|k| snapshot_of(documents, forest, k));
         if let Some(s) = back {
+            if s == Snapshot::Stroke {
+                self.requests.push(Request::UndoStroke);
+            }
             self.restore(s);
         }
     }
 
     /// Redoes the last undone edit.
     pub(crate) fn redo(&mut self) {
-        let documents = &self.documents;
-        let forward = self.history.redo(|k| snapshot_of(documents, k));
+        let (documents, forest) = (&self.documents, &self.forest);
+        let forward = self.history.redo(|k| snapshot_of(documents, forest, k));
         if let Some(s) = forward {
+            if s == Snapshot::Stroke {
+                self.requests.push(Request::RedoStroke);
+            }
             self.restore(s);
+        }
+    }
+
+    /// The species and settings to build the forest from, once the edits have paused
+    /// since the last change and every species reads; the status says which does not.
+    pub(crate) fn take_forest_change(&mut self) -> Option<(Vec<Species>, ForestSettings)> {
+        let changed = self.forest_changed?;
+        if changed.elapsed() < self.rebuild_after {
+            return None;
+        }
+        if let Some(d) = self.documents.iter().find(|d| d.outcome.is_err()) {
+            self.tools.forest = format!("the forest waits for {} to read", d.name);
+            return None;
+        }
+        let species: Result<Vec<Species>, _> =
+            self.documents.iter().map(Document::species).collect();
+        self.forest_changed = None;
+        match species {
+            Ok(species) => Some((species, self.forest.clone())),
+            Err(problem) => {
+                self.tools.forest = format!("the forest is not built: {problem}");
+                None
+            }
         }
     }
 
@@ -179,9 +382,35 @@ impl Editor {
             .collect()
     }
 
-    /// Saves every species and grammar into the project folder.
+    /// The world's description with the species inline, as the project's world file holds
+    /// it.
+    pub(crate) fn description(&self) -> sylva_server::WorldDescription {
+        let species = self
+            .documents
+            .iter()
+            .map(|d| (d.species_text.clone(), d.grammar_text.clone()))
+            .collect();
+        self.forest.with_species(species)
+    }
+
+    /// Saves every species and grammar into the project folder, and the world file (the
+    /// forest's settings, the species inline, the elevation model beside it); the window
+    /// saves the painted masks.
     pub(crate) fn save(&mut self) {
-        match project::save(&self.project, &self.files()) {
+        let saved = project::save(&self.project, &self.files()).and_then(|()| {
+            sylva_server::project::Project::write(
+                &self.project,
+                &self.description(),
+                self.forest.model.as_deref(),
+            )
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+        });
+        if self.strokes_unsaved {
+            self.requests.push(Request::SaveMasks);
+            self.strokes_unsaved = false;
+        }
+        match saved {
             Ok(()) => {
                 self.unsaved = false;
                 project::mark_saved(&self.project);
@@ -199,7 +428,17 @@ impl Editor {
         }
         self.last_autosave = Instant::now();
         self.since_autosave = false;
-        if let Err(e) = project::autosave(&self.project, &self.files()) {
+        let folder = project::autosave_folder(&self.project);
+        let saved = project::autosave(&self.project, &self.files()).and_then(|()| {
+            sylva_server::project::Project::write(
+                &folder,
+                &self.description(),
+                self.forest.model.as_deref(),
+            )
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+        });
+        if let Err(e) = saved {
             self.status = format!("autosave failed: {e}");
         }
     }
@@ -224,8 +463,13 @@ impl Editor {
                 restored += 1;
             }
         }
+        let folder = project::autosave_folder(&self.project);
+        if let Ok(Some((settings, _))) = ForestSettings::of_project(&folder) {
+            self.forest = settings;
+        }
         self.unsaved = restored > 0;
         self.since_autosave = self.unsaved;
+        self.forest_changed = Some(Instant::now());
         self.status = format!("restored {restored} species from the autosave");
     }
 
@@ -258,8 +502,9 @@ impl Editor {
                 .and_then(|text| Document::open(&path, &text, true));
             match read {
                 Ok(mut fresh) => {
-                    let before = self.snapshot(k);
+                    let before = self.snapshot(Subject::Species(k));
                     self.history.record(before, Instant::now());
+                    self.forest_changed = Some(Instant::now());
                     fresh.seed = self.documents[k].seed;
                     fresh.rebuild();
                     self.status = match &fresh.outcome {
@@ -274,15 +519,21 @@ impl Editor {
     }
 }
 
-/// Document `k` as it stands, for the history (a free function: undo borrows the history
-/// and the documents apart).
-fn snapshot_of(documents: &[Document], k: usize) -> Snapshot {
-    let d = &documents[k];
-    Snapshot {
-        document: k,
-        species_text: d.species_text.clone(),
-        grammar_text: d.grammar_text.clone(),
-        seed: d.seed,
+/// A subject as it stands, for the history (a free function: undo borrows the history and
+/// the documents apart).
+fn snapshot_of(documents: &[Document], forest: &ForestSettings, subject: Subject) -> Snapshot {
+    match subject {
+        Subject::Species(k) => {
+            let d = &documents[k];
+            Snapshot::Species {
+                document: k,
+                species_text: d.species_text.clone(),
+                grammar_text: d.grammar_text.clone(),
+                seed: d.seed,
+            }
+        }
+        Subject::Forest => Snapshot::Forest(Box::new(forest.clone())),
+        Subject::Paint => Snapshot::Stroke,
     }
 }
 
@@ -290,8 +541,12 @@ fn snapshot_of(documents: &[Document], k: usize) -> Snapshot {
 mod tests {
     use super::*;
 
+    fn settings() -> ForestSettings {
+        ForestSettings::of_flags(1, 400.0, 32)
+    }
+
     fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("sylva-editor-{name}-{}", std::process::id()));
+        let dir = std::env::temp_dir().join(format!("sylva-editor-{name}"));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         dir
@@ -300,7 +555,7 @@ mod tests {
     #[test]
     fn edits_undo_and_redo_across_species() {
         let project = scratch("undo");
-        let mut e = Editor::open(&[], project.clone()).unwrap();
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
         let oak = e.current().outcome.as_ref().unwrap().triangles;
         e.edit(|d| document::set_setting(&mut d.species_text, "generations", "5"));
         let fewer = e.current().outcome.as_ref().unwrap().triangles;
@@ -321,18 +576,19 @@ mod tests {
     #[test]
     fn a_saved_project_reads_back_as_the_same_trees() {
         let project = scratch("save");
-        let mut e = Editor::open(&[], project.clone()).unwrap();
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
         e.edit(|d| document::set_setting(&mut d.species_text, "generations", "6"));
         let edited = e.current().outcome.as_ref().unwrap().triangles;
         e.save();
         assert!(!e.unsaved, "{}", e.status);
         // The project's species files are what sylva forest reads.
-        let oak = sylva::forest::Species::from_file(project.join("oak.species")).unwrap();
+        let oak = Species::from_file(project.join("oak.species")).unwrap();
         assert_eq!(
             oak.mesh(oak.generations, 1).unwrap().triangle_count(),
             edited
         );
-        let again = Editor::open(&[project.join("oak.species")], project.clone()).unwrap();
+        let again =
+            Editor::open(&[project.join("oak.species")], project.clone(), settings()).unwrap();
         assert_eq!(again.current().outcome.as_ref().unwrap().triangles, edited);
         let _ = std::fs::remove_dir_all(&project);
     }
@@ -340,10 +596,11 @@ mod tests {
     #[test]
     fn a_file_changed_on_disk_is_reloaded_with_its_error_shown() {
         let project = scratch("watch");
-        let mut e = Editor::open(&[], project.clone()).unwrap();
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
         e.save();
         let file = project.join("oak.species");
-        let mut watched = Editor::open(std::slice::from_ref(&file), project.clone()).unwrap();
+        let mut watched =
+            Editor::open(std::slice::from_ref(&file), project.clone(), settings()).unwrap();
         let text = std::fs::read_to_string(&file)
             .unwrap()
             .replace("generations: 8", "generations: eight");
@@ -363,17 +620,98 @@ mod tests {
         let _ = std::fs::remove_dir_all(&project);
     }
 
+    /// The forest's settings undo in turn with species edits; a change waits for the edits
+    /// to pause, and for every species to read.
+    #[test]
+    fn forest_edits_undo_and_ask_for_a_rebuild() {
+        let project = scratch("forest");
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
+        e.rebuild_after = Duration::from_secs(3600);
+        e.edit_forest(|f| f.description.seed = 9);
+        assert!(
+            e.take_forest_change().is_none(),
+            "the edits have not paused"
+        );
+        e.rebuild_after = Duration::ZERO;
+        let (species, forest) = e.take_forest_change().unwrap();
+        assert_eq!((species.len(), forest.description.seed), (5, 9));
+        assert!(e.take_forest_change().is_none(), "taken once");
+        // A species that does not read holds the forest back, saying which.
+        e.edit(|d| d.grammar_text.push_str("\nA -> B("));
+        assert!(e.take_forest_change().is_none());
+        assert!(e.tools.forest.contains("oak"), "{}", e.tools.forest);
+        e.undo();
+        assert!(e.take_forest_change().is_some());
+        e.undo();
+        assert_eq!(e.forest.description.seed, 1);
+        assert_eq!(e.tab, Tab::Forest);
+        e.redo();
+        assert_eq!(e.forest.description.seed, 9);
+        let _ = std::fs::remove_dir_all(&project);
+    }
+
+    /// A strokes undoes in turn with the edits: the window is asked to undo it.
+    #[test]
+    fn strokes_undo_through_the_window() {
+        let project = scratch("strokes");
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
+        e.edit(|d| d.seed = 5);
+        e.record_stroke();
+        e.undo();
+        assert_eq!(e.requests, [Request::UndoStroke]);
+        e.undo();
+        assert_eq!(e.current().seed, 1);
+        e.redo();
+        e.redo();
+        assert_eq!(e.requests, [Request::UndoStroke, Request::RedoStroke]);
+        // Saving asks for the masks too.
+        e.save();
+        assert_eq!(e.requests.last(), Some(&Request::SaveMasks));
+        let _ = std::fs::remove_dir_all(&project);
+    }
+
+    /// A saved project holds the world file the server and `sylva forest --project` take;
+    /// opened again, it is the same species and forest.
+    #[test]
+    fn a_saved_project_opens_as_it_was() {
+        let project = scratch("reopen");
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
+        e.edit_forest(|f| {
+            f.description.density = Some(300.0);
+            f.description.area = 600.0;
+        });
+        e.edit(|d| document::set_setting(&mut d.species_text, "generations", "6"));
+        e.save();
+        let saved = sylva_server::project::Project::read(&project).unwrap();
+        assert_eq!(saved.description, e.description());
+        assert_eq!(saved.description.species.len(), 5);
+        let again = Editor::open(&[], project.clone(), settings()).unwrap();
+        assert_eq!(again.forest, e.forest);
+        let texts = |e: &Editor| -> Vec<(String, String)> {
+            e.documents
+                .iter()
+                .map(|d| (d.species_text.clone(), d.grammar_text.clone()))
+                .collect()
+        };
+        assert_eq!(texts(&again), texts(&e));
+        assert_eq!(
+            again.documents[0].outcome.as_ref().unwrap().triangles,
+            e.documents[0].outcome.as_ref().unwrap().triangles
+        );
+        let _ = std::fs::remove_dir_all(&project);
+    }
+
     #[test]
     fn a_crashed_sessions_autosave_is_restored() {
         let project = scratch("crash");
         project::mark_running(&project).unwrap();
-        let mut e = Editor::open(&[], project.clone()).unwrap();
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
         e.edit(|d| document::set_setting(&mut d.species_text, "generations", "5"));
         let edited = e.current().species_text.clone();
         e.autosave(true);
         // The session dies without quitting; the next one finds the autosave.
         drop(e);
-        let mut next = Editor::open(&[], project.clone()).unwrap();
+        let mut next = Editor::open(&[], project.clone(), settings()).unwrap();
         assert!(next.restorable.is_some());
         next.restore_autosave();
         assert_eq!(next.current().species_text, edited, "{}", next.status);

@@ -180,8 +180,9 @@ mod tests {
     /// problem in red below the grammar.
     #[test]
     fn the_panel_shows_a_problem_in_red() {
-        let project = std::env::temp_dir().join(format!("sylva-panel-{}", std::process::id()));
-        let mut editor = super::super::Editor::open(&[], project.clone()).unwrap();
+        let project = std::env::temp_dir().join("sylva-panel-problem");
+        let settings = super::super::forest::ForestSettings::of_flags(1, 400.0, 32);
+        let mut editor = super::super::Editor::open(&[], project.clone(), settings).unwrap();
         let size = (1280, 720);
         let Some(clean) = panel(&mut editor, size) else {
             return;

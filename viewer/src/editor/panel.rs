@@ -1,14 +1,17 @@
-//! The species panel (egui): the forest's species, the selected one's grammar in an editor
-//! with its problems shown at their line and column as the user types, its settings as
-//! sliders, a seed for the preview tree, and undo, redo and save.
+//! The editor's panel (egui): undo, redo and save over three tabs. Species: the forest's
+//! species, the selected one's grammar in an editor with its problems shown at their line
+//! and column as the user types, its settings as sliders, a seed for the preview tree.
+//! Forest and Tools: [`super::forest_tab`] and [`super::tools_tab`].
 
 use egui::{Color32, RichText, ScrollArea, TextEdit, Ui};
 
-use super::Editor;
 use super::document::{set_setting, setting};
+use super::{Editor, Tab};
 
 /// Width of the panel, in points.
 pub(crate) const WIDTH: f32 = 430.0;
+/// Width of a slider's track, in points (egui's 100 is too short to set a value finely).
+const SLIDER_WIDTH: f32 = 190.0;
 /// Height of the text boxes (the grammar, the species file), in points.
 const TEXT_HEIGHT: f32 = 300.0;
 
@@ -29,19 +32,41 @@ pub(crate) fn show(ui: &mut Ui, editor: &mut Editor) {
         .exact_size(WIDTH)
         .resizable(false)
         .show(ui, |ui| {
-            ui.heading("Species");
+            ui.spacing_mut().slider_width = SLIDER_WIDTH;
+            ui.horizontal(|ui| {
+                for (tab, name) in [
+                    (Tab::Species, "Species"),
+                    (Tab::Forest, "Forest"),
+                    (Tab::Tools, "Paint and walk"),
+                ] {
+                    if ui
+                        .selectable_label(editor.tab == tab, RichText::new(name).heading())
+                        .clicked()
+                    {
+                        editor.tab = tab;
+                    }
+                }
+            });
             commands(ui, editor);
             restore_offer(ui, editor);
-            species_list(ui, editor);
-            ui.separator();
-            ScrollArea::vertical().show(ui, |ui| {
-                grammar(ui, editor);
-                ui.separator();
-                settings(ui, editor);
-                ui.separator();
-                preview(ui, editor);
-            });
+            match editor.tab {
+                Tab::Species => species_tab(ui, editor),
+                Tab::Forest => super::forest_tab::show(ui, editor),
+                Tab::Tools => super::tools_tab::show(ui, editor),
+            }
         });
+}
+
+fn species_tab(ui: &mut Ui, editor: &mut Editor) {
+    species_list(ui, editor);
+    ui.separator();
+    ScrollArea::vertical().show(ui, |ui| {
+        grammar(ui, editor);
+        ui.separator();
+        settings(ui, editor);
+        ui.separator();
+        preview(ui, editor);
+    });
 }
 
 fn restore_offer(ui: &mut Ui, editor: &mut Editor) {
@@ -91,7 +116,7 @@ fn grammar(ui: &mut Ui, editor: &mut Editor) {
 
 /// A code editor of `rows` rows at least for `text`, scrolling in a box of its own so that
 /// what stands below it stays in view.
-fn text_box(ui: &mut Ui, id: &str, text: &mut String, rows: usize) -> egui::Response {
+pub(super) fn text_box(ui: &mut Ui, id: &str, text: &mut String, rows: usize) -> egui::Response {
     ScrollArea::vertical()
         .id_salt(format!("{id} scroll"))
         .max_height(TEXT_HEIGHT)
