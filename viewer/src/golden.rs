@@ -18,7 +18,7 @@ const GOLDEN: &str = concat!(
     "/tests/golden/default_scene.png"
 );
 
-fn read_png(path: &str) -> Option<Vec<u8>> {
+pub(crate) fn read_png(path: &str) -> Option<Vec<u8>> {
     let file = std::fs::File::open(path).ok()?;
     let mut reader = png::Decoder::new(std::io::BufReader::new(file))
         .read_info()

@@ -9,38 +9,53 @@ use std::time::Instant;
 use sylva::forest::Species;
 
 use crate::editor::forest::ForestSettings;
+use crate::render::Renderer;
 use crate::scene::{Camera, Scene};
 use crate::world::SceneOptions;
 
 /// A world being built.
 pub(crate) struct Rebuild {
-    done: Receiver<Result<Scene, String>>,
+    done: Receiver<Result<Built, String>>,
     started: Instant,
     /// The window's frame count when it started.
     pub(crate) first_frame: u64,
 }
 
-/// A finished rebuild: the new scene, with the cells around the camera in, and how long it
-/// took.
+/// A finished rebuild: the new scene, with the cells around the camera in, its GPU side
+/// when a device was given, and how long it took.
 pub(crate) struct Rebuilt {
     pub(crate) scene: Scene,
+    pub(crate) renderer: Option<Result<Renderer, String>>,
     pub(crate) seconds: f64,
 }
 
+/// A scene built, and its GPU side if one was asked for.
+type Built = (Scene, Option<Result<Renderer, String>>);
+
+/// The window's device, queue and surface format: the new scene's GPU side is made on the
+/// building thread too, so the window only swaps it in.
+pub(crate) type GpuHandles = (wgpu::Device, wgpu::Queue, wgpu::TextureFormat);
+
 impl Rebuild {
     /// Starts building the world of `settings` and `species` over the viewer's `base`
-    /// options, with the cells around `camera` (kept inside the new world) streamed in;
-    /// `frame` is the window's frame count now.
+    /// options, with the cells around `camera` (kept inside the new world) streamed in, and
+    /// its GPU side on `gpu`; `frame` is the window's frame count now.
     pub(crate) fn start(
         base: &SceneOptions,
         settings: ForestSettings,
         species: Vec<Species>,
         (camera, frame): (Camera, u64),
+        gpu: Option<GpuHandles>,
     ) -> Rebuild {
         let (send, done) = channel();
         let base = base.clone();
         std::thread::spawn(move || {
-            let built = build(&base, &settings, species, camera);
+            let built = build(&base, &settings, species, camera).map(|scene| {
+                let renderer = gpu.map(|(device, queue, format)| {
+                    Renderer::new(&device, &queue, format, &scene).map_err(|e| e.to_string())
+                });
+                (scene, renderer)
+            });
             // The window may have closed meanwhile: nobody to tell.
             let _ = send.send(built);
         });
@@ -54,8 +69,9 @@ impl Rebuild {
     /// The new world once it is whole; `None` while it is being built.
     pub(crate) fn poll(&self) -> Option<Result<Rebuilt, String>> {
         match self.done.try_recv() {
-            Ok(built) => Some(built.map(|scene| Rebuilt {
+            Ok(built) => Some(built.map(|(scene, renderer)| Rebuilt {
                 scene,
+                renderer,
                 seconds: self.started.elapsed().as_secs_f64(),
             })),
             Err(TryRecvError::Empty) => None,
@@ -117,6 +133,7 @@ mod tests {
                 settings,
                 species.clone(),
                 (camera, 0),
+                None,
             ));
             let scene = rebuilt.scene;
             assert!((scene.side() - 250.0).abs() < 1e-3, "{}", scene.side());

@@ -2,9 +2,11 @@
 //! previewed after every change (Carey's L-system tab).
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use sylva::forest::{ForestError, Species};
+use sylva::turtle::Mesh;
 
 /// Where a problem with the texts lies, for the panel to point at.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -38,6 +40,9 @@ pub(crate) struct Preview {
     pub(crate) triangles: usize,
     /// How long reading the texts, deriving and meshing took.
     pub(crate) millis: f64,
+    /// The tree, shared (the panel's 3D view draws it), and its bark and leaf colours.
+    pub(crate) mesh: Arc<Mesh>,
+    pub(crate) colours: [[f32; 3]; 2],
 }
 
 /// One species in the editor.
@@ -188,6 +193,8 @@ impl Document {
             Ok(Preview {
                 triangles: mesh.triangle_count(),
                 millis: started.elapsed().as_secs_f64() * 1e3,
+                mesh: Arc::new(mesh),
+                colours: [species.bark, species.leaf],
             })
         });
     }

@@ -6,6 +6,7 @@ use winit::window::Window;
 
 use super::Editor;
 use super::overlay::Overlay;
+use super::preview3d::{Preview3d, show_current};
 
 /// The editor with what it needs to live in a window.
 pub(crate) struct EditorWindow {
@@ -13,6 +14,7 @@ pub(crate) struct EditorWindow {
     ctx: egui::Context,
     input: egui_winit::State,
     overlay: Overlay,
+    preview: Preview3d,
     /// Whether the panel is shown (F2).
     pub(crate) visible: bool,
     /// Where the cursor is, in physical pixels.
@@ -35,11 +37,16 @@ impl EditorWindow {
             None,
             Some(device.limits().max_texture_dimension_2d as usize),
         );
+        let mut overlay = Overlay::new(device, format);
+        let preview = Preview3d::new(device);
+        let mut editor = editor;
+        editor.preview_image = Some(overlay.register(device, &preview.view));
         EditorWindow {
             editor,
             ctx,
             input,
-            overlay: Overlay::new(device, format),
+            overlay,
+            preview,
             visible: true,
             cursor_x: f32::INFINITY,
         }
@@ -78,6 +85,7 @@ impl EditorWindow {
         if !self.visible {
             return Vec::new();
         }
+        show_current(&mut self.preview, gpu, encoder, &self.editor);
         let raw = self.input.take_egui_input(window);
         let editor = &mut self.editor;
         let mut output = self.ctx.run_ui(raw, |ui| super::panel::show(ui, editor));

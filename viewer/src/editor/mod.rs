@@ -14,6 +14,7 @@ pub(crate) mod in_window;
 pub(crate) mod launch;
 mod overlay;
 mod panel;
+mod preview3d;
 mod project;
 mod tools_tab;
 mod watch;
@@ -139,6 +140,10 @@ pub(crate) struct Editor {
     /// the model's picker.
     pub(crate) model_input: String,
     pub(crate) choosing_model: bool,
+    /// The 3D preview's image, once a window or the headless panel has registered it, and
+    /// the angle it is seen from (radians round the tree; dragging the image turns it).
+    pub(crate) preview_image: Option<egui::TextureId>,
+    pub(crate) preview_yaw: f32,
 }
 
 impl Editor {
@@ -220,6 +225,8 @@ impl Editor {
             strokes_unsaved: false,
             model_input: String::new(),
             choosing_model: false,
+            preview_image: None,
+            preview_yaw: 3.8,
         })
     }
 

@@ -17,6 +17,16 @@ impl Overlay {
         }
     }
 
+    /// Registers a texture of our own (the 3D preview) for egui to show as an image.
+    pub(crate) fn register(
+        &mut self,
+        device: &wgpu::Device,
+        view: &wgpu::TextureView,
+    ) -> egui::TextureId {
+        self.renderer
+            .register_native_texture(device, view, wgpu::FilterMode::Linear)
+    }
+
     /// Records egui's `output` drawn over `target` (its contents kept) of `size` pixels;
     /// returns command buffers to submit before `encoder`'s.
     pub(crate) fn draw(
@@ -97,6 +107,8 @@ pub(crate) fn render_panel(
     });
     let view = texture.create_view(&Default::default());
     let ctx = egui::Context::default();
+    // A picture of the panel at rest: windows shown at once, not fading in.
+    ctx.all_styles_mut(|style| style.animation_time = 0.0);
     let input = || egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(
             egui::Pos2::ZERO,
@@ -105,10 +117,13 @@ pub(crate) fn render_panel(
         ..Default::default()
     };
     let mut overlay = Overlay::new(&device, format);
+    let mut preview = super::preview3d::Preview3d::new(&device);
+    editor.preview_image = Some(overlay.register(&device, &preview.view));
     let mut pixels = Vec::new();
     for pass in 0..2 {
-        let output = ctx.run_ui(input(), |ui| super::panel::show(ui, editor));
         let mut encoder = device.create_command_encoder(&Default::default());
+        super::preview3d::show_current(&mut preview, (&device, &queue), &mut encoder, editor);
+        let output = ctx.run_ui(input(), |ui| super::panel::show(ui, editor));
         {
             // The ground the panel stands on.
             encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -176,8 +191,60 @@ mod tests {
             .count()
     }
 
+    /// Pixels of the right third (where the preview window stands) that are leafy green.
+    fn leafy(pixels: &[u8], size: (u32, u32)) -> usize {
+        pixels
+            .chunks_exact(4)
+            .enumerate()
+            .filter(|(k, p)| {
+                (*k as u32 % size.0) > 2 * size.0 / 3 && p[1] > p[0] + 25 && p[1] > p[2] + 25
+            })
+            .count()
+    }
+
+    /// The panel's three tabs at 1280 x 720, as the editor opens the bundled species, match
+    /// their pictures in docs/editor: at most 0.5% of the pixels differ by more than 16 levels
+    /// (the preview's build time is in its text). `SYLVA_BLESS=1` writes them.
+    #[test]
+    fn the_panels_match_their_goldens() {
+        let size = (1280, 720);
+        for (tab, name) in [
+            (super::super::Tab::Species, "species"),
+            (super::super::Tab::Forest, "forest"),
+            (super::super::Tab::Tools, "tools"),
+        ] {
+            let project = std::env::temp_dir().join(format!("sylva-panel-golden-{name}"));
+            let _ = std::fs::remove_dir_all(&project);
+            let settings = super::super::forest::ForestSettings::of_flags(1, 800.0, 32);
+            let mut editor = super::super::Editor::open(&[], project.clone(), settings).unwrap();
+            editor.tab = tab;
+            let Some(pixels) = panel(&mut editor, size) else {
+                return;
+            };
+            let _ = std::fs::remove_dir_all(&project);
+            let path = format!("{}/../docs/editor/{name}.png", env!("CARGO_MANIFEST_DIR"));
+            if std::env::var_os("SYLVA_BLESS").is_some() {
+                crate::write_png(&path, size, &pixels).unwrap();
+                continue;
+            }
+            let golden = crate::golden::read_png(&path)
+                .unwrap_or_else(|| panic!("{path} missing: run with SYLVA_BLESS=1 to write it"));
+            assert_eq!(golden.len(), pixels.len(), "{name}");
+            let differing = pixels
+                .chunks_exact(4)
+                .zip(golden.chunks_exact(4))
+                .filter(|(a, b)| a.iter().zip(*b).any(|(x, y)| x.abs_diff(*y) > 16))
+                .count();
+            assert!(
+                differing * 200 <= pixels.len() / 4,
+                "{name}: {differing} pixels differ from {path}"
+            );
+        }
+    }
+
     /// The panel draws its text over its ground, and a grammar that does not read shows its
-    /// problem in red below the grammar.
+    /// problem in red below the grammar; the preview window shows the tree, and nothing
+    /// while the grammar does not read.
     #[test]
     fn the_panel_shows_a_problem_in_red() {
         let project = std::env::temp_dir().join("sylva-panel-problem");
@@ -195,6 +262,11 @@ mod tests {
             .count();
         assert!(bright > 2000, "{bright} bright pixels");
         assert_eq!(red(&clean, size), 0);
+        assert!(
+            leafy(&clean, size) > 5000,
+            "{} leafy pixels",
+            leafy(&clean, size)
+        );
         editor.edit(|d| d.grammar_text.push_str("\nA -> B(1,"));
         let broken = panel(&mut editor, size).expect("rendered once already");
         assert!(
@@ -202,6 +274,7 @@ mod tests {
             "{} red pixels",
             red(&broken, size)
         );
+        assert!(leafy(&broken, size) < 100, "{}", leafy(&broken, size));
         let _ = std::fs::remove_dir_all(&project);
     }
 }

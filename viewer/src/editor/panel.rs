@@ -50,7 +50,10 @@ pub(crate) fn show(ui: &mut Ui, editor: &mut Editor) {
             commands(ui, editor);
             restore_offer(ui, editor);
             match editor.tab {
-                Tab::Species => species_tab(ui, editor),
+                Tab::Species => {
+                    species_tab(ui, editor);
+                    preview_window(ui, editor);
+                }
                 Tab::Forest => super::forest_tab::show(ui, editor),
                 Tab::Tools => super::tools_tab::show(ui, editor),
             }
@@ -191,6 +194,35 @@ fn preview(ui: &mut Ui, editor: &mut Editor) {
         Err(_) => "Preview: none while the texts do not read".to_string(),
     };
     ui.label(line);
+}
+
+/// The preview tree in 3D, in a window of its own at the top right of the view beside the
+/// panel (where it hides no control); dragging it turns the tree.
+fn preview_window(ui: &mut Ui, editor: &mut Editor) {
+    let Some(id) = editor.preview_image else {
+        return;
+    };
+    let (w, h) = super::preview3d::SIZE;
+    egui::Window::new(format!(
+        "{} (seed {})",
+        editor.current().name,
+        editor.current().seed
+    ))
+    .id(egui::Id::unique("preview"))
+    .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
+    .resizable(false)
+    .collapsible(true)
+    .show(ui.ctx(), |ui| {
+        if editor.current().outcome.is_err() {
+            ui.label("No tree while the texts do not read.");
+            return;
+        }
+        let image = egui::Image::new(egui::load::SizedTexture::new(id, [w as f32, h as f32]))
+            .sense(egui::Sense::drag());
+        let response = ui.add(image).on_hover_text("drag to turn the tree");
+        // Half a turn across the image.
+        editor.preview_yaw += response.drag_delta().x * std::f32::consts::PI / w as f32;
+    });
 }
 
 fn commands(ui: &mut Ui, editor: &mut Editor) {

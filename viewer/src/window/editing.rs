@@ -101,7 +101,7 @@ impl App {
             match done {
                 Ok(rebuilt) => {
                     let seconds = rebuilt.seconds;
-                    let message = self.swap_in(rebuilt.scene);
+                    let message = self.swap_in(rebuilt.scene, rebuilt.renderer);
                     self.rebuilds += 1;
                     let line = format!(
                         "forest built in {seconds:.1} s (build {}, {frames} frames drawn meanwhile){message}",
@@ -120,19 +120,29 @@ impl App {
             }
         }
         if let Some((species, settings)) = self.waiting_forest.take() {
+            let gpu = self
+                .gpu
+                .as_ref()
+                .map(|g| (g.device.clone(), g.queue.clone(), g.config.format));
             self.rebuild = Some(Rebuild::start(
                 &self.base,
                 settings,
                 species,
                 (self.camera, self.frames),
+                gpu,
             ));
         }
     }
 
-    /// Puts a new scene in the old one's place: its GPU side made, the camera kept inside
-    /// it, the painting carried over when its masks fit, the guided walk stopped. Answers
-    /// what the swap did, for the status line.
-    fn swap_in(&mut self, mut scene: crate::scene::Scene) -> String {
+    /// Puts a new scene in the old one's place with its GPU side (made here unless the
+    /// building thread made it), the camera kept inside it, the painting carried over when
+    /// its masks fit, the guided walk stopped. Answers what the swap did, for the status
+    /// line.
+    fn swap_in(
+        &mut self,
+        mut scene: crate::scene::Scene,
+        renderer: Option<Result<Renderer, String>>,
+    ) -> String {
         let Some(gpu) = &mut self.gpu else {
             self.scene = scene;
             return String::new();
@@ -146,7 +156,11 @@ impl App {
             self.painting = None;
             self.paint_mode = false;
         }
-        match Renderer::new(&gpu.device, &gpu.queue, gpu.config.format, &scene) {
+        let renderer = renderer.unwrap_or_else(|| {
+            Renderer::new(&gpu.device, &gpu.queue, gpu.config.format, &scene)
+                .map_err(|e| e.to_string())
+        });
+        match renderer {
             Ok(renderer) => gpu.renderer = renderer,
             Err(e) => return format!("; not shown: {e}"),
         }
