@@ -6,8 +6,9 @@
 # `sylva forest`'s species reader (the headless panel), moves the slider again and kills the
 # viewer (SIGKILL) once the edit is autosaved; the next start offers the autosave, and
 # Restore brings the edit back. Then the forest tab: the terrain's roughness moved, the world
-# is built again while frames go on, swapped in, saved, and `sylva forest --project` makes
-# the saved project's forest.
+# is built again while frames go on, swapped in. Then the tools tab: painting started from
+# its button, the eraser chosen, a stroke; Ctrl+Z and Ctrl+Y undo and redo it through the
+# editor's one history; saved with the project, whose masks `sylva forest --project` grows.
 # usage: .ci/window/editor.sh VIEWER SYLVA WORKDIR
 # Needs Debian's xvfb and xdotool, and a Vulkan or GL driver (Mesa's lavapipe will do).
 set -euo pipefail
@@ -36,7 +37,8 @@ other_than() { local n; n=$(triangles); [ -n "$n" ] && [ "$n" != "$1" ]; }
 # Where the panel's controls stand (points from the window's top left; the panel's layout is
 # fixed, see viewer/src/editor/panel.rs).
 grammar_box=(200 200); generations_slider_y=443; save_button=(138 40); restore_button=(38 81)
-forest_tab=(125 14); roughness_slider_y=159
+forest_tab=(125 14); roughness_slider_y=159; tools_tab=(233 14); paint_button=(60 81)
+erase_radio=(200 128)
 # frames N: waits until N more frames have been drawn (the title changes every frame: it
 # carries the frame time), however slow frames are (a rebuild shares the cores).
 frames() {
@@ -124,9 +126,34 @@ wait_until shows "(build 2,"
 built=$(title | sed -n 's/.*\(forest built in [^;]*\).*/\1/p')
 echo "editor: the terrain's roughness moved; $built"
 [[ "$built" =~ \ ([1-9][0-9]*)\ frames\ drawn ]] || fail "no frames were drawn while the forest was built"
+# The tools tab: the painting tool from its button, the eraser, a stroke across the ground.
+tap "${tools_tab[@]}"
+tap "${paint_button[@]}"
+wait_until shows "painting: add oak"
+tap "${erase_radio[@]}"
+wait_until shows "painting: erase"
+xdotool mousemove --window "$window" 500 420
+frames 2
+xdotool mousedown 1
+frames 2
+for x in 540 580 620 660 700; do
+  xdotool mousemove --window "$window" "$x" 430
+  frames 1
+done
+xdotool mouseup 1
+wait_until shows "undo 1, redo 0"
+echo "editor: painted a stroke from the tools tab"
+# Undo and redo go through the editor's history, in turn with its edits.
+xdotool key ctrl+z
+wait_until shows "undo 0, redo 1"
+xdotool key ctrl+y
+wait_until shows "undo 1, redo 0"
+echo "editor: Ctrl+Z and Ctrl+Y undid and redid the stroke"
 tap "${save_button[@]}"
 rough() { grep -q '"roughness": 0\.[0-6]' proj/world.json 2>/dev/null; }
 wait_until rough
+masks() { [ "$(find proj/masks -name '*.png' 2>/dev/null | wc -l)" -eq 5 ]; }
+wait_until masks
 "$sylva" forest --project proj --out forest.glb --quiet > forest.out 2>&1 || { cat forest.out >&2; fail "sylva forest did not take the project"; }
 [ -s forest.glb ] || fail "sylva forest wrote nothing"
-echo "editor: saved; sylva forest --project made its forest ($(stat -c %s forest.glb) bytes)"
+echo "editor: saved with its masks; sylva forest --project made its forest ($(stat -c %s forest.glb) bytes)"

@@ -443,3 +443,56 @@ async fn a_world_on_a_real_elevation_model() {
     }
     server.stop().await;
 }
+
+/// A project folder as the viewer's editor saves it is taken as it stands: its elevation
+/// model uploaded gets the id its world file names, and its world file posted makes a
+/// world whose tiles are served.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_saved_project_is_taken_as_posted() {
+    use sylva_server::project::{Project, WORLD_FILE};
+    let server = start(options(scratch("project"))).await;
+    let folder = scratch("project-folder");
+    let model = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../terrain/tests/data/dems/west_bijou_escarpment.asc"
+    ));
+    let description = WorldDescription {
+        species: vec![sylva_server::SpeciesEntry::Bundled("birch".into())],
+        tile_size: 50.0,
+        budget_mb: 4,
+        ..WorldDescription::default()
+    };
+    let written = Project::write(&folder, &description, Some(model)).unwrap();
+    let mut c = Client::connect(server.address).await;
+    let upload = c
+        .post(
+            "/heightmaps",
+            &std::fs::read(folder.join("heightmap.asc")).unwrap(),
+        )
+        .await;
+    assert_eq!(upload.status, StatusCode::CREATED);
+    let sylva_server::TerrainDescription::Heightmap { id: model_id, .. } = &written.terrain else {
+        panic!("{:?}", written.terrain)
+    };
+    assert_eq!(upload.json()["id"], model_id.as_str());
+    let posted = std::fs::read(folder.join(WORLD_FILE)).unwrap();
+    let answer = c.post("/worlds", &posted).await;
+    assert_eq!(
+        answer.status,
+        StatusCode::CREATED,
+        "{}",
+        String::from_utf8_lossy(&answer.body)
+    );
+    assert_eq!(answer.json()["id"], written.id().as_str());
+    let tileset = c
+        .get(&format!("/worlds/{}/tileset.json", written.id()))
+        .await;
+    assert_eq!(
+        tileset.status,
+        StatusCode::OK,
+        "{}",
+        String::from_utf8_lossy(&tileset.body)
+    );
+    server.stop().await;
+    let _ = std::fs::remove_dir_all(&folder);
+}
