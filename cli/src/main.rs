@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! sylva forest                 # the default forest: forest.glb and forest_height.png
+//! sylva forest --project DIR   # the forest of a project the viewer's editor saved
 //! sylva tiles --out world      # the same world as a 3D Tiles 1.1 tileset
 //! sylva grow                   # 25 oaks grown together around a boulder: stand.glb
 //! sylva pack --out pack        # levels of detail, impostors and placements for engines
