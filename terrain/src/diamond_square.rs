@@ -1,10 +1,14 @@
 //! Midpoint displacement by the diamond-square algorithm.
 
 use glam::Vec2;
+use rayon::prelude::*;
 
 use crate::error::{TerrainError, check};
 use crate::hash::signed_noise;
 use crate::heightmap::{Heightmap, checked_len, levels_of};
+
+/// Fewest rows a task of a pass takes (a row of a late pass is thousands of samples).
+const ROWS_PER_TASK: usize = 8;
 
 /// Settings for [`DiamondSquare::generate`].
 ///
@@ -168,48 +172,70 @@ impl DiamondSquare {
         let half_decay = 2f32.powf(-0.5 * self.roughness);
         let mut scale = self.amplitude * decay;
         let mut step = cells;
+        let wrap = self.wrap;
+        // A periodic map's last row and column are copies of its first, made at the end:
+        // no pass reads them, so they are not worked out.
+        let last = if wrap { cells - 1 } else { cells };
         while step > 1 {
             let half = step / 2;
-            // Diamond step: centres of squares.
-            for z in (half..cells).step_by(step) {
-                for x in (half..cells).step_by(step) {
-                    let avg = 0.25
-                        * (h[(z - half) * n + x - half]
-                            + h[(z - half) * n + x + half]
-                            + h[(z + half) * n + x - half]
-                            + h[(z + half) * n + x + half]);
-                    h[z * n + x] = avg + scale * noise(x, z);
-                }
-            }
-            // Square step: edge midpoints. Their parents are closer by a factor of sqrt 2 than
-            // the diamond step's, so their displacement is smaller by 2^(-H/2).
-            let square_scale = scale * half_decay;
-            for z in (0..=cells).step_by(half) {
-                let start = if (z / half).is_multiple_of(2) {
-                    half
+            // Diamond step: centres of squares (rows at odd multiples of `half`), from the
+            // corners around them in the rows `half` above and below.
+            let odd = |z: usize| z % step == half;
+            for_rows(&mut h, n, odd, |z, row, rows| {
+                // A periodic map's row and column `cells` (not worked out) are its first.
+                let (up, down) = if wrap {
+                    (rows.get(z - half), rows.get((z + half) % cells))
                 } else {
-                    0
+                    (rows.get(z - half), rows.get(z + half))
                 };
-                for x in (start..=cells).step_by(step) {
-                    let avg = if self.wrap {
-                        let at = |x: usize, z: usize| h[(z % cells) * n + (x % cells)];
-                        0.25 * (at(x + cells - half, z)
-                            + at(x + half, z)
-                            + at(x, z + cells - half)
-                            + at(x, z + half))
-                    } else if x == 0 || x == cells {
-                        // On a tile border only border samples count, so neighbours agree.
-                        0.5 * (h[(z - half) * n + x] + h[(z + half) * n + x])
-                    } else if z == 0 || z == cells {
-                        0.5 * (h[z * n + x - half] + h[z * n + x + half])
-                    } else {
-                        0.25 * (h[z * n + x - half]
-                            + h[z * n + x + half]
-                            + h[(z - half) * n + x]
-                            + h[(z + half) * n + x])
-                    };
-                    h[z * n + x] = avg + square_scale * noise(x, z);
+                let right = |x: usize| if wrap { (x + half) % cells } else { x + half };
+                for x in (half..cells).step_by(step) {
+                    let avg =
+                        0.25 * (up[x - half] + up[right(x)] + down[x - half] + down[right(x)]);
+                    row[x] = avg + scale * noise(x, z);
                 }
+            });
+            // Square step: edge midpoints. Their parents are closer by a factor of sqrt 2 than
+            // the diamond step's, so their displacement is smaller by 2^(-H/2). The rows at
+            // even multiples of `half` take their midpoints first, from the odd rows; then the
+            // odd rows take theirs, from the even rows' samples the first part never writes:
+            // every sample is the sum it always was.
+            let square_scale = scale * half_decay;
+            for parity in [0, half] {
+                let picked = |z: usize| z % step == parity && z <= last;
+                for_rows(&mut h, n, picked, |z, row, rows| {
+                    let start = if parity == 0 { half } else { 0 };
+                    if wrap {
+                        let up = rows.get((z + cells - half) % cells);
+                        let down = rows.get((z + half) % cells);
+                        for x in (start..cells).step_by(step) {
+                            let avg = 0.25
+                                * (row[(x + cells - half) % cells]
+                                    + row[(x + half) % cells]
+                                    + up[x]
+                                    + down[x]);
+                            row[x] = avg + square_scale * noise(x, z);
+                        }
+                        return;
+                    }
+                    if z == 0 || z == cells {
+                        // On a tile border only border samples count, so neighbours agree.
+                        for x in (start..=cells).step_by(step) {
+                            let avg = 0.5 * (row[x - half] + row[x + half]);
+                            row[x] = avg + square_scale * noise(x, z);
+                        }
+                        return;
+                    }
+                    let (up, down) = (rows.get(z - half), rows.get(z + half));
+                    for x in (start..=cells).step_by(step) {
+                        let avg = if x == 0 || x == cells {
+                            0.5 * (up[x] + down[x])
+                        } else {
+                            0.25 * (row[x - half] + row[x + half] + up[x] + down[x])
+                        };
+                        row[x] = avg + square_scale * noise(x, z);
+                    }
+                });
             }
             scale *= decay;
             step = half;
@@ -226,4 +252,38 @@ impl DiamondSquare {
         let origin = Vec2::new(gx0 as f32, gz0 as f32) * self.spacing;
         Ok(Heightmap::from_heights(n, self.spacing, h)?.with_origin(origin))
     }
+}
+
+/// The rows of a map not being written in a pass, by row number.
+struct ReadRows<'a>(Vec<Option<&'a [f32]>>);
+
+impl ReadRows<'_> {
+    /// Row `z`, which the pass only reads.
+    fn get(&self, z: usize) -> &[f32] {
+        self.0[z].expect("a pass reads only rows it does not write")
+    }
+}
+
+/// Runs `body` on every core for each row of the `n`-wide map `h` that `written` picks,
+/// with its number and the rows the pass only reads.
+fn for_rows(
+    h: &mut [f32],
+    n: usize,
+    written: impl Fn(usize) -> bool,
+    body: impl Fn(usize, &mut [f32], &ReadRows) + Sync,
+) {
+    let mut mine = Vec::new();
+    let mut read = Vec::with_capacity(n);
+    for (z, row) in h.chunks_mut(n).enumerate() {
+        if written(z) {
+            mine.push((z, row));
+            read.push(None);
+        } else {
+            read.push(Some(&*row));
+        }
+    }
+    let read = ReadRows(read);
+    mine.into_par_iter()
+        .with_min_len(ROWS_PER_TASK)
+        .for_each(|(z, row)| body(z, row, &read));
 }

@@ -2,9 +2,23 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::error::{OutOfRange, TerrainError};
 use crate::heightmap::Heightmap;
+
+/// Fewest rows of vertices or quads a task makes.
+const ROWS_PER_TASK: usize = 8;
+
+/// `v` at `len` elements: kept as it is when it has that many already (their memory in use
+/// is overwritten in place), else filled anew on every core (fresh pages are most of the
+/// cost of a large mesh, and the kernel gives them to both cores at once).
+fn resize<T: Default + Clone + Send + Sync>(v: &mut Vec<T>, len: usize) {
+    if v.len() != len {
+        v.clear();
+        v.par_extend(rayon::iter::repeat_n(T::default(), len));
+    }
+}
 
 /// One terrain vertex: 32 bytes, `#[repr(C)]` and `Pod` for direct upload.
 #[repr(C)]
@@ -38,6 +52,22 @@ impl Heightmap {
     /// assert_eq!(mesh.indices.len(), 4 * 4 * 6);
     /// ```
     pub fn mesh(&self, stride: usize) -> Result<TerrainMesh, TerrainError> {
+        let mut mesh = TerrainMesh::default();
+        self.mesh_into(stride, &mut mesh)?;
+        Ok(mesh)
+    }
+
+    /// [`Heightmap::mesh`] into `mesh`, whose vectors are reused: meshing again into memory
+    /// already in use skips the cost of fresh pages, which is most of a large mesh's (a
+    /// 4097 x 4097 mesh is 940 MB).
+    ///
+    /// ```
+    /// let map = sylva_terrain::Heightmap::flat(9, 1.0).unwrap();
+    /// let mut mesh = map.mesh(1).unwrap();
+    /// map.mesh_into(2, &mut mesh).unwrap();
+    /// assert_eq!(mesh, map.mesh(2).unwrap());
+    /// ```
+    pub fn mesh_into(&self, stride: usize, mesh: &mut TerrainMesh) -> Result<(), TerrainError> {
         let cells = self.size() - 1;
         if stride == 0 || !cells.is_multiple_of(stride) {
             return Err(OutOfRange {
@@ -48,30 +78,46 @@ impl Heightmap {
             .into());
         }
         let m = cells / stride + 1;
-        let mut vertices = Vec::with_capacity(m * m);
         let s = self.spacing();
-        for j in 0..m {
-            for i in 0..m {
-                let (x, z) = (i * stride, j * stride);
-                let wx = self.origin().x + x as f32 * s;
-                let wz = self.origin().y + z as f32 * s;
-                let normal = self.grid_normal(x, z);
-                vertices.push(TerrainVertex {
-                    position: Vec3::new(wx, self.get(x, z), wz).to_array(),
-                    normal: normal.to_array(),
-                    uv: [i as f32 / (m - 1) as f32, j as f32 / (m - 1) as f32],
+        let origin = self.origin();
+        // Vertices and triangles a row at a time on every core, written in place. The
+        // vectors are sized first; a mesh of the same size keeps its memory untouched.
+        let quads = m - 1;
+        resize(&mut mesh.vertices, m * m);
+        resize(&mut mesh.indices, quads * quads * 6);
+        let last = (m - 1) as f32;
+        mesh.vertices
+            .par_chunks_mut(m)
+            .enumerate()
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(j, row)| {
+                let z = j * stride;
+                let wz = origin.y + z as f32 * s;
+                for (i, v) in row.iter_mut().enumerate() {
+                    let x = i * stride;
+                    *v = TerrainVertex {
+                        position: Vec3::new(origin.x + x as f32 * s, self.get(x, z), wz).to_array(),
+                        normal: self.grid_normal(x, z).to_array(),
+                        uv: [i as f32 / last, j as f32 / last],
+                    };
+                }
+            });
+        let m32 = m as u32;
+        if quads > 0 {
+            mesh.indices
+                .par_chunks_mut(quads * 6)
+                .enumerate()
+                .with_min_len(ROWS_PER_TASK)
+                .for_each(|(j, row)| {
+                    for (i, quad) in row.chunks_exact_mut(6).enumerate() {
+                        let a = j as u32 * m32 + i as u32;
+                        let (b, c, d) = (a + 1, a + m32, a + m32 + 1);
+                        // Two triangles, counter-clockwise seen from above.
+                        quad.copy_from_slice(&[a, c, d, a, d, b]);
+                    }
                 });
-            }
         }
-        let mut indices = Vec::with_capacity((m - 1) * (m - 1) * 6);
-        for j in 0..m as u32 - 1 {
-            for i in 0..m as u32 - 1 {
-                let a = j * m as u32 + i;
-                let (b, c, d) = (a + 1, a + m as u32, a + m as u32 + 1);
-                indices.extend_from_slice(&[a, c, d, a, d, b]);
-            }
-        }
-        Ok(TerrainMesh { vertices, indices })
+        Ok(())
     }
 
     /// Normal at a sample by central differences over one spacing (one-sided at the edges),

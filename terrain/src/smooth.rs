@@ -1,7 +1,16 @@
-//! Separable Gaussian smoothing.
+//! Separable Gaussian smoothing, rows on every core. Each output is the same sum in the same
+//! order at any thread count, so the heights are the same bits.
+
+use rayon::prelude::*;
 
 use crate::error::{TerrainError, check};
 use crate::heightmap::Heightmap;
+
+/// Fewest rows a task takes: enough that a task's rows share their neighbours in cache and
+/// the scheduling is paid rarely, few enough that small maps still split.
+const ROWS_PER_TASK: usize = 16;
+/// Columns summed at once in the vertical pass: a few vector registers' worth.
+const STRIP: usize = 32;
 
 /// How the blur treats samples beyond the edges.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -55,43 +64,76 @@ impl Heightmap {
                 _ => reflect(i, n),
             }
         };
-        let src = self.heights().to_vec();
+        // Horizontal pass into `tmp`, rows on every core: each row goes through a padded
+        // copy so that the inner loops run over contiguous memory (and vectorise).
         let mut tmp = vec![0.0f32; n * n];
-        // Horizontal pass through a padded row, so the inner loops run over contiguous memory.
-        let mut pad = vec![0.0f32; n + 2 * r];
-        for z in 0..n {
-            let row = &src[z * n..(z + 1) * n];
-            for (i, p) in pad.iter_mut().enumerate() {
-                *p = row[index(i as isize - r as isize)];
-            }
-            let out = &mut tmp[z * n..(z + 1) * n];
-            for (x, o) in out.iter_mut().enumerate() {
-                *o = w[0] * pad[x + r];
-            }
-            for (k, &wk) in w.iter().enumerate().skip(1) {
-                let (left, right) = (&pad[r - k..r - k + n], &pad[r + k..r + k + n]);
-                for ((o, a), b) in out.iter_mut().zip(left).zip(right) {
-                    *o += wk * (a + b);
-                }
-            }
-        }
-        // Vertical pass: whole rows at a time.
+        let src = self.heights();
+        tmp.par_chunks_mut(n)
+            .zip(src.par_chunks(n))
+            .with_min_len(ROWS_PER_TASK)
+            .for_each_init(
+                || vec![0.0f32; n + 2 * r],
+                |pad, (out, row)| {
+                    for (i, p) in pad.iter_mut().enumerate() {
+                        *p = row[index(i as isize - r as isize)];
+                    }
+                    for (x, o) in out.iter_mut().enumerate() {
+                        *o = w[0] * pad[x + r];
+                    }
+                    for (k, &wk) in w.iter().enumerate().skip(1) {
+                        let (left, right) = (&pad[r - k..r - k + n], &pad[r + k..r + k + n]);
+                        for ((o, a), b) in out.iter_mut().zip(left).zip(right) {
+                            *o += wk * (a + b);
+                        }
+                    }
+                },
+            );
+        // Vertical pass back into the heights, whole rows at a time on every core. A row is
+        // worked in strips of `STRIP` columns whose sums stay in registers over all 2r + 1
+        // rows read, so each output is written once (the sum's order is a row's, term by
+        // term: the same bits).
         let heights = self.heights_mut();
-        for z in 0..n {
-            let out = &mut heights[z * n..(z + 1) * n];
-            out.copy_from_slice(&tmp[z * n..(z + 1) * n]);
-            out.iter_mut().for_each(|o| *o *= w[0]);
-            for (k, &wk) in w.iter().enumerate().skip(1) {
-                let (za, zb) = (
-                    index(z as isize - k as isize),
-                    index(z as isize + k as isize),
-                );
-                let (a, b) = (&tmp[za * n..(za + 1) * n], &tmp[zb * n..(zb + 1) * n]);
-                for ((o, a), b) in out.iter_mut().zip(a).zip(b) {
-                    *o += wk * (a + b);
+        heights
+            .par_chunks_mut(n)
+            .enumerate()
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(z, out)| {
+                let taps: Vec<(f32, &[f32], &[f32])> = w
+                    .iter()
+                    .enumerate()
+                    .skip(1)
+                    .map(|(k, &wk)| {
+                        let (za, zb) = (
+                            index(z as isize - k as isize),
+                            index(z as isize + k as isize),
+                        );
+                        (wk, &tmp[za * n..(za + 1) * n], &tmp[zb * n..(zb + 1) * n])
+                    })
+                    .collect();
+                let centre = &tmp[z * n..(z + 1) * n];
+                let mut x = 0;
+                while x + STRIP <= n {
+                    let mut sum = [0.0f32; STRIP];
+                    for (s, c) in sum.iter_mut().zip(&centre[x..x + STRIP]) {
+                        *s = c * w[0];
+                    }
+                    for &(wk, a, b) in &taps {
+                        let (a, b) = (&a[x..x + STRIP], &b[x..x + STRIP]);
+                        for ((s, a), b) in sum.iter_mut().zip(a).zip(b) {
+                            *s += wk * (a + b);
+                        }
+                    }
+                    out[x..x + STRIP].copy_from_slice(&sum);
+                    x += STRIP;
                 }
-            }
-        }
+                for x in x..n {
+                    let mut s = centre[x] * w[0];
+                    for &(wk, a, b) in &taps {
+                        s += wk * (a[x] + b[x]);
+                    }
+                    out[x] = s;
+                }
+            });
         if edges == EdgeMode::Wrap {
             let c = n - 1;
             for z in 0..n {
