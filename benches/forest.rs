@@ -1,5 +1,6 @@
 //! The main job's figures: creating and placing every instance transform of a streamed
-//! forest of 10^4, 10^5 and 10^6 trees (the default species, a 128 MB cache, every core), and
+//! forest of 10^4, 10^5 and 10^6 trees (the default species, a 128 MB cache, every core),
+//! beside the bandwidth bound of the 10^6 trees' placements (a copy of their bytes), and
 //! glTF export of 10^4 trees. Hero creation is measured on its own. Painting: one 60 m
 //! stroke dragged as 31 mouse moves over a 10^5-tree forest, each move regenerating the trees
 //! within reach, then undone.
@@ -86,6 +87,17 @@ fn forest(c: &mut Criterion) {
         group.bench_function(format!("stream_{n}_trees"), |b| {
             b.iter(|| stream(&builder, &map, region))
         });
+        if n == 1_000_000 {
+            // The bandwidth bound: the same placements' bytes copied into memory in use, as
+            // a consumer's buffer would take them.
+            let placements = stream(&builder, &map, region);
+            let bytes = placements * size_of::<sylva::forest::Placement>();
+            let from = vec![1u8; bytes];
+            let mut into = vec![0u8; bytes];
+            group.bench_function(format!("copy_placements_{n}_trees"), |b| {
+                b.iter(|| into.copy_from_slice(black_box(&from)))
+            });
+        }
     }
     let (map, region) = ground(&builder, 10_000);
     let mesh = map.mesh(1).expect("valid");
