@@ -9,11 +9,13 @@ use axum::extract::{Request, State};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
+use sha2::{Digest, Sha256};
 use sylva::terrain::dem::{ElevationModel, ReadOptions};
 
 use crate::cache::write_whole;
 use crate::error::ApiError;
 use crate::ground::model_format;
+use crate::id::WorldId;
 use crate::state::Server;
 
 /// Most bytes an upload may have.
@@ -64,13 +66,24 @@ fn check(bytes: &[u8]) -> Result<(), ApiError> {
     Ok(())
 }
 
+/// The id of an elevation model's bytes: the one `POST /heightmaps` answers for them (the
+/// first 128 bits of their SHA-256).
+///
+/// ```
+/// let id = sylva_server::project::model_id(b"not really a model");
+/// assert_eq!(id.as_str().len(), 32);
+/// ```
+pub fn model_id(bytes: &[u8]) -> WorldId {
+    WorldId::of(&Sha256::digest(bytes))
+}
+
 /// `POST /heightmaps`: answers `{"id": ...}` (201).
 pub(crate) async fn upload(
     State(server): State<Arc<Server>>,
     request: Request,
 ) -> Result<Response, ApiError> {
     let body = crate::body::read(request, MAX_HEIGHTMAP_BYTES).await?;
-    let id = crate::project::model_id(&body);
+    let id = model_id(&body);
     let path = server.cache.heightmap_path(&id);
     if !tokio::fs::try_exists(&path).await.unwrap_or(false) {
         let key = format!("heightmap/{id}");

@@ -7,13 +7,13 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use sha2::{Digest, Sha256};
 use sylva::base::file::FileError;
 use sylva::terrain::Heightmap;
 
 use crate::description::{TerrainDescription, WorldDescription};
 use crate::error::ApiError;
 use crate::heightmaps::MAX_HEIGHTMAP_BYTES;
+pub use crate::heightmaps::model_id;
 use crate::id::WorldId;
 
 /// The world's description in a project folder.
@@ -57,16 +57,6 @@ pub enum ProjectError {
         /// What is wrong.
         message: String,
     },
-}
-
-/// The id of an elevation model's bytes: the one `POST /heightmaps` answers for them.
-///
-/// ```
-/// let id = sylva_server::project::model_id(b"not really a model");
-/// assert_eq!(id.as_str().len(), 32);
-/// ```
-pub fn model_id(bytes: &[u8]) -> WorldId {
-    WorldId::of(&Sha256::digest(bytes))
 }
 
 /// A project folder's world.
