@@ -191,9 +191,26 @@ impl WorldArgs {
                 (map?, [side, side])
             }
         };
-        // A model longer than wide is drawn over its own extent, not the square map's.
-        let side = extent[0].max(extent[1]);
-        if let Some(dir) = &self.paint {
+        self.finish(
+            (builder, hero_time),
+            (map, extent),
+            self.paint.as_deref(),
+            self.seed,
+            quiet,
+        )
+    }
+
+    /// The world of `builder` on `map` over `extent`: painted with the masks in `masks`,
+    /// drawn in `--year`'s year, its siting reported unless `quiet`.
+    fn finish(
+        &self,
+        (mut builder, hero_time): (ForestBuilder, Duration),
+        (map, extent): (Heightmap, [f32; 2]),
+        masks: Option<&Path>,
+        seed: u64,
+        quiet: bool,
+    ) -> Result<World, Failure> {
+        if let Some(dir) = masks {
             builder = sylva::paint::with_masks(&builder, dir, &map)?;
         }
         let region = Rect::new(Vec2::ZERO, Vec2::new(extent[0], extent[1]));
@@ -208,8 +225,9 @@ impl WorldArgs {
             builder,
             map,
             region,
-            side,
-            seed: self.seed,
+            // A model longer than wide is drawn over its own extent, not the square map's.
+            side: extent[0].max(extent[1]),
+            seed,
             hero_time,
             siting,
         })
@@ -239,28 +257,15 @@ impl WorldArgs {
                     .with_height_range(lowest, highest);
             })
         });
-        let mut builder =
+        let builder =
             builder.map_err(|e| Failure::job(format!("{}: {}", dir.display(), e.message)))?;
-        if let Some(masks) = project.masks() {
-            builder = sylva::paint::with_masks(&builder, &masks, &map)?;
-        }
-        let region = Rect::new(Vec2::ZERO, Vec2::new(extent[0], extent[1]));
-        if let Some(year) = self.year {
-            builder = builder_at_year(&builder, region, year, quiet)?;
-        }
-        let siting = builder.siting(&map, region)?;
-        if !quiet && let Some(note) = siting_note(&siting, &builder.config().constraints) {
-            eprintln!("{note}");
-        }
-        Ok(World {
-            builder,
-            map,
-            region,
-            side: extent[0].max(extent[1]),
-            seed: description.seed,
-            hero_time,
-            siting,
-        })
+        self.finish(
+            (builder, hero_time),
+            (map, extent),
+            project.masks().as_deref(),
+            description.seed,
+            quiet,
+        )
     }
 }
 

@@ -1,29 +1,13 @@
 //! `sylva forest --project`: a project folder as the viewer's editor saves it makes the same
 //! forest as the flags that say the same, and a folder missing its model says what it lacks.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
+use std::path::Path;
+
+use common::{scratch, stderr, sylva};
 use sylva_server::project::Project;
 use sylva_server::{SpeciesEntry, WorldDescription};
-
-const SYLVA: &str = env!("CARGO_BIN_EXE_sylva");
-
-/// A scratch folder of this name, emptied.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sylva-cli-project-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn sylva(args: &[&str]) -> Output {
-    Command::new(SYLVA).args(args).output().expect("sylva runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
 
 const SPECIES: &str = "name: shrub\ngrammar: shrub.lsys\ngenerations: 4\nangle: 25\n";
 const GRAMMAR: &str = "axiom: A\nA -> F[+A][-A]FA\nF -> F\n";
@@ -34,7 +18,7 @@ fn path(p: &Path) -> &str {
 
 #[test]
 fn a_project_makes_the_forest_its_flags_would() {
-    let dir = scratch("same");
+    let dir = scratch("project-same");
     let project = dir.join("project");
     let description = WorldDescription {
         species: vec![SpeciesEntry::Inline {
@@ -86,7 +70,7 @@ fn a_project_makes_the_forest_its_flags_would() {
 
 #[test]
 fn a_project_missing_its_model_says_which() {
-    let dir = scratch("missing");
+    let dir = scratch("project-missing");
     let model = Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../terrain/tests/data/dems/west_bijou_escarpment.asc"

@@ -1,10 +1,9 @@
 //! `sylva` on real elevation models: a window of one too large for a world, the note that
 //! says why a forest is thin, and a stand grown on real ground.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-const SYLVA: &str = env!("CARGO_BIN_EXE_sylva");
+use common::{scratch, stderr, sylva};
 
 /// A bundled real model's path.
 fn dem(name: &str) -> String {
@@ -12,22 +11,6 @@ fn dem(name: &str) -> String {
         "{}/../terrain/tests/data/dems/{name}",
         env!("CARGO_MANIFEST_DIR")
     )
-}
-
-/// A scratch folder of this name, emptied.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sylva-cli-land-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn sylva(args: &[&str]) -> Output {
-    Command::new(SYLVA).args(args).output().expect("sylva runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 #[test]
@@ -49,7 +32,7 @@ fn a_tile_larger_than_a_world_names_the_crop_that_fits() {
 
 #[test]
 fn a_thin_forest_says_which_constraint_thinned_it() {
-    let dir = scratch("thin");
+    let dir = scratch("land-thin");
     let (glb, png) = (dir.join("f.glb"), dir.join("f.png"));
     let out = sylva(&[
         "forest",
@@ -82,7 +65,7 @@ fn a_thin_forest_says_which_constraint_thinned_it() {
 
 #[test]
 fn a_stand_grows_on_real_ground() {
-    let dir = scratch("stand");
+    let dir = scratch("land-stand");
     let glb = dir.join("stand.glb");
     let asc = dem("west_bijou_escarpment.asc");
     let out = sylva(&[

@@ -76,7 +76,7 @@ impl ForestSettings {
     /// Uses the elevation model in `file` as the terrain (its spacing from the file, or
     /// `spacing` metres); an error when it cannot be read as one.
     pub(crate) fn use_model(&mut self, file: &Path, spacing: Option<f32>) -> Result<(), String> {
-        let bytes = std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let bytes = read_model(file)?;
         let mut trial = self.clone();
         trial.description.terrain = TerrainDescription::Heightmap {
             id: model_id(&bytes).as_str().to_owned(),
@@ -118,12 +118,8 @@ impl ForestSettings {
         let ground = d
             .ground(|_| {
                 let file = self.model.as_deref().unwrap_or(Path::new(""));
-                std::fs::read(file).map_err(|e| {
-                    sylva_server::ApiError::bad_request(
-                        "unknown_heightmap",
-                        format!("{}: {e}", file.display()),
-                    )
-                })
+                read_model(file)
+                    .map_err(|e| sylva_server::ApiError::bad_request("unknown_heightmap", e))
             })
             .map_err(|e| e.message)?;
         Ok(SceneOptions {
@@ -138,4 +134,19 @@ impl ForestSettings {
             ..base.clone()
         })
     }
+}
+
+/// An elevation model's bytes, refused before reading beyond the size the server takes.
+fn read_model(file: &Path) -> Result<Vec<u8>, String> {
+    let most = sylva_server::MAX_HEIGHTMAP_BYTES as u64;
+    let size = std::fs::metadata(file)
+        .map_err(|e| format!("{}: {e}", file.display()))?
+        .len();
+    if size > most {
+        return Err(format!(
+            "{}: {size} bytes is more than an elevation model may have ({most})",
+            file.display()
+        ));
+    }
+    std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))
 }
