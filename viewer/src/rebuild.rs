@@ -3,6 +3,7 @@
 //! on a thread of its own while the walk goes on in the old one; the window swaps it in
 //! when it is whole.
 
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::Instant;
 
@@ -11,7 +12,7 @@ use sylva::forest::Species;
 use crate::editor::forest::ForestSettings;
 use crate::render::Renderer;
 use crate::scene::{Camera, Scene};
-use crate::world::SceneOptions;
+use crate::world::{SceneOptions, World};
 
 /// A world being built.
 pub(crate) struct Rebuild {
@@ -39,18 +40,20 @@ pub(crate) type GpuHandles = (wgpu::Device, wgpu::Queue, wgpu::TextureFormat);
 impl Rebuild {
     /// Starts building the world of `settings` and `species` over the viewer's `base`
     /// options, with the cells around `camera` (kept inside the new world) streamed in, and
-    /// its GPU side on `gpu`; `frame` is the window's frame count now.
+    /// its GPU side on `gpu`; `frame` is the window's frame count now. With `reuse`, a world
+    /// of the same species, seed and budget, only the ground and density are made anew (its
+    /// forest kept) when it can carry them over.
     pub(crate) fn start(
         base: &SceneOptions,
         settings: ForestSettings,
         species: Vec<Species>,
         (camera, frame): (Camera, u64),
-        gpu: Option<GpuHandles>,
+        (gpu, reuse): (Option<GpuHandles>, Option<Arc<World>>),
     ) -> Rebuild {
         let (send, done) = channel();
         let base = base.clone();
         std::thread::spawn(move || {
-            let built = build(&base, &settings, species, camera).map(|scene| {
+            let built = build(&base, &settings, species, camera, reuse).map(|scene| {
                 let renderer = gpu.map(|(device, queue, format)| {
                     Renderer::new(&device, &queue, format, &scene).map_err(|e| e.to_string())
                 });
@@ -85,15 +88,27 @@ impl Rebuild {
     }
 }
 
-/// The scene of `settings` and `species`, with the cells around `camera` streamed in.
+/// The scene of `settings` and `species`, with the cells around `camera` streamed in: on
+/// `reuse`'s forest when it carries over to the new ground.
 fn build(
     base: &SceneOptions,
     settings: &ForestSettings,
     species: Vec<Species>,
     camera: Camera,
+    reuse: Option<Arc<World>>,
 ) -> Result<Scene, String> {
     let options = settings.scene_options(base, species)?;
-    let mut scene = Scene::build(options).map_err(|e| e.to_string())?;
+    let carried = match (&reuse, &options.ground) {
+        (Some(world), Some((map, _))) => world
+            .on_ground(map.clone(), options.density)
+            .map_err(|e| e.to_string())?,
+        _ => None,
+    };
+    let mut scene = match carried {
+        Some(world) => Scene::of(world),
+        None => Scene::build(options),
+    }
+    .map_err(|e| e.to_string())?;
     let camera = camera.inside(scene.side());
     scene
         .stream(camera.eye(&scene), false, true)
@@ -133,7 +148,7 @@ mod tests {
                 settings,
                 species.clone(),
                 (camera, 0),
-                None,
+                (None, None),
             ));
             let scene = rebuilt.scene;
             assert!((scene.side() - 250.0).abs() < 1e-3, "{}", scene.side());
@@ -147,5 +162,54 @@ mod tests {
             dense > 3 * sparse,
             "{dense} trees at 400 a hectare, {sparse} at 40"
         );
+    }
+
+    /// A world carried over to new ground and density (its forest kept) is the world built
+    /// whole from the same settings: the same cells, tree for tree and placement for
+    /// placement.
+    #[test]
+    fn a_carried_over_forest_is_the_one_built_whole() {
+        let base = SceneOptions::small(4, 300.0);
+        let species = base.species.clone();
+        let camera = Camera::parse("120,120,0,-10").expect("camera");
+        let settings = |density: f32, roughness: f32| {
+            let mut s = ForestSettings::of_flags(4, 250.0, 8);
+            s.description.density = Some(density);
+            if let sylva_server::TerrainDescription::Generated { roughness: r, .. } =
+                &mut s.description.terrain
+            {
+                *r = roughness;
+            }
+            s
+        };
+        let build = |s: ForestSettings, reuse: Option<Arc<World>>| {
+            finished(&Rebuild::start(
+                &base,
+                s,
+                species.clone(),
+                (camera, 0),
+                (None, reuse),
+            ))
+            .scene
+        };
+        let first = build(settings(40.0, 0.75), None);
+        let whole = build(settings(300.0, 0.4), None);
+        let carried = build(settings(300.0, 0.4), Some(Arc::clone(&first.world)));
+        assert_eq!(carried.world.heightmap, whole.world.heightmap);
+        let cells = |scene: &Scene| -> Vec<(usize, Vec<[f32; 4]>)> {
+            scene
+                .cells
+                .drawn()
+                .map(|(_, c)| {
+                    let firsts = (0..c.placements.len())
+                        .filter_map(|k| c.placements.run(k).first())
+                        .map(|p| p.translation_scale)
+                        .collect();
+                    (c.trees, firsts)
+                })
+                .collect()
+        };
+        assert!(!cells(&whole).is_empty());
+        assert_eq!(cells(&carried), cells(&whole));
     }
 }

@@ -23,7 +23,11 @@ pub(crate) struct Scene {
 impl Scene {
     /// The world with no cells streamed in yet.
     pub(crate) fn build(options: SceneOptions) -> Result<Scene, ViewerError> {
-        let world = World::build(options)?;
+        Scene::of(World::build(options)?)
+    }
+
+    /// The scene of `world`, with no cells streamed in yet.
+    pub(crate) fn of(world: World) -> Result<Scene, ViewerError> {
         let terrain = world.heightmap.mesh(1)?;
         Ok(Scene {
             world: Arc::new(world),

@@ -75,7 +75,11 @@ struct App {
     /// The world being built again after the editor's changes, and the change that waits
     /// for it to finish.
     rebuild: Option<Rebuild>,
-    waiting_forest: Option<(Vec<Species>, ForestSettings)>,
+    waiting_forest: Option<(Vec<Species>, ForestSettings, u64)>,
+    /// The [`Editor::recipe`] of the world in use and of the one being built: a rebuild of
+    /// the same recipe keeps the forest and makes only the ground anew.
+    recipe: Option<u64>,
+    building: Option<u64>,
     /// Frames drawn so far, and rebuilds finished (the status line counts both).
     frames: u64,
     rebuilds: u64,
@@ -132,6 +136,8 @@ pub(crate) fn run(
         base,
         rebuild: None,
         waiting_forest: None,
+        recipe: None,
+        building: None,
         frames: 0,
         rebuilds: 0,
     };
@@ -439,6 +445,8 @@ impl ApplicationHandler for App {
             match self.init(event_loop) {
                 Ok(gpu) => {
                     if let Some(editor) = self.waiting_editor.take() {
+                        // The world was built from the editor's species as it opened.
+                        self.recipe = Some(editor.recipe());
                         self.editor = Some(EditorWindow::new(
                             editor,
                             &gpu.window,

@@ -34,6 +34,7 @@ pub(crate) struct InstanceRaw {
 
 /// One species variant's shared buffers: the cache's vertices (and its coarser levels' grown
 /// leaf cards), and every level's bark and leaf triangles one after another.
+#[derive(Clone)]
 pub(crate) struct VariantGeometry {
     pub(crate) vertices: Vec<Vertex>,
     pub(crate) bark: Vec<u32>,
@@ -51,6 +52,7 @@ pub(crate) const MESH_LEVELS: usize = 3;
 
 /// One cached instance drawn with its placements: one instanced draw per level and non-empty
 /// index range. Its placements live in the streamed cells.
+#[derive(Clone)]
 pub(crate) struct Group {
     pub(crate) variant: usize,
     /// Per level of detail, its bark and leaf triangles in the variant's buffers.
@@ -65,6 +67,7 @@ pub(crate) struct Group {
 /// atlas (normal: the centre of the sphere the views frame; wind: atlas number, views per
 /// side, the sphere's radius and the variant's bark material). Empty for variants without an
 /// impostor (seedlings, which are not drawn that far).
+#[derive(Clone)]
 pub(crate) struct Proxy {
     pub(crate) vertices: Vec<Vertex>,
     pub(crate) bark: Vec<u32>,
@@ -125,6 +128,10 @@ pub(crate) struct World {
     pub(crate) seedling: Vec<bool>,
     /// The forest over time the trees come from (`--year`, `--years`), if any.
     pub(crate) years: Option<crate::years::Years>,
+    /// The density's patch the species give, before any `density` setting.
+    own_patch: f32,
+    /// The seed the forest floor was grown from.
+    seed: u64,
 }
 
 /// How to build a [`World`].
@@ -245,6 +252,7 @@ impl World {
         config.all_ages = options.year.is_some();
         config.constraints = options.constraints;
         let mut builder = ForestBuilder::new(config)?;
+        let own_patch = builder.density().patch;
         if let Some(d) = options.density {
             builder.density_mut().patch = (10_000.0 / d).sqrt();
         }
@@ -419,7 +427,57 @@ impl World {
             floor,
             first_floor_group,
             years,
+            own_patch,
+            seed: options.seed,
         })
+    }
+
+    /// This world's forest (its recipe and geometry, kept) on other ground and at another
+    /// density: milliseconds where [`World::build`] takes seconds of hero trees, levels of
+    /// detail and impostors. `None` for a world it cannot carry over: a forest over time, a
+    /// specimen's, or a painted one (whose painting is carried over apart).
+    pub(crate) fn on_ground(
+        &self,
+        heightmap: Heightmap,
+        density: Option<f32>,
+    ) -> Result<Option<World>, ViewerError> {
+        if self.years.is_some() || self.layer().is_some() {
+            return Ok(None);
+        }
+        // A square world over the whole map, as `build` makes one on a map given.
+        let side = (heightmap.size() - 1) as f32 * heightmap.spacing();
+        if !(side > 10.0 && side <= 20_000.0) {
+            return Err(ViewerError::WorldSize { side });
+        }
+        let mut builder = ForestBuilder::clone(&self.forest().0);
+        builder.density_mut().patch = density.map_or(self.own_patch, |d| (10_000.0 / d).sqrt());
+        let floor = self.floor.as_ref().map(|_| {
+            ForestFloor::of(
+                &builder,
+                FloorOptions::default().with_seed(self.seed ^ 0xf100_5eed),
+            )
+        });
+        Ok(Some(World {
+            forest: RwLock::new(Recipe {
+                builder: Arc::new(builder),
+                version: 0,
+                layer: None,
+            }),
+            heightmap,
+            side,
+            variants: self.variants.clone(),
+            groups: self.groups.clone(),
+            group_of: self.group_of.clone(),
+            proxies: self.proxies.clone(),
+            lods: self.lods.clone(),
+            atlases: self.atlases.clone(),
+            floor,
+            first_floor_group: self.first_floor_group,
+            seedling: self.seedling.clone(),
+            years: None,
+            own_patch: self.own_patch,
+            seed: self.seed,
+        }))
     }
 }
 

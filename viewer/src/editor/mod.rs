@@ -344,9 +344,24 @@ impl Editor {
         }
     }
 
-    /// The species and settings to build the forest from, once the edits have paused
-    /// since the last change and every species reads; the status says which does not.
-    pub(crate) fn take_forest_change(&mut self) -> Option<(Vec<Species>, ForestSettings)> {
+    /// What a world's forest (its hero trees, levels of detail and impostors) is made of: the
+    /// species' texts, the seed and the budget. Worlds of equal recipes differ only in their
+    /// ground and density, which a rebuild can change without building the forest again.
+    pub(crate) fn recipe(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for d in &self.documents {
+            (&d.species_text, &d.grammar_text).hash(&mut h);
+        }
+        let w = &self.forest.description;
+        (w.seed, w.budget_mb).hash(&mut h);
+        h.finish()
+    }
+
+    /// The species and settings to build the forest from, with their [`Editor::recipe`],
+    /// once the edits have paused since the last change and every species reads; the status
+    /// says which does not.
+    pub(crate) fn take_forest_change(&mut self) -> Option<(Vec<Species>, ForestSettings, u64)> {
         let changed = self.forest_changed?;
         if changed.elapsed() < self.rebuild_after {
             return None;
@@ -359,7 +374,7 @@ impl Editor {
             self.documents.iter().map(Document::species).collect();
         self.forest_changed = None;
         match species {
-            Ok(species) => Some((species, self.forest.clone())),
+            Ok(species) => Some((species, self.forest.clone(), self.recipe())),
             Err(problem) => {
                 self.tools.forest = format!("the forest is not built: {problem}");
                 None
@@ -640,8 +655,9 @@ mod tests {
             "the edits have not paused"
         );
         e.rebuild_after = Duration::ZERO;
-        let (species, forest) = e.take_forest_change().unwrap();
+        let (species, forest, recipe) = e.take_forest_change().unwrap();
         assert_eq!((species.len(), forest.description.seed), (5, 9));
+        assert_eq!(recipe, e.recipe());
         assert!(e.take_forest_change().is_none(), "taken once");
         // A species that does not read holds the forest back, saying which.
         e.edit(|d| d.grammar_text.push_str("\nA -> B("));
@@ -657,7 +673,26 @@ mod tests {
         let _ = std::fs::remove_dir_all(&project);
     }
 
-    /// A strokes undoes in turn with the edits: the window is asked to undo it.
+    /// The seed and the species make a forest's recipe; its ground and density do not.
+    #[test]
+    fn only_the_species_seed_and_budget_change_the_recipe() {
+        let project = scratch("recipe");
+        let mut e = Editor::open(&[], project.clone(), settings()).unwrap();
+        let first = e.recipe();
+        e.edit_forest(|f| {
+            f.description.density = Some(90.0);
+            f.description.area = 500.0;
+        });
+        assert_eq!(e.recipe(), first);
+        e.edit_forest(|f| f.description.seed = 10);
+        let seeded = e.recipe();
+        assert_ne!(seeded, first);
+        e.edit(|d| document::set_setting(&mut d.species_text, "generations", "6"));
+        assert_ne!(e.recipe(), seeded);
+        let _ = std::fs::remove_dir_all(&project);
+    }
+
+    /// A stroke undoes in turn with the edits: the window is asked to undo it.
     #[test]
     fn strokes_undo_through_the_window() {
         let project = scratch("strokes");

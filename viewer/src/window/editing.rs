@@ -3,6 +3,8 @@
 //! the background, the walk going on meanwhile) and swapped in when whole, and the tools'
 //! state shown back in the panel.
 
+use std::sync::Arc;
+
 use sylva::paint::BrushAction;
 
 use super::App;
@@ -100,6 +102,7 @@ impl App {
             self.rebuild = None;
             match done {
                 Ok(rebuilt) => {
+                    self.recipe = self.building.take();
                     let seconds = rebuilt.seconds;
                     let message = self.swap_in(rebuilt.scene, rebuilt.renderer);
                     self.rebuilds += 1;
@@ -113,23 +116,26 @@ impl App {
                     }
                 }
                 Err(e) => {
+                    self.building = None;
                     if let Some(w) = &mut self.editor {
                         w.editor.tools.forest = format!("the forest was not built: {e}");
                     }
                 }
             }
         }
-        if let Some((species, settings)) = self.waiting_forest.take() {
+        if let Some((species, settings, recipe)) = self.waiting_forest.take() {
             let gpu = self
                 .gpu
                 .as_ref()
                 .map(|g| (g.device.clone(), g.queue.clone(), g.config.format));
+            let reuse = (self.recipe == Some(recipe)).then(|| Arc::clone(&self.scene.world));
+            self.building = Some(recipe);
             self.rebuild = Some(Rebuild::start(
                 &self.base,
                 settings,
                 species,
                 (self.camera, self.frames),
-                gpu,
+                (gpu, reuse),
             ));
         }
     }
