@@ -38,7 +38,7 @@ fn at(t: &CompactTree) -> Vec2 {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sylva-paint-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("sylva-paint-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }
