@@ -46,6 +46,9 @@ pub(crate) struct FrameStats {
     pub(crate) triangles: u64,
     /// What streaming the cells for it did.
     pub(crate) streamed: Streamed,
+    /// Milliseconds of the CPU's part of drawing it: culling the cells' placements for the
+    /// camera and the sun, choosing levels of detail, gathering and uploading them.
+    pub(crate) cull_ms: f64,
 }
 
 /// Where the frame is seen from, how it is shaded and how the wind blows.
@@ -294,6 +297,7 @@ impl Renderer {
         scene: &Scene,
         view: View,
     ) -> FrameStats {
+        let started = std::time::Instant::now();
         let shaded = view.mode == Mode::Shaded;
         let sun = SUN.normalize();
         let light_view_proj = light_view_proj(view.eye, view.forward, sun);
@@ -331,6 +335,7 @@ impl Renderer {
             Vec::new()
         };
         self.upload_instances(device, queue, &visible);
+        let cull_ms = started.elapsed().as_secs_f64() * 1e3;
         if shaded {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -388,7 +393,10 @@ impl Renderer {
         } else {
             &self.impostor_ids
         };
-        self.draw_scene(&mut pass, &in_view, true, Some(impostor))
+        FrameStats {
+            cull_ms,
+            ..self.draw_scene(&mut pass, &in_view, true, Some(impostor))
+        }
     }
 
     /// The frame's uniforms: the camera's and the sun's transforms, sky, fog and wind.
