@@ -166,10 +166,7 @@ impl WorldArgs {
         let mut config = ForestConfig::new(species);
         config.seed = self.seed;
         config.budget = budget;
-        config.all_ages = self.year.is_some();
-        config.constraints = Constraints::default()
-            .with_max_slope_degrees(self.max_slope)
-            .with_height_range(lowest, highest);
+        self.adjust(&mut config, lowest, highest);
         let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
             ForestBuilder::new(config)
         });
@@ -198,6 +195,15 @@ impl WorldArgs {
             self.seed,
             quiet,
         )
+    }
+
+    /// What the flags add to a forest's configuration: where trees may stand (the slope
+    /// limit, heights from `lowest` to `highest`) and whether trees of every age are drawn.
+    fn adjust(&self, config: &mut ForestConfig, lowest: f32, highest: f32) {
+        config.all_ages = self.year.is_some();
+        config.constraints = Constraints::default()
+            .with_max_slope_degrees(self.max_slope)
+            .with_height_range(lowest, highest);
     }
 
     /// The world of `builder` on `map` over `extent`: painted with the masks in `masks`,
@@ -250,12 +256,7 @@ impl WorldArgs {
         let (ground, _) = phase(quiet, "making the project's terrain", || project.ground());
         let (map, extent) = ground.map_err(|e| Failure::job(e.to_string()))?;
         let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
-            description.builder_with(|config| {
-                config.all_ages = self.year.is_some();
-                config.constraints = Constraints::default()
-                    .with_max_slope_degrees(self.max_slope)
-                    .with_height_range(lowest, highest);
-            })
+            description.builder_with(|config| self.adjust(config, lowest, highest))
         });
         let builder =
             builder.map_err(|e| Failure::job(format!("{}: {}", dir.display(), e.message)))?;

@@ -110,7 +110,7 @@ impl Project {
         std::fs::create_dir_all(folder).map_err(FileError::at(folder))?;
         let mut description = description.clone();
         if let Some(model) = model {
-            let bytes = read_bounded(model, MAX_HEIGHTMAP_BYTES as u64)?;
+            let bytes = read_model(model)?;
             let ext = model
                 .extension()
                 .map_or("dem".into(), |e| e.to_string_lossy().to_lowercase());
@@ -169,18 +169,20 @@ impl Project {
         let TerrainDescription::Heightmap { id, .. } = &self.description.terrain else {
             return None;
         };
-        let id = WorldId::parse(id)?;
-        model_files(&self.folder)
-            .into_iter()
-            .find(|p| read_bounded(p, MAX_HEIGHTMAP_BYTES as u64).is_ok_and(|b| model_id(&b) == id))
+        Some(self.model_with(&WorldId::parse(id)?)?.0)
     }
 
     /// The bytes of the folder's model file whose id is `id`.
     fn model_bytes(&self, id: &WorldId) -> Option<Vec<u8>> {
-        model_files(&self.folder)
-            .into_iter()
-            .filter_map(|p| read_bounded(&p, MAX_HEIGHTMAP_BYTES as u64).ok())
-            .find(|bytes| model_id(bytes) == *id)
+        Some(self.model_with(id)?.1)
+    }
+
+    /// The folder's model file whose bytes have the id `id`, and its bytes.
+    fn model_with(&self, id: &WorldId) -> Option<(PathBuf, Vec<u8>)> {
+        model_files(&self.folder).into_iter().find_map(|p| {
+            let bytes = read_model(&p).ok()?;
+            (model_id(&bytes) == *id).then_some((p, bytes))
+        })
     }
 
     /// The folder's painted masks, if it has them.
@@ -201,6 +203,12 @@ fn model_files(folder: &Path) -> Vec<PathBuf> {
         .collect();
     files.sort();
     files
+}
+
+/// An elevation model's bytes, refused before they are read beyond the size an upload may
+/// have ([`MAX_HEIGHTMAP_BYTES`]).
+pub fn read_model(path: &Path) -> Result<Vec<u8>, FileError> {
+    read_bounded(path, MAX_HEIGHTMAP_BYTES as u64)
 }
 
 /// A file's bytes, refused beyond `limit` before they are read.

@@ -183,12 +183,9 @@ impl DiamondSquare {
             let odd = |z: usize| z % step == half;
             for_rows(&mut h, n, odd, |z, row, rows| {
                 // A periodic map's row and column `cells` (not worked out) are its first.
-                let (up, down) = if wrap {
-                    (rows.get(z - half), rows.get((z + half) % cells))
-                } else {
-                    (rows.get(z - half), rows.get(z + half))
-                };
-                let right = |x: usize| if wrap { (x + half) % cells } else { x + half };
+                let wrapped = |i: usize| if wrap { i % cells } else { i };
+                let (up, down) = (rows.get(z - half), rows.get(wrapped(z + half)));
+                let right = |x: usize| wrapped(x + half);
                 for x in (half..cells).step_by(step) {
                     let avg =
                         0.25 * (up[x - half] + up[right(x)] + down[x - half] + down[right(x)]);

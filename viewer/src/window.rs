@@ -379,12 +379,18 @@ impl App {
             state.control_key(),
             state.shift_key(),
         );
-        if painting.take_changed()
+        self.after_painting();
+        used
+    }
+
+    /// After the painting tool acted: a forest it changed has new trunks for the guided walk
+    /// to steer round.
+    fn after_painting(&mut self) {
+        if self.painting.as_mut().is_some_and(Painting::take_changed)
             && let Some(guide) = &mut self.guide
         {
             guide.forget_trunks();
         }
-        used
     }
 
     /// P: the painting tool on or off (the cursor is freed to paint).
@@ -538,12 +544,8 @@ impl ApplicationHandler for App {
                     let point = self.under_cursor();
                     if let Some(p) = &mut self.painting {
                         p.drag(&mut self.scene, point);
-                        if p.take_changed()
-                            && let Some(guide) = &mut self.guide
-                        {
-                            guide.forget_trunks();
-                        }
                     }
+                    self.after_painting();
                 }
             }
             WindowEvent::MouseInput { state, button, .. } => match (button, state) {

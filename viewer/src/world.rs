@@ -403,10 +403,7 @@ impl World {
             lods.extend(parts.lods);
             proxies.extend(parts.proxies);
             seedling.extend(std::iter::repeat_n(false, GroundKind::ALL.len()));
-            let floor = ForestFloor::of(
-                &builder,
-                FloorOptions::default().with_seed(options.seed ^ 0xf100_5eed),
-            );
+            let floor = floor_of(&builder, options.seed);
             (Some(floor), Some(first))
         };
         Ok(World {
@@ -451,12 +448,7 @@ impl World {
         }
         let mut builder = ForestBuilder::clone(&self.forest().0);
         builder.density_mut().patch = density.map_or(self.own_patch, |d| (10_000.0 / d).sqrt());
-        let floor = self.floor.as_ref().map(|_| {
-            ForestFloor::of(
-                &builder,
-                FloorOptions::default().with_seed(self.seed ^ 0xf100_5eed),
-            )
-        });
+        let floor = self.floor.as_ref().map(|_| floor_of(&builder, self.seed));
         Ok(Some(World {
             forest: RwLock::new(Recipe {
                 builder: Arc::new(builder),
@@ -558,6 +550,14 @@ impl World {
         recipe.layer = Some(layer);
         Ok(recipe.version)
     }
+}
+
+/// The forest floor of `builder`'s forest, drawn from the world's `seed`.
+fn floor_of(builder: &ForestBuilder, seed: u64) -> ForestFloor {
+    ForestFloor::of(
+        builder,
+        FloorOptions::default().with_seed(seed ^ 0xf100_5eed),
+    )
 }
 
 /// A sphere given in an instance's own space, placed in the world by the instance.

@@ -40,9 +40,10 @@ pub(crate) struct Preview {
     pub(crate) triangles: usize,
     /// How long reading the texts, deriving and meshing took.
     pub(crate) millis: f64,
-    /// The tree, shared (the panel's 3D view draws it), and its bark and leaf colours.
+    /// The species the texts make (the forest is built from it) and its tree, shared (the
+    /// panel's 3D view draws it in the species' colours).
+    pub(crate) species: Species,
     pub(crate) mesh: Arc<Mesh>,
-    pub(crate) colours: [[f32; 3]; 2],
 }
 
 /// One species in the editor.
@@ -194,7 +195,7 @@ impl Document {
                 triangles: mesh.triangle_count(),
                 millis: started.elapsed().as_secs_f64() * 1e3,
                 mesh: Arc::new(mesh),
-                colours: [species.bark, species.leaf],
+                species,
             })
         });
     }

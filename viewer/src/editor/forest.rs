@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use sylva::forest::Species;
-use sylva_server::project::{Project, model_id};
+use sylva_server::project::{Project, model_id, read_model};
 use sylva_server::{SpeciesEntry, TerrainDescription, WorldDescription};
 
 use crate::world::SceneOptions;
@@ -76,7 +76,7 @@ impl ForestSettings {
     /// Uses the elevation model in `file` as the terrain (its spacing from the file, or
     /// `spacing` metres); an error when it cannot be read as one.
     pub(crate) fn use_model(&mut self, file: &Path, spacing: Option<f32>) -> Result<(), String> {
-        let bytes = read_model(file)?;
+        let bytes = read_model(file).map_err(|e| e.to_string())?;
         let mut trial = self.clone();
         trial.description.terrain = TerrainDescription::Heightmap {
             id: model_id(&bytes).as_str().to_owned(),
@@ -118,8 +118,9 @@ impl ForestSettings {
         let ground = d
             .ground(|_| {
                 let file = self.model.as_deref().unwrap_or(Path::new(""));
-                read_model(file)
-                    .map_err(|e| sylva_server::ApiError::bad_request("unknown_heightmap", e))
+                read_model(file).map_err(|e| {
+                    sylva_server::ApiError::bad_request("unknown_heightmap", e.to_string())
+                })
             })
             .map_err(|e| e.message)?;
         Ok(SceneOptions {
@@ -134,19 +135,4 @@ impl ForestSettings {
             ..base.clone()
         })
     }
-}
-
-/// An elevation model's bytes, refused before reading beyond the size the server takes.
-fn read_model(file: &Path) -> Result<Vec<u8>, String> {
-    let most = sylva_server::MAX_HEIGHTMAP_BYTES as u64;
-    let size = std::fs::metadata(file)
-        .map_err(|e| format!("{}: {e}", file.display()))?
-        .len();
-    if size > most {
-        return Err(format!(
-            "{}: {size} bytes is more than an elevation model may have ({most})",
-            file.display()
-        ));
-    }
-    std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))
 }

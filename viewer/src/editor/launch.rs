@@ -26,7 +26,12 @@ pub(crate) fn session(
     let species = editor
         .documents
         .iter()
-        .map(|d| d.species().map_err(|p| format!("{}: {p}", d.name)))
+        .map(|d| {
+            d.outcome
+                .as_ref()
+                .map(|p| p.species.clone())
+                .map_err(|p| format!("{}: {p}", d.name))
+        })
         .collect::<Result<Vec<_>, _>>()
         .map_err(ViewerError::Editor)?;
     let options = editor

@@ -16,6 +16,7 @@ mod overlay;
 mod panel;
 mod preview3d;
 mod project;
+mod requests;
 mod tools_tab;
 mod watch;
 
@@ -25,6 +26,7 @@ use std::time::{Duration, Instant};
 use document::Document;
 use forest::ForestSettings;
 use history::{History, Snapshot, Subject};
+pub(crate) use requests::{PaintAction, Request, Tab, ToolsState};
 use sylva::forest::Species;
 use watch::Watch;
 
@@ -33,74 +35,6 @@ pub(crate) const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
 /// How long the forest waits after the last edit before it is built again (a slider's drag
 /// or a burst of typing is one rebuild).
 const REBUILD_AFTER: Duration = Duration::from_millis(700);
-
-/// The panel's tabs (`--editor-tab` names them: species, forest, tools).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) enum Tab {
-    /// The species, their grammars and the preview.
-    #[default]
-    Species,
-    /// The terrain, density and region.
-    Forest,
-    /// The painting tool and the guided walk.
-    Tools,
-}
-
-impl std::str::FromStr for Tab {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Tab, String> {
-        match s {
-            "species" => Ok(Tab::Species),
-            "forest" => Ok(Tab::Forest),
-            "tools" => Ok(Tab::Tools),
-            _ => Err("expected species, forest or tools".into()),
-        }
-    }
-}
-
-/// What the panel asks of the window, which holds the world, the painting tool and the
-/// guided walk.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Request {
-    /// Undo the painting tool's last stroke (the editor's history reached it).
-    UndoStroke,
-    /// Redo the painting tool's last undone stroke.
-    RedoStroke,
-    /// Turn the painting tool on or off.
-    TogglePainting,
-    /// Paint with species `k`: adding it, or turning trees into it.
-    PaintSpecies(usize),
-    /// The brush's action: add, turn into, or erase.
-    PaintAction(PaintAction),
-    /// The brush's radius in metres and strength.
-    Brush { radius: f32, strength: f32 },
-    /// Save the painted masks into the project (its `masks` folder).
-    SaveMasks,
-    /// Start or stop the guided walk.
-    ToggleGuide,
-}
-
-/// What the brush does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum PaintAction {
-    Add,
-    Turn,
-    Erase,
-}
-
-/// What the window tells the panel of the tools it holds, each frame.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct ToolsState {
-    /// The painting tool's status line, if it is on.
-    pub(crate) painting: Option<String>,
-    /// The brush: species, action, radius and strength.
-    pub(crate) brush: Option<(usize, PaintAction, f32, f32)>,
-    /// The guided walk's summary, if it is on.
-    pub(crate) guide: Option<String>,
-    /// The forest's build: what the last rebuild did, or that one is under way.
-    pub(crate) forest: String,
-}
 
 /// The species being edited, and what the editor knows of them.
 pub(crate) struct Editor {
@@ -366,17 +300,19 @@ impl Editor {
         if changed.elapsed() < self.rebuild_after {
             return None;
         }
-        if let Some(d) = self.documents.iter().find(|d| d.outcome.is_err()) {
-            self.tools.forest = format!("the forest waits for {} to read", d.name);
-            return None;
-        }
-        let species: Result<Vec<Species>, _> =
-            self.documents.iter().map(Document::species).collect();
-        self.forest_changed = None;
+        // The species as their previews read them: every one must read.
+        let species: Result<Vec<Species>, &Document> = self
+            .documents
+            .iter()
+            .map(|d| d.outcome.as_ref().map(|p| p.species.clone()).map_err(|_| d))
+            .collect();
         match species {
-            Ok(species) => Some((species, self.forest.clone(), self.recipe())),
-            Err(problem) => {
-                self.tools.forest = format!("the forest is not built: {problem}");
+            Ok(species) => {
+                self.forest_changed = None;
+                Some((species, self.forest.clone(), self.recipe()))
+            }
+            Err(d) => {
+                self.tools.forest = format!("the forest waits for {} to read", d.name);
                 None
             }
         }
@@ -419,15 +355,12 @@ impl Editor {
     /// forest's settings, the species inline, the elevation model beside it); the window
     /// saves the painted masks.
     pub(crate) fn save(&mut self) {
-        let saved = project::save(&self.project, &self.files()).and_then(|()| {
-            sylva_server::project::Project::write(
-                &self.project,
-                &self.description(),
-                self.forest.model.as_deref(),
-            )
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-        });
+        let world = self.description();
+        let saved = project::save(
+            &self.project,
+            &self.files(),
+            (&world, self.forest.model.as_deref()),
+        );
         if self.strokes_unsaved {
             self.requests.push(Request::SaveMasks);
             self.strokes_unsaved = false;
@@ -450,16 +383,12 @@ impl Editor {
         }
         self.last_autosave = Instant::now();
         self.since_autosave = false;
-        let folder = project::autosave_folder(&self.project);
-        let saved = project::autosave(&self.project, &self.files()).and_then(|()| {
-            sylva_server::project::Project::write(
-                &folder,
-                &self.description(),
-                self.forest.model.as_deref(),
-            )
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-        });
+        let world = self.description();
+        let saved = project::autosave(
+            &self.project,
+            &self.files(),
+            (&world, self.forest.model.as_deref()),
+        );
         if let Err(e) = saved {
             self.status = format!("autosave failed: {e}");
         }

@@ -346,6 +346,6 @@ pub(crate) fn show_current(
         .outcome
         .as_ref()
         .ok()
-        .map(|p| (&p.mesh, p.colours));
+        .map(|p| (&p.mesh, [p.species.bark, p.species.leaf]));
     preview.update(gpu, encoder, tree, editor.preview_yaw);
 }

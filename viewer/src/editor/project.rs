@@ -1,11 +1,15 @@
-//! The editor's project folder: species files and their grammars saved side by side, so
-//! that `sylva forest --species DIR/NAME.species` and the server take them; an autosave
+//! The editor's project folder: species files and their grammars saved side by side with
+//! the world file (`sylva_server::project`), so that `sylva forest --project DIR` and the
+//! server take them; an autosave
 //! beside them, with marks that say a session is running and that the autosave holds edits
 //! never saved, so that the next start (after a crash, or a quit without saving) offers the
 //! autosave back.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+use sylva_server::WorldDescription;
+use sylva_server::project::Project;
 
 /// The autosave's folder inside a project.
 const AUTOSAVE: &str = ".autosave";
@@ -14,18 +18,22 @@ const RUNNING: &str = "running";
 /// The file that marks the autosave as holding edits never saved; a save removes it.
 const UNSAVED: &str = "unsaved";
 
-/// Writes each (species name, species text, grammar file, grammar text) into `folder`,
-/// every file atomically (a crash mid-save leaves the old file or the new, never half).
+/// Writes each (species name, species text, grammar file, grammar text) into `folder`, and
+/// the world file of `world` (the elevation model `model` beside it), every file atomically
+/// (a crash mid-save leaves the old file or the new, never half).
 pub(crate) fn save(
     folder: &Path,
     documents: &[(String, String, String, String)],
+    (world, model): (&WorldDescription, Option<&Path>),
 ) -> Result<(), String> {
     std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
     for (name, species, grammar_file, grammar) in documents {
         write(&folder.join(format!("{name}.species")), species)?;
         write(&folder.join(grammar_file), grammar)?;
     }
-    Ok(())
+    Project::write(folder, world, model)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
 }
 
 fn write(path: &Path, text: &str) -> Result<(), String> {
@@ -50,13 +58,14 @@ pub(crate) fn mark_quit(project: &Path) {
     let _ = std::fs::remove_file(autosave_folder(project).join(RUNNING));
 }
 
-/// Writes the autosave of `documents` and marks it as holding edits never saved.
+/// Writes the autosave of `documents` and `world` and marks it as holding edits never saved.
 pub(crate) fn autosave(
     project: &Path,
     documents: &[(String, String, String, String)],
+    world: (&WorldDescription, Option<&Path>),
 ) -> Result<(), String> {
     let folder = autosave_folder(project);
-    save(&folder, documents)?;
+    save(&folder, documents, world)?;
     write(&folder.join(UNSAVED), "")
 }
 
@@ -96,10 +105,11 @@ mod tests {
             "bush.lsys".to_string(),
             "axiom: F\n".to_string(),
         )];
-        save(&project, &docs).unwrap();
+        let world = WorldDescription::default();
+        save(&project, &docs, (&world, None)).unwrap();
         assert!(project.join("bush.species").is_file() && project.join("bush.lsys").is_file());
         mark_running(&project).unwrap();
-        autosave(&project, &docs).unwrap();
+        autosave(&project, &docs, (&world, None)).unwrap();
         let offered = Some(vec![autosave_folder(&project).join("bush.species")]);
         // Still running (or killed): the autosave is there to restore.
         assert_eq!(offered_autosave(&project), offered);

@@ -38,12 +38,8 @@ impl App {
                     } else {
                         p.redo(&mut self.scene);
                     }
-                    if p.take_changed()
-                        && let Some(guide) = &mut self.guide
-                    {
-                        guide.forget_trunks();
-                    }
                 }
+                self.after_painting();
             }
             Request::SaveMasks => {
                 let folder = self.masks_folder();
