@@ -59,6 +59,37 @@ pub(crate) struct Runs {
     pub(crate) instances: Vec<InstanceRaw>,
     /// Where each run starts in `instances`, and one more entry for the end.
     starts: Vec<u32>,
+    /// The runs with any instance, in order: a cell holds a few of the world's tens of
+    /// thousands of groups, and culling visits only these.
+    occupied: Vec<u32>,
+    /// Bounds of each occupied run, once [`Runs::bound`] has made them.
+    bounds: Vec<RunBounds>,
+}
+
+/// Bounds of one run's instances, so culling can pass over a run whole: out of view, too
+/// small to see, or past (or short of) the distance its levels of detail are drawn at.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RunBounds {
+    /// The box around every instance's bounding sphere in the world.
+    pub(crate) spheres: (Vec3, Vec3),
+    /// The box around its trees' bases, where the level of detail is measured from.
+    pub(crate) bases: (Vec3, Vec3),
+    /// The largest instance's bounding radius in the world.
+    pub(crate) radius: f32,
+}
+
+impl RunBounds {
+    const EMPTY: RunBounds = RunBounds {
+        spheres: (Vec3::INFINITY, Vec3::NEG_INFINITY),
+        bases: (Vec3::INFINITY, Vec3::NEG_INFINITY),
+        radius: 0.0,
+    };
+
+    /// The sphere around the box of instance spheres, as (centre, radius).
+    pub(crate) fn sphere(&self) -> (Vec3, f32) {
+        let (lo, hi) = self.spheres;
+        ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
+    }
 }
 
 impl Runs {
@@ -69,13 +100,53 @@ impl Runs {
         for (run, _) in &tagged {
             starts[*run as usize + 1] += 1;
         }
+        let occupied = (0..runs as u32)
+            .filter(|&k| starts[k as usize + 1] > 0)
+            .collect();
         for k in 0..runs {
             starts[k + 1] += starts[k];
         }
         Runs {
             instances: tagged.into_iter().map(|(_, i)| i).collect(),
             starts,
+            occupied,
+            bounds: Vec::new(),
         }
+    }
+
+    /// Makes each occupied run's bounds, with `sphere(k)` the bounding sphere of run `k`'s
+    /// instances in their own space; returns the box around them all.
+    fn bound(&mut self, sphere: impl Fn(usize) -> (Vec3, f32)) -> (Vec3, Vec3) {
+        let mut all = RunBounds::EMPTY.spheres;
+        self.bounds = (self.occupied.iter())
+            .map(|&k| {
+                let mut b = RunBounds::EMPTY;
+                for i in self.run(k as usize) {
+                    let (centre, radius) = world_sphere(i, sphere(k as usize));
+                    b.spheres = (
+                        b.spheres.0.min(centre - radius),
+                        b.spheres.1.max(centre + radius),
+                    );
+                    let base = Vec3::new(i.tree[0], i.tree[1], i.tree[2]);
+                    b.bases = (b.bases.0.min(base), b.bases.1.max(base));
+                    b.radius = b.radius.max(radius);
+                }
+                all = (all.0.min(b.spheres.0), all.1.max(b.spheres.1));
+                b
+            })
+            .collect();
+        all
+    }
+
+    /// Each run with any instance, as (run, its bounds, where it starts in `instances`, its
+    /// instances), in order of run.
+    pub(crate) fn occupied(
+        &self,
+    ) -> impl Iterator<Item = (usize, &RunBounds, usize, &[InstanceRaw])> {
+        (self.occupied.iter().zip(&self.bounds)).map(|(&k, b)| {
+            let first = self.starts[k as usize] as usize;
+            (k as usize, b, first, self.run(k as usize))
+        })
     }
 
     /// The instances of run `k`.
@@ -110,23 +181,16 @@ pub(crate) struct Cell {
 impl Cell {
     pub(crate) fn new(
         world: &World,
-        placements: Runs,
-        proxies: Runs,
+        mut placements: Runs,
+        mut proxies: Runs,
         trees: usize,
         version: u64,
     ) -> Cell {
-        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        let mut bound = |runs: &Runs, spheres: &mut dyn Iterator<Item = (Vec3, f32)>| {
-            for (k, sphere) in spheres.enumerate() {
-                for i in runs.run(k) {
-                    let (centre, radius) = world_sphere(i, sphere);
-                    lo = lo.min(centre - radius);
-                    hi = hi.max(centre + radius);
-                }
-            }
-        };
-        bound(&placements, &mut world.groups.iter().map(|g| g.sphere));
-        bound(&proxies, &mut world.proxies.iter().map(|p| p.sphere));
+        let (a, b) = (
+            placements.bound(|k| world.groups[k].sphere),
+            proxies.bound(|k| world.proxies[k].sphere),
+        );
+        let (lo, hi) = (a.0.min(b.0), a.1.max(b.1));
         let sphere = if lo.x <= hi.x {
             ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
         } else {

@@ -52,3 +52,40 @@ impl Draw {
         draws
     }
 }
+
+/// Which draws each slot (group level or impostor) feeds, so a frame visits the draws of
+/// the few thousand slots it filled rather than the whole list.
+pub(crate) struct DrawIndex {
+    /// Where each slot's draws start in `positions`, and one more entry for the end.
+    starts: Vec<u32>,
+    /// Positions in the draw list, slot by slot, each slot's in the list's order.
+    positions: Vec<u32>,
+}
+
+impl DrawIndex {
+    /// The index of `draws` over `slots` slots.
+    pub(crate) fn of(draws: &[Draw], slots: usize) -> DrawIndex {
+        let mut starts = vec![0u32; slots + 1];
+        for d in draws {
+            starts[d.group + 1] += 1;
+        }
+        for k in 0..slots {
+            starts[k + 1] += starts[k];
+        }
+        let mut next = starts.clone();
+        let mut positions = vec![0u32; draws.len()];
+        for (position, d) in draws.iter().enumerate() {
+            positions[next[d.group] as usize] = position as u32;
+            next[d.group] += 1;
+        }
+        DrawIndex { starts, positions }
+    }
+
+    /// The positions in the draw list of slot `slot`'s draws.
+    pub(crate) fn of_slot(&self, slot: usize) -> &[u32] {
+        match (self.starts.get(slot), self.starts.get(slot + 1)) {
+            (Some(&a), Some(&b)) => &self.positions[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}

@@ -7,8 +7,8 @@ use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::turtle::Vertex;
 
 use crate::cells::{Streamed, VIEW_DISTANCE};
-use crate::cull::{LodView, Volume, visible_instances};
-use crate::draw::Draw;
+use crate::cull::{Gathered, LodView, Range, Sight, Volume};
+use crate::draw::{Draw, DrawIndex};
 use crate::error::ViewerError;
 use crate::gpu::{DEPTH, buffer, index_buffer};
 use crate::materials::Materials;
@@ -46,9 +46,10 @@ pub(crate) struct FrameStats {
     pub(crate) triangles: u64,
     /// What streaming the cells for it did.
     pub(crate) streamed: Streamed,
-    /// Milliseconds of the CPU's part of drawing it: culling the cells' placements for the
-    /// camera and the sun, choosing levels of detail, gathering and uploading them.
-    pub(crate) cull_ms: f64,
+    /// Milliseconds of the CPU's part of drawing it (streaming aside): culling the cells'
+    /// placements for the camera and the sun, choosing levels of detail, gathering and
+    /// uploading them, and recording the draws.
+    pub(crate) cpu_ms: f64,
 }
 
 /// Where the frame is seen from, how it is shaded and how the wind blows.
@@ -109,6 +110,10 @@ pub(crate) struct Renderer {
     /// needs more room.
     instances: Option<wgpu::Buffer>,
     draws: Vec<Draw>,
+    /// Which draws each slot feeds.
+    draw_index: DrawIndex,
+    /// The last frame's culling, whose buffers the next frame reuses.
+    gathered: Gathered,
     fog_density: f32,
     /// Lowest and highest terrain vertex, for the ground colour by altitude.
     terrain_heights: (f32, f32),
@@ -273,7 +278,9 @@ impl Renderer {
             ),
             variants,
             instances: None,
+            draw_index: DrawIndex::of(&draws, world.slots()),
             draws,
+            gathered: Gathered::default(),
             // Thick enough that what lies at the view distance is mostly haze.
             // Worlds smaller than 400 m (a turntable's) are as clear as one of 400 m.
             fog_density: (1.2 / world.side.max(400.0)).max(2.3 / VIEW_DISTANCE),
@@ -304,7 +311,6 @@ impl Renderer {
         self.write_globals(queue, &view, sun, light_view_proj);
         // The placements each pass can see, gathered into the instance buffer: the camera's
         // first, then the sun's.
-        let mut visible = Vec::new();
         // Each tree at the level of detail its distance asks for (unless the view asks for
         // every tree at full detail); the shadow map's levels are the camera's.
         let chain = lod_chain();
@@ -314,28 +320,25 @@ impl Renderer {
             pixel_error: chain.pixel_error,
             fade: chain.fade,
         });
-        let in_view = visible_instances(
-            scene,
-            &Volume::of(&view.view_proj),
-            (view.eye, view.pixels_per_radian),
-            lod,
-            &mut visible,
-        );
-        let in_sun = if shaded {
-            // The sun sees the box from afar at one texel per SHADOW_TEXEL metres.
-            let from_sun = view.eye + sun * 1e4;
-            visible_instances(
-                scene,
-                &Volume::of(&light_view_proj),
-                (from_sun, 1e4 / SHADOW_TEXEL),
-                lod,
-                &mut visible,
-            )
-        } else {
-            Vec::new()
+        // The sun sees the box from afar at one texel per SHADOW_TEXEL metres.
+        let camera = Sight {
+            volume: Volume::of(&view.view_proj),
+            eye: view.eye,
+            pixels_per_radian: view.pixels_per_radian,
         };
-        self.upload_instances(device, queue, &visible);
-        let cull_ms = started.elapsed().as_secs_f64() * 1e3;
+        let sun_sight = Sight {
+            volume: Volume::of(&light_view_proj),
+            eye: view.eye + sun * 1e4,
+            pixels_per_radian: 1e4 / SHADOW_TEXEL,
+        };
+        let sights = if shaded {
+            vec![camera, sun_sight]
+        } else {
+            vec![camera]
+        };
+        let mut gathered = std::mem::take(&mut self.gathered);
+        gathered.gather(scene, &sights, lod);
+        self.upload_instances(device, queue, &gathered.visible);
         if shaded {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -353,7 +356,7 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.shadow_pipeline);
-            self.draw_scene(&mut pass, &in_sun, false, None);
+            self.draw_scene(&mut pass, gathered.ranges(1), false, None);
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("forest"),
@@ -393,9 +396,11 @@ impl Renderer {
         } else {
             &self.impostor_ids
         };
+        let stats = self.draw_scene(&mut pass, gathered.ranges(0), true, Some(impostor));
+        self.gathered = gathered;
         FrameStats {
-            cull_ms,
-            ..self.draw_scene(&mut pass, &in_view, true, Some(impostor))
+            cpu_ms: started.elapsed().as_secs_f64() * 1e3,
+            ..stats
         }
     }
 
@@ -449,15 +454,16 @@ impl Renderer {
         }
     }
 
-    /// Draws the terrain and every instance group's placements in `ranges` (first and count
-    /// in the instance buffer, per group) with the pipeline already set, then the impostor
+    /// Draws the terrain and the placements of each slot in `ranges` (a group's level, or a
+    /// variant's impostors: first and count in the instance buffer) with the pipeline
+    /// already set, then the impostor
     /// cards with `impostor` (none: not drawn); `terrain` false leaves the terrain out (the
     /// shadow pass: the ground casts no shadow that matters, and it is the largest single
     /// mesh).
     fn draw_scene(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        ranges: &[(u64, u32)],
+        ranges: impl Iterator<Item = Range>,
         terrain: bool,
         impostor: Option<&wgpu::RenderPipeline>,
     ) -> FrameStats {
@@ -478,18 +484,25 @@ impl Renderer {
         let Some(instances) = &self.instances else {
             return stats;
         };
+        // The filled slots' draws, in the draw list's order (by variant and material).
+        let mut todo: Vec<(u32, Range)> = ranges
+            .flat_map(|r| {
+                (self.draw_index.of_slot(r.slot as usize).iter())
+                    .map(move |&position| (position, r))
+            })
+            .collect();
+        todo.sort_unstable_by_key(|(position, _)| *position);
         let mut bound: Option<(usize, bool)> = None;
         let mut cards = false;
-        for d in &self.draws {
+        for (position, range) in todo {
+            let d = &self.draws[position as usize];
             // Impostor cards come last (their variants are numbered after the meshes').
             if d.impostor && !cards {
                 let Some(pipeline) = impostor else { break };
                 pass.set_pipeline(pipeline);
                 cards = true;
             }
-            let Some(&(first_instance, count)) = ranges.get(d.group).filter(|r| r.1 > 0) else {
-                continue;
-            };
+            let (first_instance, count) = (u64::from(range.first), range.count);
             let v = &self.variants[d.variant];
             let indices = if d.bark { &v.bark } else { &v.leaves };
             let Some(indices) = indices else { continue };

@@ -508,6 +508,12 @@ impl Proxy {
 }
 
 impl World {
+    /// How many kinds of instanced draw the world has: every group's levels (group `k`'s
+    /// level `l` is `k * MESH_LEVELS + l`), then every variant's impostor cards.
+    pub(crate) fn slots(&self) -> usize {
+        self.groups.len() * MESH_LEVELS + self.proxies.len()
+    }
+
     /// The forest's recipe as it stands, and its version.
     pub(crate) fn forest(&self) -> (Arc<ForestBuilder>, u64) {
         let recipe = self.forest.read().unwrap_or_else(PoisonError::into_inner);
