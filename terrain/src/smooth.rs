@@ -6,9 +6,12 @@ use rayon::prelude::*;
 use crate::error::{TerrainError, check};
 use crate::heightmap::Heightmap;
 
-/// Fewest rows a task takes: enough that a task's rows share their neighbours in cache and
-/// the scheduling is paid rarely, few enough that small maps still split.
-const ROWS_PER_TASK: usize = 16;
+/// Rows a band takes. A band blurs its `2r` neighbouring rows across as well as its own, so
+/// longer bands repeat less work: at sigma 4, 64-row bands blurred 1.38 times the rows and
+/// took as long as a map-sized buffer had (107 ms against 110 at 4097²), 256-row bands 1.09
+/// times (80 ms). The blur down reads a sliding window of `2r + 1` blurred rows (400 KB at
+/// sigma 4 and 4097 columns), which stays in cache whatever the band's length.
+const BAND: usize = 256;
 /// Columns summed at once in the vertical pass: a few vector registers' worth.
 const STRIP: usize = 32;
 
@@ -40,6 +43,16 @@ impl Heightmap {
     /// assert_ne!(map, rough);
     /// ```
     pub fn smooth(&mut self, sigma: f32, edges: EdgeMode) -> Result<(), TerrainError> {
+        self.smooth_in_bands(sigma, edges, BAND)
+    }
+
+    /// [`Heightmap::smooth`] in bands of `band` rows (at least the kernel's reach).
+    fn smooth_in_bands(
+        &mut self,
+        sigma: f32,
+        edges: EdgeMode,
+        band: usize,
+    ) -> Result<(), TerrainError> {
         check(
             "sigma",
             f64::from(sigma),
@@ -64,76 +77,73 @@ impl Heightmap {
                 _ => reflect(i, n),
             }
         };
-        // Horizontal pass into `tmp`, rows on every core: each row goes through a padded
-        // copy so that the inner loops run over contiguous memory (and vectorise).
-        let mut tmp = vec![0.0f32; n * n];
-        let src = self.heights();
-        tmp.par_chunks_mut(n)
-            .zip(src.par_chunks(n))
-            .with_min_len(ROWS_PER_TASK)
-            .for_each_init(
-                || vec![0.0f32; n + 2 * r],
-                |pad, (out, row)| {
-                    for (i, p) in pad.iter_mut().enumerate() {
-                        *p = row[index(i as isize - r as isize)];
+        if edges == EdgeMode::Wrap {
+            // The last row and column of a periodic map are copies of the first, and the
+            // blur reads them as such: a band reads its own rows directly, so make them so.
+            let heights = self.heights_mut();
+            let (first, rest) = heights.split_at_mut(n);
+            rest[(n - 2) * n..].copy_from_slice(first);
+            for z in 0..n {
+                heights[z * n + n - 1] = heights[z * n];
+            }
+        }
+        // Bands of rows on every core, each blurred whole in a scratch of its own: its
+        // rows and the `r` rows either side, blurred across, then down into the band. No
+        // map-sized buffer is made (a fresh one is 67 MB of pages to fault in at 4097²).
+        // A band's neighbours are rows of other bands, so those are copied out first.
+        let band = band.max(r).max(1).min(n);
+        let starts: Vec<usize> = (0..n).step_by(band).collect();
+        let halos: Vec<Vec<f32>> = {
+            let src = self.heights();
+            starts
+                .par_iter()
+                .map(|&z0| {
+                    let z1 = (z0 + band).min(n);
+                    let mut halo = Vec::with_capacity(2 * r * n);
+                    for z in (z0 as isize - r as isize..z0 as isize)
+                        .chain(z1 as isize..z1 as isize + r as isize)
+                    {
+                        let z = index(z);
+                        halo.extend_from_slice(&src[z * n..(z + 1) * n]);
                     }
-                    for (x, o) in out.iter_mut().enumerate() {
-                        *o = w[0] * pad[x + r];
-                    }
-                    for (k, &wk) in w.iter().enumerate().skip(1) {
-                        let (left, right) = (&pad[r - k..r - k + n], &pad[r + k..r + k + n]);
-                        for ((o, a), b) in out.iter_mut().zip(left).zip(right) {
-                            *o += wk * (a + b);
-                        }
-                    }
-                },
-            );
-        // Vertical pass back into the heights, whole rows at a time on every core. A row is
-        // worked in strips of `STRIP` columns whose sums stay in registers over all 2r + 1
-        // rows read, so each output is written once (the sum's order is a row's, term by
-        // term: the same bits).
+                    halo
+                })
+                .collect()
+        };
         let heights = self.heights_mut();
-        heights
-            .par_chunks_mut(n)
-            .enumerate()
-            .with_min_len(ROWS_PER_TASK)
-            .for_each(|(z, out)| {
-                let taps: Vec<(f32, &[f32], &[f32])> = w
-                    .iter()
-                    .enumerate()
-                    .skip(1)
-                    .map(|(k, &wk)| {
-                        let (za, zb) = (
-                            index(z as isize - k as isize),
-                            index(z as isize + k as isize),
-                        );
-                        (wk, &tmp[za * n..(za + 1) * n], &tmp[zb * n..(zb + 1) * n])
-                    })
-                    .collect();
-                let centre = &tmp[z * n..(z + 1) * n];
-                let mut x = 0;
-                while x + STRIP <= n {
-                    let mut sum = [0.0f32; STRIP];
-                    for (s, c) in sum.iter_mut().zip(&centre[x..x + STRIP]) {
-                        *s = c * w[0];
+        heights.par_chunks_mut(band * n).zip(&halos).for_each_init(
+            || (vec![0.0f32; n + 2 * r], Vec::new()),
+            |(pad, across), (rows, halo)| {
+                let count = rows.len() / n;
+                // `across` holds rows z0 - r .. z0 + count + r, blurred across. A row
+                // outside the map is the one `index` folds it to, as in the halo.
+                across.resize((count + 2 * r) * n, 0.0);
+                let source = |k: usize| -> &[f32] {
+                    if k < r {
+                        &halo[k * n..(k + 1) * n]
+                    } else if k < r + count {
+                        &rows[(k - r) * n..(k - r + 1) * n]
+                    } else {
+                        let k = k - count;
+                        &halo[k * n..(k + 1) * n]
                     }
-                    for &(wk, a, b) in &taps {
-                        let (a, b) = (&a[x..x + STRIP], &b[x..x + STRIP]);
-                        for ((s, a), b) in sum.iter_mut().zip(a).zip(b) {
-                            *s += wk * (a + b);
-                        }
-                    }
-                    out[x..x + STRIP].copy_from_slice(&sum);
-                    x += STRIP;
+                };
+                for (k, out) in across.chunks_mut(n).enumerate() {
+                    blur_row(source(k), out, pad, &w, &index);
                 }
-                for x in x..n {
-                    let mut s = centre[x] * w[0];
-                    for &(wk, a, b) in &taps {
-                        s += wk * (a[x] + b[x]);
-                    }
-                    out[x] = s;
+                // Down: each output row sums 2r + 1 blurred rows in strips of `STRIP`
+                // columns kept in registers, so each output is written once (the sum's
+                // order is a row's, term by term: the same bits at any band size).
+                for (z, out) in rows.chunks_mut(n).enumerate() {
+                    let row = |k: usize| &across[k * n..(k + 1) * n];
+                    let centre = row(z + r);
+                    let taps: Vec<(f32, &[f32], &[f32])> = (w.iter().enumerate().skip(1))
+                        .map(|(k, &wk)| (wk, row(z + r - k), row(z + r + k)))
+                        .collect();
+                    blur_down(centre, &taps, w[0], out);
                 }
-            });
+            },
+        );
         if edges == EdgeMode::Wrap {
             let c = n - 1;
             for z in 0..n {
@@ -144,6 +154,58 @@ impl Heightmap {
             }
         }
         Ok(())
+    }
+}
+
+/// One row blurred across: `row` through a padded copy (edges as `index` folds them) so that
+/// the inner loops run over contiguous memory and vectorise.
+fn blur_row(
+    row: &[f32],
+    out: &mut [f32],
+    pad: &mut [f32],
+    w: &[f32],
+    index: &impl Fn(isize) -> usize,
+) {
+    let (n, r) = (row.len(), w.len() - 1);
+    for (i, p) in pad.iter_mut().enumerate() {
+        *p = row[index(i as isize - r as isize)];
+    }
+    for (x, o) in out.iter_mut().enumerate() {
+        *o = w[0] * pad[x + r];
+    }
+    for (k, &wk) in w.iter().enumerate().skip(1) {
+        let (left, right) = (&pad[r - k..r - k + n], &pad[r + k..r + k + n]);
+        for ((o, a), b) in out.iter_mut().zip(left).zip(right) {
+            *o += wk * (a + b);
+        }
+    }
+}
+
+/// One output row of the blur down: `w0` times `centre`, plus each tap's weight times the
+/// sum of its rows above and below, in that order.
+fn blur_down(centre: &[f32], taps: &[(f32, &[f32], &[f32])], w0: f32, out: &mut [f32]) {
+    let n = centre.len();
+    let mut x = 0;
+    while x + STRIP <= n {
+        let mut sum = [0.0f32; STRIP];
+        for (s, c) in sum.iter_mut().zip(&centre[x..x + STRIP]) {
+            *s = c * w0;
+        }
+        for &(wk, a, b) in taps {
+            let (a, b) = (&a[x..x + STRIP], &b[x..x + STRIP]);
+            for ((s, a), b) in sum.iter_mut().zip(a).zip(b) {
+                *s += wk * (a + b);
+            }
+        }
+        out[x..x + STRIP].copy_from_slice(&sum);
+        x += STRIP;
+    }
+    for x in x..n {
+        let mut s = centre[x] * w0;
+        for &(wk, a, b) in taps {
+            s += wk * (a[x] + b[x]);
+        }
+        out[x] = s;
     }
 }
 
@@ -170,6 +232,32 @@ mod tests {
     fn reflect_folds_about_the_edges() {
         let r: Vec<usize> = (-3..8).map(|i| reflect(i, 5)).collect();
         assert_eq!(r, [3, 2, 1, 0, 1, 2, 3, 4, 3, 2, 1]);
+    }
+
+    proptest::proptest! {
+        /// Bands of any length give the same bits: each band's neighbouring rows are the
+        /// rows the whole map would have lent it.
+        #[test]
+        fn bands_of_any_length_give_the_same_heights(
+            levels in 1u32..6,
+            sigma in 0.3f32..6.0,
+            band in 1usize..40,
+            wrap in proptest::bool::ANY,
+            seed in 0u64..1000,
+        ) {
+            // Heightmaps are 2^k + 1 samples a side.
+            let size = (1usize << levels) + 1;
+            let heights = (0..size * size)
+                .map(|i| (sylva_base::hash::mix(seed ^ i as u64) % 1000) as f32)
+                .collect();
+            let map = Heightmap::from_heights(size, 1.0, heights).unwrap();
+            let edges = if wrap { EdgeMode::Wrap } else { EdgeMode::Mirror };
+            let (mut whole, mut banded) = (map.clone(), map);
+            whole.smooth_in_bands(sigma, edges, usize::MAX).unwrap();
+            banded.smooth_in_bands(sigma, edges, band).unwrap();
+            let bits = |m: &Heightmap| m.heights().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
+            proptest::prop_assert_eq!(bits(&whole), bits(&banded));
+        }
     }
 
     #[test]
