@@ -4,7 +4,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use crate::error::{TerrainError, check};
-use crate::hash::signed_noise;
+use crate::hash::NoiseRow;
 use crate::heightmap::{Heightmap, checked_len, levels_of};
 
 /// Fewest rows a task of a pass takes (a row of a late pass is thousands of samples).
@@ -142,19 +142,18 @@ impl DiamondSquare {
             self.tile[0].wrapping_mul(cells as i64),
             self.tile[1].wrapping_mul(cells as i64),
         );
-        let noise = |x: usize, z: usize| {
-            // Wrapped maps key their noise by the periodic coordinate.
-            let (x, z) = if self.wrap {
-                (x % cells, z % cells)
-            } else {
-                (x, z)
-            };
-            signed_noise(
-                self.seed,
-                gx0.wrapping_add(x as i64),
-                gz0.wrapping_add(z as i64),
-            )
+        let wrap = self.wrap;
+        // The noise along row `z`, by column. Wrapped maps key their noise by the periodic
+        // coordinate.
+        let noise_row = |z: usize| {
+            let z = if wrap { z % cells } else { z };
+            let row = NoiseRow::new(self.seed, gz0.wrapping_add(z as i64));
+            move |x: usize| {
+                let x = if wrap { x % cells } else { x };
+                row.at(gx0.wrapping_add(x as i64))
+            }
         };
+        let noise = |x: usize, z: usize| noise_row(z)(x);
         let corner = |i: usize, x: usize, z: usize| match self.corners {
             Some(c) => c[i],
             None => self.amplitude * noise(x, z),
@@ -172,7 +171,6 @@ impl DiamondSquare {
         let half_decay = 2f32.powf(-0.5 * self.roughness);
         let mut scale = self.amplitude * decay;
         let mut step = cells;
-        let wrap = self.wrap;
         // A periodic map's last row and column are copies of its first, made at the end:
         // no pass reads them, so they are not worked out.
         let last = if wrap { cells - 1 } else { cells };
@@ -186,10 +184,11 @@ impl DiamondSquare {
                 let wrapped = |i: usize| if wrap { i % cells } else { i };
                 let (up, down) = (rows.get(z - half), rows.get(wrapped(z + half)));
                 let right = |x: usize| wrapped(x + half);
+                let noise = noise_row(z);
                 for x in (half..cells).step_by(step) {
                     let avg =
                         0.25 * (up[x - half] + up[right(x)] + down[x - half] + down[right(x)]);
-                    row[x] = avg + scale * noise(x, z);
+                    row[x] = avg + scale * noise(x);
                 }
             });
             // Square step: edge midpoints. Their parents are closer by a factor of sqrt 2 than
@@ -202,6 +201,7 @@ impl DiamondSquare {
                 let picked = |z: usize| z % step == parity && z <= last;
                 for_rows(&mut h, n, picked, |z, row, rows| {
                     let start = if parity == 0 { half } else { 0 };
+                    let noise = noise_row(z);
                     if wrap {
                         let up = rows.get((z + cells - half) % cells);
                         let down = rows.get((z + half) % cells);
@@ -211,7 +211,7 @@ impl DiamondSquare {
                                     + row[(x + half) % cells]
                                     + up[x]
                                     + down[x]);
-                            row[x] = avg + square_scale * noise(x, z);
+                            row[x] = avg + square_scale * noise(x);
                         }
                         return;
                     }
@@ -219,18 +219,27 @@ impl DiamondSquare {
                         // On a tile border only border samples count, so neighbours agree.
                         for x in (start..=cells).step_by(step) {
                             let avg = 0.5 * (row[x - half] + row[x + half]);
-                            row[x] = avg + square_scale * noise(x, z);
+                            row[x] = avg + square_scale * noise(x);
                         }
                         return;
                     }
                     let (up, down) = (rows.get(z - half), rows.get(z + half));
-                    for x in (start..=cells).step_by(step) {
-                        let avg = if x == 0 || x == cells {
-                            0.5 * (up[x] + down[x])
-                        } else {
-                            0.25 * (row[x - half] + row[x + half] + up[x] + down[x])
-                        };
-                        row[x] = avg + square_scale * noise(x, z);
+                    // The map's left and right edges take the mean of the two samples above
+                    // and below; every other sample the mean of its four neighbours. Each
+                    // sample reads only samples this pass does not write, so the edges may
+                    // go first.
+                    let edge = |x: usize| 0.5 * (up[x] + down[x]) + square_scale * noise(x);
+                    let mut first = start;
+                    if first == 0 {
+                        row[0] = edge(0);
+                        first = step;
+                    }
+                    if cells % step == start % step {
+                        row[cells] = edge(cells);
+                    }
+                    for x in (first..cells).step_by(step) {
+                        let avg = 0.25 * (row[x - half] + row[x + half] + up[x] + down[x]);
+                        row[x] = avg + square_scale * noise(x);
                     }
                 });
             }
