@@ -484,6 +484,7 @@ impl Renderer {
         let Some(instances) = &self.instances else {
             return stats;
         };
+        pass.set_vertex_buffer(1, instances.slice(..));
         // The filled slots' draws, in the draw list's order (by variant and material).
         let mut todo: Vec<(u32, Range)> = ranges
             .flat_map(|r| {
@@ -502,7 +503,7 @@ impl Renderer {
                 pass.set_pipeline(pipeline);
                 cards = true;
             }
-            let (first_instance, count) = (u64::from(range.first), range.count);
+            let count = range.count;
             let v = &self.variants[d.variant];
             let indices = if d.bark { &v.bark } else { &v.leaves };
             let Some(indices) = indices else { continue };
@@ -512,12 +513,9 @@ impl Renderer {
                 pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                 bound = Some((d.variant, d.bark));
             }
-            // Each group's placements sit contiguously in the one instance buffer.
-            pass.set_vertex_buffer(
-                1,
-                instances.slice(first_instance * size_of::<InstanceRaw>() as u64..),
-            );
-            pass.draw_indexed(d.indices.0..d.indices.1, 0, 0..count);
+            // Each slot's placements sit contiguously in the one instance buffer, bound
+            // once: the draw's instance range points at them.
+            pass.draw_indexed(d.indices.0..d.indices.1, 0, range.first..range.first + count);
             stats.draws += 1;
             stats.instances += u64::from(count);
             stats.triangles += u64::from((d.indices.1 - d.indices.0) / 3) * u64::from(count);
