@@ -118,6 +118,18 @@ impl Placements {
     }
 }
 
+/// How many of a key's candidates are complete (no exits), given their exit counts in
+/// ascending order. Most keys are all whole branches or have none, and their ends say so
+/// without a search.
+#[inline]
+fn complete_candidates(exits: &[u32]) -> usize {
+    match (exits.first(), exits.last()) {
+        (_, Some(0)) => exits.len(),
+        (Some(&first), _) if first > 0 => 0,
+        _ => exits.partition_point(|&e| e == 0),
+    }
+}
+
 #[inline]
 fn pick(seed: u32, counter: u32, n: usize) -> usize {
     let z = mix(((u64::from(seed) << 32) | u64::from(counter)).wrapping_add(0x9e37_79b9_7f4a_7c15));
@@ -240,7 +252,7 @@ impl Assembler {
                 // Heroes guarantee a candidate for every exit; only a foreign cache gets here.
                 return Err(InstancingError::AssemblyLimit("missing instance"));
             }
-            let complete = exits.partition_point(|&e| e == 0);
+            let complete = complete_candidates(exits);
             let chosen = if depth == 0 {
                 // The root: a crown with exits when there are any (a whole hero would make
                 // every tree that draws it the same tree), so crowns differ from tree to tree.
@@ -327,5 +339,20 @@ impl Assembler {
         }
         out.count += total;
         Ok(total)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The count read from the ends is the search's, for every ascending list.
+        #[test]
+        fn complete_candidates_are_the_zero_prefix(mut exits in proptest::collection::vec(0u32..4, 0..40)) {
+            exits.sort_unstable();
+            prop_assert_eq!(complete_candidates(&exits), exits.partition_point(|&e| e == 0));
+        }
     }
 }
