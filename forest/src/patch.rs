@@ -361,12 +361,21 @@ impl PatchDensity {
                     else {
                         continue;
                     };
-                    let nearest = (-1..=1)
-                        .flat_map(|dj| (-1..=1).map(move |di| (i + di, j + dj)))
-                        .map(|(a, b)| canopies[at(a, b)])
-                        .filter(|c| c.present)
-                        .map(|c| (p.distance(c.position), c.species))
-                        .min_by(|a, b| a.0.total_cmp(&b.0));
+                    // The nearest canopy tree of the 3 x 3 patches around, the first of
+                    // equals in row order (distances are never NaN).
+                    let mut nearest: Option<(f32, _)> = None;
+                    for b in j - 1..=j + 1 {
+                        let row = at(i - 1, b);
+                        for c in &canopies[row..row + 3] {
+                            if !c.present {
+                                continue;
+                            }
+                            let d = p.distance(c.position);
+                            if nearest.is_none_or(|(best, _)| d < best) {
+                                nearest = Some((d, c.species));
+                            }
+                        }
+                    }
                     let eliminate = match nearest {
                         Some((d, s)) => {
                             let r0 = self.seedling_clearance * self.radius(s);
