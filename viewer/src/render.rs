@@ -515,7 +515,11 @@ impl Renderer {
             }
             // Each slot's placements sit contiguously in the one instance buffer, bound
             // once: the draw's instance range points at them.
-            pass.draw_indexed(d.indices.0..d.indices.1, 0, range.first..range.first + count);
+            pass.draw_indexed(
+                d.indices.0..d.indices.1,
+                0,
+                range.first..range.first + count,
+            );
             stats.draws += 1;
             stats.instances += u64::from(count);
             stats.triangles += u64::from((d.indices.1 - d.indices.0) / 3) * u64::from(count);
