@@ -154,7 +154,12 @@ impl LodView {
     fn reach(&self, errors: &[f32; MESH_LEVELS]) -> (f32, f32) {
         let scale = self.pixels_per_radian / self.pixel_error.max(1e-3);
         let farthest = errors.iter().fold(0.0f32, |m, &e| m.max(e * scale));
-        (farthest * (1.0 + self.fade.max(0.0)), farthest)
+        // A thousandth to spare either way: `levels` sums a switch distance and its fade
+        // band, which may round a little beyond their product.
+        (
+            farthest * (1.0 + self.fade.max(0.0)) * 1.001,
+            farthest * 0.999,
+        )
     }
 }
 
@@ -315,7 +320,7 @@ pub(crate) struct Range {
 }
 
 /// One placement a sight sees: its slot (of every sight's, see [`Gathered::ranges`]), where
-/// it is in its cell, and its fade. A twelfth of the placement's own bytes, so the cells'
+/// it is in its cell, and its fade. Under a fifth of the placement's own bytes, so the cells'
 /// pass writes little and the sort moves little.
 #[derive(Debug, Clone, Copy)]
 struct Seen {

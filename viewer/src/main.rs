@@ -567,7 +567,8 @@ fn run() -> Result<(), ViewerError> {
             }
             if let Some(cpu) = median(&mut culling) {
                 // The CPU's part of a frame, which the window pays too: streaming the cells
-                // in and out, culling and choosing levels of detail, uploading placements.
+                // in and out, culling and choosing levels of detail, uploading placements,
+                // recording the draws.
                 println!(
                     "CPU per frame: {cpu:.1} ms (median of {}; streaming, culling, upload and recording the draws)",
                     culling.len()
