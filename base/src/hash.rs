@@ -19,10 +19,26 @@ pub fn mix(mut z: u64) -> u64 {
 /// one cell. With salt 0 it is the terrain's per-sample noise key.
 #[inline]
 pub fn hash_cell(seed: u64, i: i64, j: i64, salt: u64) -> u64 {
-    mix(seed
-        ^ mix((i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)
-            ^ (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f)
-            ^ salt.wrapping_mul(0x1656_67b1_9e37_79f9)))
+    hash_cell_in_row(seed, i, cell_row_key(j, salt))
+}
+
+/// The share of [`hash_cell`]'s key that its row `j` and salt make: worked out once, it lets
+/// a loop along a row hash each cell with [`hash_cell_in_row`] alone.
+#[inline]
+pub fn cell_row_key(j: i64, salt: u64) -> u64 {
+    (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f) ^ salt.wrapping_mul(0x1656_67b1_9e37_79f9)
+}
+
+/// [`hash_cell`] of column `i` in the row whose [`cell_row_key`] is `row`.
+///
+/// ```
+/// use sylva_base::hash::{cell_row_key, hash_cell, hash_cell_in_row};
+/// let row = cell_row_key(-3, 9);
+/// assert_eq!(hash_cell_in_row(7, 12, row), hash_cell(7, 12, -3, 9));
+/// ```
+#[inline]
+pub fn hash_cell_in_row(seed: u64, i: i64, row: u64) -> u64 {
+    mix(seed ^ mix((i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ row))
 }
 
 /// A uniform value in `[0, 1)` from the top 24 bits of a hash (exact in `f32`).

@@ -5,7 +5,7 @@ use rayon::prelude::*;
 
 use crate::error::{TerrainError, check};
 use crate::hash::NoiseRow;
-use crate::heightmap::{Heightmap, checked_len, levels_of};
+use crate::heightmap::{Heightmap, checked_len, levels_of, repeat_first_row_and_column};
 
 /// Fewest rows a task of a pass takes (a row of a late pass is thousands of samples).
 const ROWS_PER_TASK: usize = 8;
@@ -248,12 +248,7 @@ impl DiamondSquare {
         }
         if self.wrap {
             // Opposite edges are the same periodic samples.
-            for z in 0..n {
-                h[z * n + cells] = h[(z % cells) * n];
-            }
-            for x in 0..n {
-                h[cells * n + x] = h[x];
-            }
+            repeat_first_row_and_column(&mut h, n);
         }
         let origin = Vec2::new(gx0 as f32, gz0 as f32) * self.spacing;
         Ok(Heightmap::from_heights(n, self.spacing, h)?.with_origin(origin))

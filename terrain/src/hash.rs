@@ -1,7 +1,7 @@
 //! Position-keyed random numbers: each sample's randomness depends only on the seed and its
 //! global grid coordinates, so tiles generated apart agree where they meet.
 
-use sylva_base::hash::{mix, unit_f32};
+use sylva_base::hash::{cell_row_key, hash_cell_in_row, mix, unit_f32};
 
 /// Position-keyed noise along one row of samples: the row's share of the key is worked out
 /// once, so each sample costs only its own.
@@ -17,16 +17,15 @@ impl NoiseRow {
     pub(crate) fn new(seed: u64, z: i64) -> NoiseRow {
         NoiseRow {
             seed,
-            row: (z as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f),
+            row: cell_row_key(z, 0),
         }
     }
 
-    /// The noise at global coordinate `x` of the row: `hash_cell(seed, x, z, 0)` (whose
-    /// salt term is then 0) as a value in [-1, 1) with a triangular distribution (the sum
+    /// The noise at global coordinate `x` of the row: `hash_cell(seed, x, z, 0)` as a value in [-1, 1) with a triangular distribution (the sum
     /// of two uniform halves).
     #[inline]
     pub(crate) fn at(&self, x: i64) -> f32 {
-        let h = mix(self.seed ^ mix((x as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ self.row));
+        let h = hash_cell_in_row(self.seed, x, self.row);
         let a = unit_f32(h);
         let b = ((h >> 16) & 0xff_ffff) as f32 * (1.0 / (1u64 << 24) as f32);
         a + b - 1.0

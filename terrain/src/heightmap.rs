@@ -141,6 +141,17 @@ impl Heightmap {
     }
 }
 
+/// Makes the last row and column of the `n`-wide heights `h` copies of the first: the
+/// samples a periodic map repeats, one period on.
+pub(crate) fn repeat_first_row_and_column(h: &mut [f32], n: usize) {
+    let period = n - 1;
+    for z in 0..n {
+        h[z * n + period] = h[(z % period) * n];
+    }
+    let (first, rest) = h.split_at_mut(n);
+    rest[(period - 1) * n..].copy_from_slice(first);
+}
+
 pub(crate) fn checked_len(size: usize) -> Result<usize, TerrainError> {
     levels_of(size)?;
     Ok(size * size)

@@ -4,7 +4,7 @@
 use rayon::prelude::*;
 
 use crate::error::{TerrainError, check};
-use crate::heightmap::Heightmap;
+use crate::heightmap::{Heightmap, repeat_first_row_and_column};
 
 /// Rows a band takes. A band blurs its `2r` neighbouring rows across as well as its own, so
 /// longer bands repeat less work: at sigma 4, 64-row bands blurred 1.38 times the rows and
@@ -80,12 +80,7 @@ impl Heightmap {
         if edges == EdgeMode::Wrap {
             // The last row and column of a periodic map are copies of the first, and the
             // blur reads them as such: a band reads its own rows directly, so make them so.
-            let heights = self.heights_mut();
-            let (first, rest) = heights.split_at_mut(n);
-            rest[(n - 2) * n..].copy_from_slice(first);
-            for z in 0..n {
-                heights[z * n + n - 1] = heights[z * n];
-            }
+            repeat_first_row_and_column(self.heights_mut(), n);
         }
         // Bands of rows on every core, each blurred whole in a scratch of its own: its
         // rows and the `r` rows either side, blurred across, then down into the band. No
@@ -147,13 +142,7 @@ impl Heightmap {
             },
         );
         if edges == EdgeMode::Wrap {
-            let c = n - 1;
-            for z in 0..n {
-                heights[z * n + c] = heights[(z % c) * n];
-            }
-            for x in 0..n {
-                heights[c * n + x] = heights[x];
-            }
+            repeat_first_row_and_column(heights, n);
         }
         Ok(())
     }

@@ -87,9 +87,13 @@ impl RunBounds {
 
     /// The sphere around the box of instance spheres, as (centre, radius).
     pub(crate) fn sphere(&self) -> (Vec3, f32) {
-        let (lo, hi) = self.spheres;
-        ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
+        sphere_around(self.spheres)
     }
+}
+
+/// The sphere around the box `(lo, hi)`, as (centre, radius).
+fn sphere_around((lo, hi): (Vec3, Vec3)) -> (Vec3, f32) {
+    ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
 }
 
 impl Runs {
@@ -127,8 +131,7 @@ impl Runs {
                         b.spheres.0.min(centre - radius),
                         b.spheres.1.max(centre + radius),
                     );
-                    let base = Vec3::new(i.tree[0], i.tree[1], i.tree[2]);
-                    b.bases = (b.bases.0.min(base), b.bases.1.max(base));
+                    b.bases = (b.bases.0.min(i.base()), b.bases.1.max(i.base()));
                     b.radius = b.radius.max(radius);
                 }
                 all = (all.0.min(b.spheres.0), all.1.max(b.spheres.1));
@@ -192,7 +195,7 @@ impl Cell {
         );
         let (lo, hi) = (a.0.min(b.0), a.1.max(b.1));
         let sphere = if lo.x <= hi.x {
-            ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
+            sphere_around((lo, hi))
         } else {
             (Vec3::ZERO, -1.0)
         };

@@ -357,28 +357,7 @@ fn gather_cell(
 ) {
     let slots = world.slots();
     let tag = |sight: usize, slot: usize| (sight * slots + slot) as u32;
-    let base = |i: &InstanceRaw| Vec3::new(i.tree[0], i.tree[1], i.tree[2]);
     let impostors = world.groups.len() * MESH_LEVELS;
-    if level == Level::Coarse {
-        for (k, bounds, first, run) in cell.proxies.occupied() {
-            let Some(covers) = run_covers(sights, bounds) else {
-                continue;
-            };
-            for (j, i) in run.iter().enumerate() {
-                let sphere = world_sphere(i, world.proxies[k].sphere);
-                for (s, sight) in sights.iter().enumerate() {
-                    if covers[s] != Cover::Out && sight.sees(covers[s], sphere) {
-                        out.push(Seen {
-                            slot: tag(s, impostors + k),
-                            index: (first + j) as u32 | PROXY,
-                            fade: i.tint[3],
-                        });
-                    }
-                }
-            }
-        }
-        return;
-    }
     for (k, bounds, first, run) in cell.placements.occupied() {
         let group = &world.groups[k];
         let errors = &world.lods[group.variant].errors;
@@ -393,7 +372,7 @@ fn gather_cell(
         for (j, i) in run.iter().enumerate() {
             // Without levels of detail, the placement as it is, at full detail.
             let levels = match lod {
-                Some(lod) => lod.levels(base(i), errors),
+                Some(lod) => lod.levels(i.base(), errors),
                 None => [Some((0, i.tint[3])), None],
             };
             let sphere = world_sphere(i, group.sphere);
@@ -413,17 +392,28 @@ fn gather_cell(
             }
         }
     }
-    let Some(lod) = lod else { return };
+    // Proxies: a coarse cell draws every one as it is; a fine cell, with levels of detail,
+    // those of its trees far enough to be drawn as impostors (none without).
+    let far = match (level, lod) {
+        (Level::Coarse, _) => None,
+        (Level::Fine, Some(lod)) => Some(lod),
+        (Level::Fine, None) => return,
+    };
     for (k, bounds, first, run) in cell.proxies.occupied() {
         let errors = &world.lods[k].errors;
-        if farthest_distance(lod.eye, bounds.bases) < lod.reach(errors).1 {
+        if let Some(lod) = far
+            && farthest_distance(lod.eye, bounds.bases) < lod.reach(errors).1
+        {
             continue;
         }
         let Some(covers) = run_covers(sights, bounds) else {
             continue;
         };
         for (j, i) in run.iter().enumerate() {
-            let levels = lod.levels(base(i), errors);
+            let levels = match far {
+                Some(lod) => lod.levels(i.base(), errors),
+                None => [Some((MESH_LEVELS, i.tint[3])), None],
+            };
             let sphere = world_sphere(i, world.proxies[k].sphere);
             for (s, sight) in sights.iter().enumerate() {
                 if covers[s] == Cover::Out || !sight.sees(covers[s], sphere) {
@@ -539,7 +529,6 @@ mod tests {
     /// placement passed over unless it is tested.
     fn reference(scene: &Scene, sights: &[Sight], lod: Option<LodView>) -> Slots {
         let world = &scene.world;
-        let base = |i: &InstanceRaw| Vec3::new(i.tree[0], i.tree[1], i.tree[2]);
         let with_fade = |i: &InstanceRaw, fade: f32| {
             let mut out = *i;
             out.tint[3] = fade;
@@ -565,7 +554,7 @@ mod tests {
                             slots[k * MESH_LEVELS].push(*i);
                             continue;
                         };
-                        for (level, fade) in lod.levels(base(i), errors).into_iter().flatten() {
+                        for (level, fade) in lod.levels(i.base(), errors).into_iter().flatten() {
                             if level < MESH_LEVELS {
                                 slots[k * MESH_LEVELS + level].push(with_fade(i, fade));
                             }
@@ -578,7 +567,7 @@ mod tests {
                 if let Some(lod) = lod {
                     for (_, cell) in cells(Level::Fine) {
                         for i in cell.proxies.run(k) {
-                            let levels = lod.levels(base(i), &world.lods[k].errors);
+                            let levels = lod.levels(i.base(), &world.lods[k].errors);
                             for (level, fade) in levels.into_iter().flatten() {
                                 if level == MESH_LEVELS && seen(sight, i, proxy.sphere) {
                                     slot.push(with_fade(i, fade));

@@ -32,6 +32,13 @@ pub(crate) struct InstanceRaw {
     pub(crate) tree: [f32; 4],
 }
 
+impl InstanceRaw {
+    /// The base of the tree it belongs to, where its level of detail is measured from.
+    pub(crate) fn base(&self) -> Vec3 {
+        Vec3::new(self.tree[0], self.tree[1], self.tree[2])
+    }
+}
+
 /// One species variant's shared buffers: the cache's vertices (and its coarser levels' grown
 /// leaf cards), and every level's bark and leaf triangles one after another.
 #[derive(Clone)]
