@@ -86,6 +86,7 @@ mod draw;
 mod editor;
 mod error;
 mod floor;
+mod gather;
 #[cfg(test)]
 mod golden;
 mod gpu;

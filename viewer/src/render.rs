@@ -7,9 +7,10 @@ use sylva::terrain::glam::{Mat4, Vec3};
 use sylva::turtle::Vertex;
 
 use crate::cells::{Streamed, VIEW_DISTANCE};
-use crate::cull::{Gathered, LodView, Range, Sight, Volume};
+use crate::cull::{LodView, Sight, Volume};
 use crate::draw::{Draw, DrawIndex};
 use crate::error::ViewerError;
+use crate::gather::{Gathered, Range};
 use crate::gpu::{DEPTH, buffer, index_buffer};
 use crate::materials::Materials;
 use crate::pipelines::Pipelines;
