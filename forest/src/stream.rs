@@ -137,12 +137,13 @@ impl ForestBuilder {
         assembler: &mut Assembler,
     ) -> Result<PlacementBlock, ForestError> {
         let trees = self.trees(terrain, region);
-        self.block_of(index, region, trees, expand, assembler)
+        self.block_of(index, region, trees, expand, assembler, Vec::new())
     }
 
     /// The block of `trees` (those of `region`, as [`ForestBuilder::trees`] gives them, kept
     /// from an earlier pass perhaps) with the placements of those whose variant `expand`
-    /// accepts.
+    /// accepts, written into `placements` (emptied first: an earlier block's, whose memory
+    /// is in use and so costs no page faults).
     fn block_of(
         &self,
         index: usize,
@@ -150,8 +151,10 @@ impl ForestBuilder {
         trees: Vec<CompactTree>,
         expand: &(dyn Fn(u16) -> bool + Sync),
         assembler: &mut Assembler,
+        mut placements: Vec<Placement>,
     ) -> Result<PlacementBlock, ForestError> {
-        let mut placements = Vec::with_capacity(trees.len() * 8);
+        placements.clear();
+        placements.reserve(trees.len() * 8);
         let variants = self.variants();
         for (position, tree) in trees.iter().enumerate().filter(|(_, t)| expand(t.variant)) {
             let variant = u32::from(tree.variant);
@@ -262,9 +265,19 @@ impl ForestBuilder {
         let wave = wave_size();
         let mut stats = StreamStats::default();
         let placed = |_: usize, rect: Rect| Ok::<_, ForestError>(self.trees(terrain, rect));
+        // The sink only borrows each block, so its placements' buffer is handed to a block of
+        // the next wave: a wave's worth of buffers, megabytes each, stays in use rather than
+        // being freed and faulted in again, block after block.
+        let mut spare: Vec<Vec<Placement>> = Vec::new();
         for (w, rects) in blocks.chunks(wave).enumerate() {
-            let done = self.place_wave(rects, w * wave, &placed, expand, &|block| block);
-            drain(done, &mut stats, &mut |block: PlacementBlock| sink(&block))?;
+            let buffers = (0..rects.len()).map(|_| spare.pop().unwrap_or_default());
+            let done = self.place_wave(rects, w * wave, buffers.collect(), &placed, expand, &|b| b);
+            let mut keep = |block: PlacementBlock| -> Result<(), E> {
+                sink(&block)?;
+                spare.push(block.placements);
+                Ok(())
+            };
+            drain(done, &mut stats, &mut keep)?;
         }
         Ok(stats)
     }
@@ -323,7 +336,7 @@ impl ForestBuilder {
         let mut pending: Vec<Result<(StreamStats, T), E>> = Vec::new();
         for (w, rects) in blocks.chunks(wave).enumerate() {
             let (done, sunk) = rayon::join(
-                || self.place_wave(rects, w * wave, trees_of, expand, map),
+                || self.place_wave(rects, w * wave, Vec::new(), trees_of, expand, map),
                 || drain(std::mem::take(&mut pending), &mut stats, sink),
             );
             sunk?;
@@ -335,21 +348,22 @@ impl ForestBuilder {
 
     /// The blocks `rects` (numbered from `first`, their trees from `trees_of`) expanded on
     /// every core, each turned into a `T` by `map` where it was placed, with what it held.
+    /// Block `k`'s placements go into `buffers[k]` when there is one.
     fn place_wave<T: Send, E: From<ForestError> + Send>(
         &self,
         rects: &[Rect],
         first: usize,
+        mut buffers: Vec<Vec<Placement>>,
         trees_of: &TreesOf<'_, E>,
         expand: &(dyn Fn(u16) -> bool + Sync),
         map: &(dyn Fn(PlacementBlock) -> T + Sync),
     ) -> Vec<Result<(StreamStats, T), E>> {
         let variants = self.variants();
-        rects
-            .par_iter()
-            .enumerate()
-            .map_init(Assembler::new, |assembler, (k, &rect)| {
+        buffers.resize_with(rects.len(), Vec::new);
+        (rects.par_iter().zip(buffers).enumerate())
+            .map_init(Assembler::new, |assembler, (k, (&rect, buffer))| {
                 let trees = trees_of(first + k, rect)?;
-                let block = self.block_of(first + k, rect, trees, expand, assembler)?;
+                let block = self.block_of(first + k, rect, trees, expand, assembler, buffer)?;
                 let seedlings = block
                     .trees
                     .iter()
