@@ -57,13 +57,38 @@ impl CellKey {
 #[derive(Default)]
 pub(crate) struct Runs {
     pub(crate) instances: Vec<InstanceRaw>,
-    /// Where each run starts in `instances`, and one more entry for the end.
-    starts: Vec<u32>,
-    /// The runs with any instance, in order: a cell holds a few of the world's tens of
-    /// thousands of groups, and culling visits only these.
-    occupied: Vec<u32>,
-    /// Bounds of each occupied run, once [`Runs::bound`] has made them.
-    bounds: Vec<RunBounds>,
+    /// The occupied runs cut into pieces of at most [`PIECE`] instances, in order: a cell
+    /// holds a few of the world's tens of thousands of groups, and culling visits only
+    /// these, passing over (or taking whole) a piece at a time.
+    pieces: Vec<Piece>,
+}
+
+/// The most instances in one [`Piece`]: few enough that a piece's bounds are tight (most
+/// pieces are then wholly in or out of a view, and at one level of detail), enough that
+/// testing its bounds costs little beside testing its instances.
+const PIECE: usize = 64;
+
+/// Consecutive instances of one run, with their bounds.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    run: u32,
+    /// Where it starts and ends in [`Runs::instances`].
+    first: u32,
+    end: u32,
+    bounds: RunBounds,
+}
+
+/// The Z-order (Morton) key of a point on a grid: the bits of `x` and `z` interleaved, so
+/// that points near in the key are near on the ground.
+fn z_order(x: u16, z: u16) -> u32 {
+    let spread = |v: u16| {
+        let mut v = u32::from(v);
+        v = (v | (v << 8)) & 0x00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333;
+        (v | (v << 1)) & 0x5555_5555
+    };
+    spread(x) | (spread(z) << 1)
 }
 
 /// Bounds of one run's instances, so culling can pass over a run whole: out of view, too
@@ -76,6 +101,8 @@ pub(crate) struct RunBounds {
     pub(crate) bases: (Vec3, Vec3),
     /// The largest instance's bounding radius in the world.
     pub(crate) radius: f32,
+    /// The smallest instance's bounding radius in the world.
+    pub(crate) least_radius: f32,
 }
 
 impl RunBounds {
@@ -83,6 +110,7 @@ impl RunBounds {
         spheres: (Vec3::INFINITY, Vec3::NEG_INFINITY),
         bases: (Vec3::INFINITY, Vec3::NEG_INFINITY),
         radius: 0.0,
+        least_radius: f32::INFINITY,
     };
 
     /// The sphere around the box of instance spheres, as (centre, radius).
@@ -97,65 +125,92 @@ fn sphere_around((lo, hi): (Vec3, Vec3)) -> (Vec3, f32) {
 }
 
 impl Runs {
-    /// Gathers `(run, instance)` pairs into `runs` runs, keeping their order within a run.
+    /// Gathers `(run, instance)` pairs into `runs` runs, each in Z order of its trees'
+    /// bases over the ground (ties in the order given), so that each piece of a run covers
+    /// a small patch of the cell rather than a scatter across it.
     pub(crate) fn gather(mut tagged: Vec<(u32, InstanceRaw)>, runs: usize) -> Runs {
-        tagged.sort_by_key(|(run, _)| *run);
+        let ground = |i: &InstanceRaw| Vec2::new(i.tree[0], i.tree[2]);
+        let (lo, hi) = (tagged.iter())
+            .fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(lo, hi), (_, i)| {
+                (lo.min(ground(i)), hi.max(ground(i)))
+            });
+        let scale = f32::from(u16::MAX) / (hi - lo).max_element().max(1e-3);
+        tagged.sort_by_cached_key(|(run, i)| {
+            let [x, z] = ((ground(i) - lo) * scale).to_array().map(|q| q as u16);
+            (*run, z_order(x, z))
+        });
         let mut starts = vec![0u32; runs + 1];
         for (run, _) in &tagged {
             starts[*run as usize + 1] += 1;
         }
-        let occupied = (0..runs as u32)
-            .filter(|&k| starts[k as usize + 1] > 0)
-            .collect();
         for k in 0..runs {
             starts[k + 1] += starts[k];
         }
+        let pieces = (0..runs)
+            .flat_map(|k| {
+                let (from, to) = (starts[k] as usize, starts[k + 1] as usize);
+                (from..to).step_by(PIECE).map(move |first| Piece {
+                    run: k as u32,
+                    first: first as u32,
+                    end: (first + PIECE).min(to) as u32,
+                    bounds: RunBounds::EMPTY,
+                })
+            })
+            .collect();
         Runs {
             instances: tagged.into_iter().map(|(_, i)| i).collect(),
-            starts,
-            occupied,
-            bounds: Vec::new(),
+            pieces,
         }
     }
 
-    /// Makes each occupied run's bounds, with `sphere(k)` the bounding sphere of run `k`'s
+    /// Makes each piece's bounds, with `sphere(k)` the bounding sphere of run `k`'s
     /// instances in their own space; returns the box around them all.
     fn bound(&mut self, sphere: impl Fn(usize) -> (Vec3, f32)) -> (Vec3, Vec3) {
         let mut all = RunBounds::EMPTY.spheres;
-        self.bounds = (self.occupied.iter())
-            .map(|&k| {
-                let mut b = RunBounds::EMPTY;
-                for i in self.run(k as usize) {
-                    let (centre, radius) = world_sphere(i, sphere(k as usize));
-                    b.spheres = (
-                        b.spheres.0.min(centre - radius),
-                        b.spheres.1.max(centre + radius),
-                    );
-                    b.bases = (b.bases.0.min(i.base()), b.bases.1.max(i.base()));
-                    b.radius = b.radius.max(radius);
-                }
-                all = (all.0.min(b.spheres.0), all.1.max(b.spheres.1));
-                b
-            })
-            .collect();
+        for piece in &mut self.pieces {
+            let b = &mut piece.bounds;
+            let own = sphere(piece.run as usize);
+            for i in &self.instances[piece.first as usize..piece.end as usize] {
+                let (centre, radius) = world_sphere(i, own);
+                b.spheres = (
+                    b.spheres.0.min(centre - radius),
+                    b.spheres.1.max(centre + radius),
+                );
+                b.bases = (b.bases.0.min(i.base()), b.bases.1.max(i.base()));
+                b.radius = b.radius.max(radius);
+                b.least_radius = b.least_radius.min(radius);
+            }
+            all = (all.0.min(b.spheres.0), all.1.max(b.spheres.1));
+        }
         all
     }
 
-    /// Each run with any instance, as (run, its bounds, where it starts in `instances`, its
-    /// instances), in order of run.
+    /// Each piece of the occupied runs, as (its run, its bounds, where it starts in
+    /// `instances`, its instances), in order of run and place in the run.
     pub(crate) fn occupied(
         &self,
     ) -> impl Iterator<Item = (usize, &RunBounds, usize, &[InstanceRaw])> {
-        (self.occupied.iter().zip(&self.bounds)).map(|(&k, b)| {
-            let first = self.starts[k as usize] as usize;
-            (k as usize, b, first, self.run(k as usize))
+        self.pieces.iter().map(|p| {
+            let (first, end) = (p.first as usize, p.end as usize);
+            (
+                p.run as usize,
+                &p.bounds,
+                first,
+                &self.instances[first..end],
+            )
         })
     }
 
     /// The instances of run `k`.
+    #[cfg(test)]
     pub(crate) fn run(&self, k: usize) -> &[InstanceRaw] {
-        match (self.starts.get(k), self.starts.get(k + 1)) {
-            (Some(&a), Some(&b)) => &self.instances[a as usize..b as usize],
+        let from = self.pieces.partition_point(|p| (p.run as usize) < k);
+        let to = self.pieces.partition_point(|p| (p.run as usize) <= k);
+        match (
+            self.pieces.get(from),
+            to.checked_sub(1).and_then(|t| self.pieces.get(t)),
+        ) {
+            (Some(a), Some(b)) if from < to => &self.instances[a.first as usize..b.end as usize],
             _ => &[],
         }
     }
@@ -300,5 +355,43 @@ impl World {
             trees.len(),
             version,
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn z_order_interleaves_the_bits_of_x_and_z() {
+        assert_eq!(z_order(0, 0), 0);
+        assert_eq!(z_order(1, 0), 1);
+        assert_eq!(z_order(0, 1), 2);
+        assert_eq!(z_order(3, 3), 15);
+        assert_eq!(z_order(u16::MAX, 0), 0x5555_5555);
+        assert_eq!(z_order(0, u16::MAX), 0xaaaa_aaaa);
+    }
+
+    #[test]
+    fn runs_are_cut_into_pieces_in_z_order_of_their_bases() {
+        let at = |x: f32, z: f32| InstanceRaw {
+            rotation: [0.0, 0.0, 0.0, 1.0],
+            translation_scale: [x, 0.0, z, 1.0],
+            tint: [1.0; 4],
+            tree: [x, 0.0, z, 0.0],
+        };
+        // Run 1: a row of trees along x, given back to front; run 0: one tree.
+        let mut tagged: Vec<(u32, InstanceRaw)> =
+            (0..100).rev().map(|k| (1, at(k as f32, 0.0))).collect();
+        tagged.push((0, at(5.0, 5.0)));
+        let runs = Runs::gather(tagged, 3);
+        assert_eq!(runs.run(0).len(), 1);
+        let row: Vec<f32> = runs.run(1).iter().map(|i| i.tree[0]).collect();
+        assert_eq!(row, (0..100).map(|k| k as f32).collect::<Vec<_>>());
+        assert!(runs.run(2).is_empty());
+        // 1 + 100 instances: one piece, then pieces of at most PIECE.
+        let pieces: Vec<(usize, usize)> =
+            runs.occupied().map(|(k, _, _, i)| (k, i.len())).collect();
+        assert_eq!(pieces, vec![(0, 1), (1, PIECE), (1, 100 - PIECE)]);
     }
 }

@@ -62,12 +62,12 @@ impl LodView {
     /// fading into each other, as (level, fade) with the fade in the shader's encoding (0:
     /// whole; `f > 0`: fading out, drawn where the dither is at least `f`; `-f`: fading in,
     /// drawn where it is below `f`). Level `MESH_LEVELS` is the impostor.
-    pub(crate) fn levels(
-        &self,
-        base: Vec3,
-        errors: &[f32; MESH_LEVELS],
-    ) -> [Option<(usize, f32)>; 2] {
-        let d = base.distance(self.eye);
+    pub(crate) fn levels(&self, base: Vec3, errors: &[f32; MESH_LEVELS]) -> Levels {
+        self.levels_at(base.distance(self.eye), errors)
+    }
+
+    /// [`LodView::levels`] of a tree `d` from the eye.
+    fn levels_at(&self, d: f32, errors: &[f32; MESH_LEVELS]) -> Levels {
         let scale = self.pixels_per_radian / self.pixel_error.max(1e-3);
         let mut level = 0;
         for (k, &e) in errors.iter().enumerate() {
@@ -84,7 +84,25 @@ impl LodView {
         }
         [Some((level, 0.0)), None]
     }
+
+    /// The one level, unfaded, of every tree whose base is in the box `bases`, when they
+    /// all have one: the levels at the box's nearest and farthest points agree and
+    /// neither fades. A tree's distance lies between the box's (floating point keeps that
+    /// order: each is the same sum of squares of differences no smaller or no larger), and
+    /// the level only grows with distance, passing through a fade at each switch.
+    pub(crate) fn level_across(
+        &self,
+        bases: (Vec3, Vec3),
+        errors: &[f32; MESH_LEVELS],
+    ) -> Option<Levels> {
+        let near = self.levels_at(nearest_distance(self.eye, bases), errors);
+        let far = self.levels_at(farthest_distance(self.eye, bases), errors);
+        (near == far && near[1].is_none() && near[0].is_some_and(|(_, f)| f == 0.0)).then_some(near)
+    }
 }
+
+/// The levels a tree is drawn at: one, or two fading into each other, as (level, fade).
+pub(crate) type Levels = [Option<(usize, f32)>; 2];
 
 /// One view to gather placements for: its volume, and the eye and pixels per radian that
 /// decide which placements are too small on screen to draw.
@@ -129,6 +147,14 @@ impl Sight {
             return Cover::Out;
         }
         self.cover(run.sphere())
+    }
+
+    /// Whether every instance of a run (or piece of one) is seen without testing each: the
+    /// run is wholly inside, and its smallest instance spans [`MIN_PIXELS`] even at the
+    /// farthest point of its box (no instance's centre is farther).
+    pub(crate) fn sees_whole(&self, cover: Cover, run: &RunBounds) -> bool {
+        cover == Cover::Inside
+            && run.least_radius >= self.min_ratio() * farthest_distance(self.eye, run.spheres)
     }
 
     /// Whether a placement's world sphere is seen: in the volume (unless its run is wholly
@@ -181,6 +207,7 @@ pub(crate) const MAX_SIGHTS: usize = 2;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
     use sylva::terrain::glam::camera::rh::{proj::directx, view};
 
     #[test]
@@ -217,5 +244,66 @@ mod tests {
             farthest_distance(Vec3::new(5.0, 0.0, 0.0), b),
             Vec3::new(5.0, 2.0, 2.0).length()
         );
+    }
+
+    /// A box from two corners and a point inside it at fractions `t` of each side.
+    fn box_and_point(a: [f32; 3], b: [f32; 3], t: [f32; 3]) -> ((Vec3, Vec3), Vec3) {
+        let (a, b) = (Vec3::from(a), Vec3::from(b));
+        let (lo, hi) = (a.min(b), a.max(b));
+        ((lo, hi), (lo + (hi - lo) * Vec3::from(t)).clamp(lo, hi))
+    }
+
+    proptest! {
+        /// When a box of bases has one level across it, every base in it has that level:
+        /// the pieces taken whole draw what testing each tree would.
+        #[test]
+        fn one_level_across_a_box_is_every_tree_s_level(
+            a in prop::array::uniform3(-400.0f32..400.0),
+            b in prop::array::uniform3(-400.0f32..400.0),
+            t in prop::array::uniform3(0.0f32..=1.0),
+            eye in prop::array::uniform3(-400.0f32..400.0),
+            errors in prop::array::uniform3(0.0f32..0.4),
+            fade in 0.0f32..0.5,
+        ) {
+            let mut errors = errors;
+            errors.sort_by(f32::total_cmp);
+            let lod = LodView { eye: Vec3::from(eye), pixels_per_radian: 750.0, pixel_error: 1.5, fade };
+            let (bases, base) = box_and_point(a, b, t);
+            if let Some(levels) = lod.level_across(bases, &errors) {
+                prop_assert_eq!(lod.levels(base, &errors), levels);
+                prop_assert!(levels[1].is_none());
+            }
+        }
+
+        /// A run a sight sees whole has each of its spheres seen.
+        #[test]
+        fn a_run_seen_whole_has_every_sphere_seen(
+            a in prop::array::uniform3(-50.0f32..50.0),
+            b in prop::array::uniform3(-50.0f32..50.0),
+            t in prop::array::uniform3(0.0f32..=1.0),
+            radius in 0.01f32..5.0,
+            least in 0.0f32..=1.0,
+            yaw in 0.0f32..std::f32::consts::TAU,
+        ) {
+            let eye = Vec3::new(0.0, 2.0, 0.0) - Vec3::new(yaw.cos(), 0.0, yaw.sin()) * 80.0;
+            let proj = directx::perspective(60f32.to_radians(), 1.5, 0.2, 500.0);
+            let sight = Sight {
+                volume: Volume::of(&(proj * view::look_to_mat4(eye, -eye.with_y(0.0), Vec3::Y))),
+                eye,
+                pixels_per_radian: 720.0 / 60f32.to_radians(),
+            };
+            let (centres, centre) = box_and_point(a, b, t);
+            let run = RunBounds {
+                spheres: (centres.0 - radius, centres.1 + radius),
+                bases: centres,
+                radius,
+                least_radius: radius * least,
+            };
+            let cover = sight.cover(run.sphere());
+            if sight.sees_whole(cover, &run) {
+                // Any instance of the run: its centre in the box, its radius at least the least.
+                prop_assert!(sight.sees(Cover::Partly, (centre, run.least_radius)));
+            }
+        }
     }
 }

@@ -4,10 +4,11 @@
 
 use bytemuck::Zeroable;
 use rayon::prelude::*;
+use sylva::terrain::glam::Vec3;
 
-use crate::cell::{Cell, Level};
+use crate::cell::{Cell, Level, RunBounds};
 use crate::cull::{
-    Cover, LodView, MAX_SIGHTS, Sight, farthest_distance, nearest_distance, run_covers,
+    Cover, Levels, LodView, MAX_SIGHTS, Sight, farthest_distance, nearest_distance, run_covers,
 };
 use crate::scene::Scene;
 use crate::world::{InstanceRaw, MESH_LEVELS, World, world_sphere};
@@ -48,8 +49,7 @@ impl Gathered {
     /// can see, or whose trees are all past their meshes' reach, are passed over whole. The
     /// order out is the cells' order whatever the thread count.
     pub(crate) fn gather(&mut self, scene: &Scene, sights: &[Sight], lod: Option<LodView>) {
-        let drawn: Vec<(Level, &Cell)> = (scene.cells.drawn()).map(|(k, c)| (k.level, c)).collect();
-        self.gather_cells(&scene.world, &drawn, sights, lod);
+        self.gather_cells(&scene.world, &drawn(scene), sights, lod);
     }
 
     /// [`Gathered::gather`] over the cells `drawn` of `world`.
@@ -148,6 +148,11 @@ impl Gathered {
     }
 }
 
+/// The cells a scene draws, with their levels, in its order.
+fn drawn(scene: &Scene) -> Vec<(Level, &Cell)> {
+    (scene.cells.drawn()).map(|(k, c)| (k.level, c)).collect()
+}
+
 /// One slot's placements in [`Gathered::visible`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Range {
@@ -206,28 +211,20 @@ fn gather_cell(
         let Some(covers) = run_covers(sights, bounds) else {
             continue;
         };
-        for (j, i) in run.iter().enumerate() {
-            // Without levels of detail, the placement as it is, at full detail.
-            let levels = match lod {
-                Some(lod) => lod.levels(i.base(), errors),
-                None => [Some((0, i.tint[3])), None],
-            };
-            let sphere = world_sphere(i, group.sphere);
-            for (s, sight) in sights.iter().enumerate() {
-                if covers[s] == Cover::Out || !sight.sees(covers[s], sphere) {
-                    continue;
-                }
-                for (level, fade) in levels.into_iter().flatten() {
-                    if level < MESH_LEVELS {
-                        out.push(Seen {
-                            slot: tag(s, k * MESH_LEVELS + level),
-                            index: (first + j) as u32,
-                            fade,
-                        });
-                    }
-                }
-            }
-        }
+        let piece = Piece {
+            bounds,
+            first,
+            run,
+            sphere: group.sphere,
+            tag: 0,
+        };
+        // Without levels of detail, each placement as it is, at full detail.
+        let (levels, constant) = match lod {
+            Some(lod) => (Some((lod, errors)), lod.level_across(bounds.bases, errors)),
+            None => (None, Some(UNFADED[0])),
+        };
+        let slot = |s, level| (level < MESH_LEVELS).then(|| tag(s, k * MESH_LEVELS + level));
+        gather_piece(piece, (sights, covers), levels, constant, slot, out);
     }
     // Proxies: a coarse cell draws every one as it is; a fine cell, with levels of detail,
     // those of its trees far enough to be drawn as impostors (none without).
@@ -246,24 +243,107 @@ fn gather_cell(
         let Some(covers) = run_covers(sights, bounds) else {
             continue;
         };
-        for (j, i) in run.iter().enumerate() {
-            let levels = match far {
-                Some(lod) => lod.levels(i.base(), errors),
-                None => [Some((MESH_LEVELS, i.tint[3])), None],
-            };
-            let sphere = world_sphere(i, world.proxies[k].sphere);
-            for (s, sight) in sights.iter().enumerate() {
-                if covers[s] == Cover::Out || !sight.sees(covers[s], sphere) {
-                    continue;
+        let piece = Piece {
+            bounds,
+            first,
+            run,
+            sphere: world.proxies[k].sphere,
+            tag: PROXY,
+        };
+        let (levels, constant) = match far {
+            Some(lod) => (Some((lod, errors)), lod.level_across(bounds.bases, errors)),
+            None => (None, Some(UNFADED[MESH_LEVELS])),
+        };
+        let slot = |s, level| (level == MESH_LEVELS).then(|| tag(s, impostors + k));
+        gather_piece(piece, (sights, covers), levels, constant, slot, out);
+    }
+}
+
+/// Each level (the impostor last) alone and unfaded: the placements of a cell drawn
+/// without levels of detail, and the proxies of a coarse cell. (Every instance's own fade
+/// is 0; the fade a frame gives it replaces it.)
+const UNFADED: [Levels; MESH_LEVELS + 1] = {
+    let mut all = [[None; 2]; MESH_LEVELS + 1];
+    let mut level = 0;
+    while level <= MESH_LEVELS {
+        all[level] = [Some((level, 0.0)), None];
+        level += 1;
+    }
+    all
+};
+
+/// A piece of a cell's run being gathered.
+struct Piece<'a> {
+    bounds: &'a RunBounds,
+    /// Where it starts in its cell's runs.
+    first: usize,
+    run: &'a [InstanceRaw],
+    /// Its instances' bounding sphere in their own space.
+    sphere: (Vec3, f32),
+    /// The bit its [`Seen::index`]es carry: [`PROXY`] or none.
+    tag: u32,
+}
+
+/// Appends to `out` what the sights see of one piece, with the `covers` of its bounds:
+/// each instance at the levels its base asks for of a variant with these errors, or the
+/// `constant` levels every instance has (known from the piece's bounds, or the levels
+/// being off), filed in `slot(sight, level)` (none: not drawn in this pass). Instances
+/// are tested only where the piece's bounds leave it open: a piece wholly seen by every
+/// sight that may see it, at one level, is taken whole, in the same order.
+fn gather_piece(
+    piece: Piece<'_>,
+    (sights, covers): (&[Sight], [Cover; MAX_SIGHTS]),
+    levels: Option<(LodView, &[f32; MESH_LEVELS])>,
+    constant: Option<Levels>,
+    slot: impl Fn(usize, usize) -> Option<u32>,
+    out: &mut Vec<Seen>,
+) {
+    let open = |s: usize| covers[s] != Cover::Out;
+    let whole: [bool; MAX_SIGHTS] =
+        std::array::from_fn(|s| s < sights.len() && sights[s].sees_whole(covers[s], piece.bounds));
+    let all_whole = (0..sights.len()).all(|s| !open(s) || whole[s]);
+    let index = |j: usize| (piece.first + j) as u32 | piece.tag;
+    let levels_of = |i: &InstanceRaw| match (constant, levels) {
+        (Some(constant), _) => constant,
+        (None, Some((lod, errors))) => lod.levels(i.base(), errors),
+        (None, None) => UNFADED[0],
+    };
+    if let (true, Some(levels)) = (all_whole, constant) {
+        // Slot by slot rather than instance by instance: each slot still receives the
+        // piece's instances in order, which is all the counting sort keeps.
+        for s in (0..sights.len()).filter(|&s| open(s)) {
+            for (level, fade) in levels.into_iter().flatten() {
+                if let Some(slot) = slot(s, level) {
+                    let seen = (0..piece.run.len()).map(|j| Seen {
+                        slot,
+                        index: index(j),
+                        fade,
+                    });
+                    out.extend(seen);
                 }
-                for (level, fade) in levels.into_iter().flatten() {
-                    if level == MESH_LEVELS {
-                        out.push(Seen {
-                            slot: tag(s, impostors + k),
-                            index: (first + j) as u32 | PROXY,
-                            fade,
-                        });
-                    }
+            }
+        }
+        return;
+    }
+    for (j, i) in piece.run.iter().enumerate() {
+        let sphere = (!all_whole).then(|| world_sphere(i, piece.sphere));
+        let seen: [bool; MAX_SIGHTS] = std::array::from_fn(|s| {
+            open(s) && (whole[s] || sphere.is_some_and(|sphere| sights[s].sees(covers[s], sphere)))
+        });
+        // Most instances of a piece at the edge of a view are out of it: their levels are
+        // not worked out.
+        if !seen.contains(&true) {
+            continue;
+        }
+        let levels = levels_of(i);
+        for s in (0..sights.len()).filter(|&s| seen[s]) {
+            for (level, fade) in levels.into_iter().flatten() {
+                if let Some(slot) = slot(s, level) {
+                    out.push(Seen {
+                        slot,
+                        index: index(j),
+                        fade,
+                    });
                 }
             }
         }
@@ -424,9 +504,7 @@ mod tests {
             .build()
             .expect("a pool");
         with_scene(|scene| {
-            let drawn: Vec<(Level, &Cell)> =
-                (scene.cells.drawn()).map(|(k, c)| (k.level, c)).collect();
-            let world: &World = &scene.world;
+            let (world, drawn): (&World, _) = (&scene.world, drawn(scene));
             pool.install(|| gathered.gather_cells(world, &drawn, sights, lod));
         });
     }

@@ -87,6 +87,10 @@ struct VariantBuffers {
     leaves: Option<wgpu::Buffer>,
 }
 
+/// Bytes of each staging buffer: room for a default view's placements (about 4.4 MB at
+/// 1280x720) in one.
+const STAGING_CHUNK: u64 = 8 << 20;
+
 pub(crate) struct Renderer {
     texture_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
@@ -110,6 +114,10 @@ pub(crate) struct Renderer {
     /// The placements in view this frame, then those in the sun's box; grown when a frame
     /// needs more room.
     instances: Option<wgpu::Buffer>,
+    /// Mapped buffers the placements are written into and copied from, kept and mapped
+    /// again after each frame: a fresh staging buffer per frame (what `Queue::write_buffer`
+    /// makes) costs megabytes of page faults and zeroing, frame after frame.
+    staging: wgpu::util::StagingBelt,
     draws: Vec<Draw>,
     /// Which draws each slot feeds.
     draw_index: DrawIndex,
@@ -279,6 +287,7 @@ impl Renderer {
             ),
             variants,
             instances: None,
+            staging: wgpu::util::StagingBelt::new(device.clone(), STAGING_CHUNK),
             draw_index: DrawIndex::of(&draws, world.slots()),
             draws,
             gathered: Gathered::default(),
@@ -339,7 +348,7 @@ impl Renderer {
         };
         let mut gathered = std::mem::take(&mut self.gathered);
         gathered.gather(scene, &sights, lod);
-        self.upload_instances(device, queue, &gathered.visible);
+        self.upload_instances(device, encoder, &gathered.visible);
         if shaded {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -434,9 +443,12 @@ impl Renderer {
     fn upload_instances(
         &mut self,
         device: &wgpu::Device,
-        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
         visible: &[InstanceRaw],
     ) {
+        // Staging chunks whose copies are done are mapped again by the device's callbacks.
+        // A poll that fails only delays that: the belt then makes another chunk.
+        let _ = device.poll(wgpu::PollType::Poll);
         let bytes = size_of_val(visible) as u64;
         if bytes > self.instances.as_ref().map_or(0, wgpu::Buffer::size) {
             // Room for the most a frame has needed, rounded up, so walking does not
@@ -449,10 +461,12 @@ impl Renderer {
             }));
         }
         if let Some(instances) = &self.instances
-            && bytes > 0
+            && let Some(size) = wgpu::BufferSize::new(bytes)
         {
-            queue.write_buffer(instances, 0, bytemuck::cast_slice(visible));
+            let mut view = self.staging.write_buffer(encoder, instances, 0, size);
+            view.copy_from_slice(bytemuck::cast_slice(visible));
         }
+        self.staging.finish_and_recall_on_submit(encoder);
     }
 
     /// Draws the terrain and the placements of each slot in `ranges` (a group's level, or a
