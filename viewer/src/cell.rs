@@ -125,10 +125,10 @@ fn sphere_around((lo, hi): (Vec3, Vec3)) -> (Vec3, f32) {
 }
 
 impl Runs {
-    /// Gathers `(run, instance)` pairs into `runs` runs, each in Z order of its trees'
+    /// Gathers `(run, instance)` pairs into their runs, each in Z order of its trees'
     /// bases over the ground (ties in the order given), so that each piece of a run covers
     /// a small patch of the cell rather than a scatter across it.
-    pub(crate) fn gather(mut tagged: Vec<(u32, InstanceRaw)>, runs: usize) -> Runs {
+    pub(crate) fn gather(mut tagged: Vec<(u32, InstanceRaw)>) -> Runs {
         let ground = |i: &InstanceRaw| Vec2::new(i.tree[0], i.tree[2]);
         let (lo, hi) = (tagged.iter())
             .fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(lo, hi), (_, i)| {
@@ -139,24 +139,20 @@ impl Runs {
             let [x, z] = ((ground(i) - lo) * scale).to_array().map(|q| q as u16);
             (*run, z_order(x, z))
         });
-        let mut starts = vec![0u32; runs + 1];
-        for (run, _) in &tagged {
-            starts[*run as usize + 1] += 1;
-        }
-        for k in 0..runs {
-            starts[k + 1] += starts[k];
-        }
-        let pieces = (0..runs)
-            .flat_map(|k| {
-                let (from, to) = (starts[k] as usize, starts[k + 1] as usize);
-                (from..to).step_by(PIECE).map(move |first| Piece {
-                    run: k as u32,
+        // Each run is a stretch of equal keys, cut every PIECE instances.
+        let mut pieces = Vec::new();
+        let mut first = 0;
+        for run in tagged.chunk_by(|a, b| a.0 == b.0) {
+            for part in run.chunks(PIECE) {
+                pieces.push(Piece {
+                    run: part[0].0,
                     first: first as u32,
-                    end: (first + PIECE).min(to) as u32,
+                    end: (first + part.len()) as u32,
                     bounds: RunBounds::EMPTY,
-                })
-            })
-            .collect();
+                });
+                first += part.len();
+            }
+        }
         Runs {
             instances: tagged.into_iter().map(|(_, i)| i).collect(),
             pieces,
@@ -204,13 +200,12 @@ impl Runs {
     /// The instances of run `k`.
     #[cfg(test)]
     pub(crate) fn run(&self, k: usize) -> &[InstanceRaw] {
-        let from = self.pieces.partition_point(|p| (p.run as usize) < k);
-        let to = self.pieces.partition_point(|p| (p.run as usize) <= k);
+        let of_k = |p: &&Piece| p.run as usize == k;
         match (
-            self.pieces.get(from),
-            to.checked_sub(1).and_then(|t| self.pieces.get(t)),
+            self.pieces.iter().find(of_k),
+            self.pieces.iter().rfind(of_k),
         ) {
-            (Some(a), Some(b)) if from < to => &self.instances[a.first as usize..b.end as usize],
+            (Some(a), Some(b)) => &self.instances[a.first as usize..b.end as usize],
             _ => &[],
         }
     }
@@ -289,7 +284,6 @@ impl World {
     /// Generates one cell: a pure function of the world and the key.
     pub(crate) fn cell(&self, key: CellKey) -> Result<Cell, ForestError> {
         let rect = key.rect(self.side);
-        let variants = self.proxies.len();
         let proxies = |trees: &[CompactTree]| {
             Runs::gather(
                 trees
@@ -297,7 +291,6 @@ impl World {
                     .filter(|t| !self.seedling[usize::from(t.variant)])
                     .map(|t| (u32::from(t.variant), tree_instance(t)))
                     .collect(),
-                variants,
             )
         };
         let (forest, version) = self.forest();
@@ -347,7 +340,7 @@ impl World {
         if let Some(floor) = &self.floor {
             tagged.extend(self.floor_instances(floor, rect)?);
         }
-        let placements = Runs::gather(tagged, self.groups.len());
+        let placements = Runs::gather(tagged);
         Ok(Cell::new(
             self,
             placements,
@@ -384,7 +377,7 @@ mod tests {
         let mut tagged: Vec<(u32, InstanceRaw)> =
             (0..100).rev().map(|k| (1, at(k as f32, 0.0))).collect();
         tagged.push((0, at(5.0, 5.0)));
-        let runs = Runs::gather(tagged, 3);
+        let runs = Runs::gather(tagged);
         assert_eq!(runs.run(0).len(), 1);
         let row: Vec<f32> = runs.run(1).iter().map(|i| i.tree[0]).collect();
         assert_eq!(row, (0..100).map(|k| k as f32).collect::<Vec<_>>());

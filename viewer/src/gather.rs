@@ -2,16 +2,16 @@
 //! the cells drawn that it sees, level by level, in one instance buffer with a range per
 //! instanced draw.
 
+mod pass;
+
 use bytemuck::Zeroable;
 use rayon::prelude::*;
-use sylva::terrain::glam::Vec3;
 
-use crate::cell::{Cell, Level, RunBounds};
-use crate::cull::{
-    Cover, Levels, LodView, MAX_SIGHTS, Sight, farthest_distance, nearest_distance, run_covers,
-};
+use crate::cell::{Cell, Level};
+use crate::cull::{Cover, LodView, MAX_SIGHTS, Sight};
 use crate::scene::Scene;
-use crate::world::{InstanceRaw, MESH_LEVELS, World, world_sphere};
+use crate::world::{InstanceRaw, World};
+use pass::gather_cell;
 
 /// What a frame's culling gathers for each sight, kept from frame to frame so that its
 /// buffers are reused rather than allocated (and their pages faulted in) every frame.
@@ -189,173 +189,12 @@ impl Seen {
     }
 }
 
-/// Appends to `out` the placements of one cell that `sights` see.
-fn gather_cell(
-    world: &World,
-    (level, cell): (Level, &Cell),
-    sights: &[Sight],
-    lod: Option<LodView>,
-    out: &mut Vec<Seen>,
-) {
-    let slots = world.slots();
-    let tag = |sight: usize, slot: usize| (sight * slots + slot) as u32;
-    let impostors = world.groups.len() * MESH_LEVELS;
-    for (k, bounds, first, run) in cell.placements.occupied() {
-        let group = &world.groups[k];
-        let errors = &world.lods[group.variant].errors;
-        if let Some(lod) = lod
-            && nearest_distance(lod.eye, bounds.bases) >= lod.reach(errors).0
-        {
-            continue;
-        }
-        let Some(covers) = run_covers(sights, bounds) else {
-            continue;
-        };
-        let piece = Piece {
-            bounds,
-            first,
-            run,
-            sphere: group.sphere,
-            tag: 0,
-        };
-        // Without levels of detail, each placement as it is, at full detail.
-        let (levels, constant) = match lod {
-            Some(lod) => (Some((lod, errors)), lod.level_across(bounds.bases, errors)),
-            None => (None, Some(UNFADED[0])),
-        };
-        let slot = |s, level| (level < MESH_LEVELS).then(|| tag(s, k * MESH_LEVELS + level));
-        gather_piece(piece, (sights, covers), levels, constant, slot, out);
-    }
-    // Proxies: a coarse cell draws every one as it is; a fine cell, with levels of detail,
-    // those of its trees far enough to be drawn as impostors (none without).
-    let far = match (level, lod) {
-        (Level::Coarse, _) => None,
-        (Level::Fine, Some(lod)) => Some(lod),
-        (Level::Fine, None) => return,
-    };
-    for (k, bounds, first, run) in cell.proxies.occupied() {
-        let errors = &world.lods[k].errors;
-        if let Some(lod) = far
-            && farthest_distance(lod.eye, bounds.bases) < lod.reach(errors).1
-        {
-            continue;
-        }
-        let Some(covers) = run_covers(sights, bounds) else {
-            continue;
-        };
-        let piece = Piece {
-            bounds,
-            first,
-            run,
-            sphere: world.proxies[k].sphere,
-            tag: PROXY,
-        };
-        let (levels, constant) = match far {
-            Some(lod) => (Some((lod, errors)), lod.level_across(bounds.bases, errors)),
-            None => (None, Some(UNFADED[MESH_LEVELS])),
-        };
-        let slot = |s, level| (level == MESH_LEVELS).then(|| tag(s, impostors + k));
-        gather_piece(piece, (sights, covers), levels, constant, slot, out);
-    }
-}
-
-/// Each level (the impostor last) alone and unfaded: the placements of a cell drawn
-/// without levels of detail, and the proxies of a coarse cell. (Every instance's own fade
-/// is 0; the fade a frame gives it replaces it.)
-const UNFADED: [Levels; MESH_LEVELS + 1] = {
-    let mut all = [[None; 2]; MESH_LEVELS + 1];
-    let mut level = 0;
-    while level <= MESH_LEVELS {
-        all[level] = [Some((level, 0.0)), None];
-        level += 1;
-    }
-    all
-};
-
-/// A piece of a cell's run being gathered.
-struct Piece<'a> {
-    bounds: &'a RunBounds,
-    /// Where it starts in its cell's runs.
-    first: usize,
-    run: &'a [InstanceRaw],
-    /// Its instances' bounding sphere in their own space.
-    sphere: (Vec3, f32),
-    /// The bit its [`Seen::index`]es carry: [`PROXY`] or none.
-    tag: u32,
-}
-
-/// Appends to `out` what the sights see of one piece, with the `covers` of its bounds:
-/// each instance at the levels its base asks for of a variant with these errors, or the
-/// `constant` levels every instance has (known from the piece's bounds, or the levels
-/// being off), filed in `slot(sight, level)` (none: not drawn in this pass). Instances
-/// are tested only where the piece's bounds leave it open: a piece wholly seen by every
-/// sight that may see it, at one level, is taken whole, in the same order.
-fn gather_piece(
-    piece: Piece<'_>,
-    (sights, covers): (&[Sight], [Cover; MAX_SIGHTS]),
-    levels: Option<(LodView, &[f32; MESH_LEVELS])>,
-    constant: Option<Levels>,
-    slot: impl Fn(usize, usize) -> Option<u32>,
-    out: &mut Vec<Seen>,
-) {
-    let open = |s: usize| covers[s] != Cover::Out;
-    let whole: [bool; MAX_SIGHTS] =
-        std::array::from_fn(|s| s < sights.len() && sights[s].sees_whole(covers[s], piece.bounds));
-    let all_whole = (0..sights.len()).all(|s| !open(s) || whole[s]);
-    let index = |j: usize| (piece.first + j) as u32 | piece.tag;
-    let levels_of = |i: &InstanceRaw| match (constant, levels) {
-        (Some(constant), _) => constant,
-        (None, Some((lod, errors))) => lod.levels(i.base(), errors),
-        (None, None) => UNFADED[0],
-    };
-    if let (true, Some(levels)) = (all_whole, constant) {
-        // Slot by slot rather than instance by instance: each slot still receives the
-        // piece's instances in order, which is all the counting sort keeps.
-        for s in (0..sights.len()).filter(|&s| open(s)) {
-            for (level, fade) in levels.into_iter().flatten() {
-                if let Some(slot) = slot(s, level) {
-                    let seen = (0..piece.run.len()).map(|j| Seen {
-                        slot,
-                        index: index(j),
-                        fade,
-                    });
-                    out.extend(seen);
-                }
-            }
-        }
-        return;
-    }
-    for (j, i) in piece.run.iter().enumerate() {
-        let sphere = (!all_whole).then(|| world_sphere(i, piece.sphere));
-        let seen: [bool; MAX_SIGHTS] = std::array::from_fn(|s| {
-            open(s) && (whole[s] || sphere.is_some_and(|sphere| sights[s].sees(covers[s], sphere)))
-        });
-        // Most instances of a piece at the edge of a view are out of it: their levels are
-        // not worked out.
-        if !seen.contains(&true) {
-            continue;
-        }
-        let levels = levels_of(i);
-        for s in (0..sights.len()).filter(|&s| seen[s]) {
-            for (level, fade) in levels.into_iter().flatten() {
-                if let Some(slot) = slot(s, level) {
-                    out.push(Seen {
-                        slot,
-                        index: index(j),
-                        fade,
-                    });
-                }
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::cull::Volume;
     use crate::shadow::{SHADOW_TEXEL, light_view_proj};
-    use crate::world::{SceneOptions, lod_chain};
+    use crate::world::{MESH_LEVELS, SceneOptions, lod_chain, world_sphere};
     use proptest::prelude::*;
     use std::sync::{Mutex, OnceLock, PoisonError};
     use sylva::terrain::glam::Vec3;
