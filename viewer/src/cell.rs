@@ -1,6 +1,8 @@
 //! One streamed cell of the world: its key (column, row and level of detail), and its
 //! instances generated from the forest, a pure function of the world and the key.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use sylva::forest::{ForestError, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva::instancing::CompactTree;
 use sylva::terrain::glam::{Vec2, Vec3};
@@ -215,6 +217,9 @@ impl Runs {
     }
 }
 
+/// The next [`Cell::id`].
+static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+
 /// One streamed cell.
 pub(crate) struct Cell {
     /// Fine cells: the placements of every tree, by group (empty in coarse cells).
@@ -229,6 +234,9 @@ pub(crate) struct Cell {
     pub(crate) trees: usize,
     /// The version of the forest (see `World::repaint`) it was generated from.
     pub(crate) version: u64,
+    /// This cell's own number, unlike any other cell's made in this run: what the GPU's
+    /// copy of its instances is kept under (a cell made again after a repaint is another).
+    pub(crate) id: u64,
 }
 
 impl Cell {
@@ -255,6 +263,7 @@ impl Cell {
             sphere,
             trees,
             version,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
         }
     }
 

@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use crate::cell::{Cell, Level};
 use crate::cull::{Cover, LodView, MAX_SIGHTS, Sight};
+use crate::pool::Layout;
 use crate::scene::Scene;
 use crate::world::{InstanceRaw, World};
 use pass::gather_cell;
@@ -17,8 +18,12 @@ use pass::gather_cell;
 /// buffers are reused rather than allocated (and their pages faulted in) every frame.
 #[derive(Default)]
 pub(crate) struct Gathered {
-    /// Every sight's placements, sight by sight, and within one slot by slot.
+    /// Every sight's placements, sight by sight, and within one slot by slot; empty when
+    /// they are given as `picks`.
     pub(crate) visible: Vec<InstanceRaw>,
+    /// The same, as picks from the GPU's [`crate::pool::Pool`]: each placement's slot there and its
+    /// fade's bits; empty when some cell gathered is not in the pool.
+    pub(crate) picks: Vec<[u32; 2]>,
     /// The slots filled, in order (sight by sight).
     ranges: Vec<Range>,
     /// Where each sight's slots start in `ranges`.
@@ -48,8 +53,16 @@ impl Gathered {
     /// placements, so each placement is read and its level chosen once; runs that no sight
     /// can see, or whose trees are all past their meshes' reach, are passed over whole. The
     /// order out is the cells' order whatever the thread count.
-    pub(crate) fn gather(&mut self, scene: &Scene, sights: &[Sight], lod: Option<LodView>) {
-        self.gather_cells(&scene.world, &drawn(scene), sights, lod);
+    ///
+    /// With `pool` holding every cell gathered, the placements come out as `picks` from it;
+    /// otherwise as `visible`, copied.
+    pub(crate) fn gather(
+        &mut self,
+        scene: &Scene,
+        (sights, lod): (&[Sight], Option<LodView>),
+        pool: Option<&Layout>,
+    ) {
+        self.gather_cells(&scene.world, &drawn(scene), (sights, lod), pool);
     }
 
     /// [`Gathered::gather`] over the cells `drawn` of `world`.
@@ -57,8 +70,8 @@ impl Gathered {
         &mut self,
         world: &World,
         drawn: &[(Level, &Cell)],
-        sights: &[Sight],
-        lod: Option<LodView>,
+        (sights, lod): (&[Sight], Option<LodView>),
+        pool: Option<&Layout>,
     ) {
         let sights = &sights[..sights.len().min(MAX_SIGHTS)];
         let slots = world.slots();
@@ -119,12 +132,25 @@ impl Gathered {
                 *next += 1;
             }
         }
-        // Every element is written, so only a longer tail is zeroed first.
-        self.visible.truncate(first as usize);
-        self.visible.resize(first as usize, InstanceRaw::zeroed());
-        (self.visible.par_iter_mut().zip(&self.source)).for_each(|(out, &(c, j))| {
-            *out = tagged[c as usize][j as usize].instance(cells[c as usize].1);
-        });
+        // With every cell's instances on the GPU, only which of them each slot draws.
+        let bases: Option<Vec<[u32; 2]>> =
+            pool.and_then(|pool| cells.iter().map(|(_, cell)| pool.base(cell)).collect());
+        let count = first as usize;
+        if let Some(bases) = bases {
+            self.visible.clear();
+            self.picks.resize(count, [0; 2]);
+            (self.picks.par_iter_mut().zip(&self.source)).for_each(|(out, &(c, j))| {
+                *out = tagged[c as usize][j as usize].pick(bases[c as usize]);
+            });
+        } else {
+            self.picks.clear();
+            // Every element is written, so only a longer tail is zeroed first.
+            self.visible.truncate(count);
+            self.visible.resize(count, InstanceRaw::zeroed());
+            (self.visible.par_iter_mut().zip(&self.source)).for_each(|(out, &(c, j))| {
+                *out = tagged[c as usize][j as usize].instance(cells[c as usize].1);
+            });
+        }
         for &slot in &self.filled {
             self.cursor[slot as usize] = 0;
         }
@@ -176,6 +202,13 @@ struct Seen {
 const PROXY: u32 = 1 << 31;
 
 impl Seen {
+    /// The placement as a pick from the pool, where its cell's placements and proxies start
+    /// at `bases`.
+    fn pick(&self, bases: [u32; 2]) -> [u32; 2] {
+        let base = bases[usize::from(self.index & PROXY != 0)];
+        [base + (self.index & !PROXY), self.fade.to_bits()]
+    }
+
     /// The placement as the GPU draws it.
     fn instance(&self, cell: &Cell) -> InstanceRaw {
         let runs = if self.index & PROXY != 0 {
@@ -317,14 +350,45 @@ mod tests {
         out
     }
 
-    /// What `gathered` holds for each sight, in the reference's shape.
-    fn slots_of(gathered: &Gathered, scene: &Scene, sights: usize) -> Slots {
+    /// A layout holding every cell `scene` draws, and what the GPU's pool holds by it.
+    fn pool_of(scene: &Scene) -> (Layout, Vec<InstanceRaw>) {
+        let cells: Vec<&Cell> = scene.cells.drawn().map(|(_, c)| c).collect();
+        let total: usize = cells
+            .iter()
+            .map(|c| c.placements.len() + c.proxies.len())
+            .sum();
+        let mut layout = Layout::with_capacity(total as u32);
+        layout.hold(&cells).expect("every cell fits");
+        let mut image = vec![InstanceRaw::zeroed(); total];
+        for cell in cells {
+            let [a, b] = layout.base(cell).expect("held").map(|b| b as usize);
+            let (placements, proxies) = (&cell.placements.instances, &cell.proxies.instances);
+            image[a..a + placements.len()].copy_from_slice(placements);
+            image[b..b + proxies.len()].copy_from_slice(proxies);
+        }
+        (layout, image)
+    }
+
+    /// What `gathered` holds for each sight, in the reference's shape: its copies, or its
+    /// picks from `image`, the pool.
+    fn slots_of(gathered: &Gathered, scene: &Scene, sights: usize, image: &[InstanceRaw]) -> Slots {
+        let picked: Vec<InstanceRaw> = (gathered.picks.iter())
+            .map(|&[i, fade]| {
+                let mut out = image[i as usize];
+                out.tint[3] = f32::from_bits(fade);
+                out
+            })
+            .collect();
+        let placements = if gathered.picks.is_empty() {
+            &gathered.visible
+        } else {
+            &picked
+        };
         (0..sights)
             .map(|s| {
                 let mut slots = vec![Vec::new(); scene.world.slots()];
                 for r in gathered.ranges(s) {
-                    let placements =
-                        &gathered.visible[r.first as usize..(r.first + r.count) as usize];
+                    let placements = &placements[r.first as usize..(r.first + r.count) as usize];
                     slots[r.slot as usize] = bytemuck::cast_slice(placements).to_vec();
                 }
                 slots
@@ -337,6 +401,7 @@ mod tests {
         gathered: &mut Gathered,
         sights: &[Sight],
         lod: Option<LodView>,
+        layout: Option<&Layout>,
     ) {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -344,23 +409,77 @@ mod tests {
             .expect("a pool");
         with_scene(|scene| {
             let (world, drawn): (&World, _) = (&scene.world, drawn(scene));
-            pool.install(|| gathered.gather_cells(world, &drawn, sights, lod));
+            pool.install(|| gathered.gather_cells(world, &drawn, (sights, lod), layout));
         });
     }
 
     #[test]
-    fn a_frame_gathers_the_same_placements_on_one_thread_as_on_four() {
+    fn a_frame_gathers_the_same_placements_on_one_thread_as_on_four_and_copied_as_picked() {
         let eye = Vec3::new(120.0, 45.0, 130.0);
         let sights = sights(eye, Vec3::new(1.0, -0.2, 0.6).normalize());
-        let (mut one, mut four) = (Gathered::default(), Gathered::default());
-        gather_with(1, &mut one, &sights, Some(lod_view(eye)));
-        gather_with(4, &mut four, &sights, Some(lod_view(eye)));
-        assert!(!one.visible.is_empty(), "the view sees some of the forest");
-        with_scene(|scene| assert_eq!(slots_of(&one, scene, 2), slots_of(&four, scene, 2)));
-        assert_eq!(
-            bytemuck::cast_slice::<_, u8>(&one.visible),
-            bytemuck::cast_slice::<_, u8>(&four.visible)
+        let (layout, image) = with_scene(pool_of);
+        let lod = Some(lod_view(eye));
+        let mut gathered: [Gathered; 4] = Default::default();
+        gather_with(1, &mut gathered[0], &sights, lod, Some(&layout));
+        gather_with(4, &mut gathered[1], &sights, lod, Some(&layout));
+        gather_with(1, &mut gathered[2], &sights, lod, None);
+        gather_with(4, &mut gathered[3], &sights, lod, None);
+        assert!(
+            !gathered[0].picks.is_empty(),
+            "the view sees some of the forest"
         );
+        assert!(gathered[0].visible.is_empty() && gathered[2].picks.is_empty());
+        assert_eq!(gathered[0].picks, gathered[1].picks);
+        assert_eq!(
+            bytemuck::cast_slice::<_, u8>(&gathered[2].visible),
+            bytemuck::cast_slice::<_, u8>(&gathered[3].visible)
+        );
+        with_scene(|scene| {
+            let slots = gathered.each_ref().map(|g| slots_of(g, scene, 2, &image));
+            assert!(slots.iter().all(|s| *s == slots[0]));
+        });
+    }
+
+    /// A layout holds exactly the cells it is given: each in room of its own, all of them
+    /// again (in the same room) when asked again, none when they do not fit, and the room
+    /// of a cell no longer drawn is given back.
+    #[test]
+    fn a_layout_holds_the_cells_drawn_in_room_of_their_own() {
+        with_scene(|scene| {
+            let cells: Vec<&Cell> = scene.cells.drawn().map(|(_, c)| c).collect();
+            let len = |c: &Cell| (c.placements.len() + c.proxies.len()) as u32;
+            let total: u32 = cells.iter().map(|c| len(c)).sum();
+            assert!(cells.len() > 2 && total > 0);
+            let mut small = Layout::with_capacity(total - 1);
+            assert_eq!(small.hold(&cells), Err(u64::from(total)));
+            assert!(cells.iter().all(|c| small.base(c).is_none()));
+
+            let mut layout = Layout::with_capacity(total);
+            let placed = layout.hold(&cells).expect("they fit");
+            assert_eq!(placed.len(), cells.len());
+            let mut spans: Vec<(u32, u32)> = (cells.iter())
+                .filter(|c| len(c) > 0)
+                .map(|c| {
+                    let [a, b] = layout.base(c).expect("held");
+                    assert_eq!(b - a, c.placements.len() as u32);
+                    (a, a + len(c))
+                })
+                .collect();
+            spans.sort_unstable();
+            assert!(spans.windows(2).all(|w| w[0].1 <= w[1].0), "{spans:?}");
+            assert!(spans.last().is_some_and(|s| s.1 <= total));
+
+            let bases: Vec<_> = cells.iter().map(|c| layout.base(c)).collect();
+            assert_eq!(layout.hold(&cells), Ok(Vec::new()), "nothing new to upload");
+            let again: Vec<_> = cells.iter().map(|c| layout.base(c)).collect();
+            assert_eq!(bases, again);
+
+            // Without the first cell, its room is free for it to come back to.
+            let first = cells[0];
+            assert_eq!(layout.hold(&cells[1..]), Ok(Vec::new()));
+            assert_eq!(layout.base(first), None);
+            assert_eq!(layout.hold(&cells).map(|p| p.len()), Ok(1));
+        });
     }
 
     proptest! {
@@ -369,7 +488,7 @@ mod tests {
         /// Passing over whole runs and cells, and gathering cells on every core, give the
         /// placements a test of every placement gives, in the same order, from any view,
         /// with and without levels of detail; and a gathering that reuses the last frame's
-        /// buffers gives the same as a fresh one.
+        /// buffers and picks from the pool gives the same as a fresh one that copies.
         #[test]
         fn gathering_matches_a_placement_by_placement_reference(
             x in 0.0f32..300.0,
@@ -388,13 +507,15 @@ mod tests {
             let mut kept = KEPT.lock().unwrap_or_else(PoisonError::into_inner);
             let gathered = kept.get_or_insert_with(Gathered::default);
             let (kept, expected, fresh) = with_scene(|scene| {
-                gathered.gather(scene, &sights, lod);
+                // The kept one picks from the pool, the fresh one copies.
+                let (layout, image) = pool_of(scene);
+                gathered.gather(scene, (&sights, lod), Some(&layout));
                 let mut fresh = Gathered::default();
-                fresh.gather(scene, &sights[..1], lod);
+                fresh.gather(scene, (&sights[..1], lod), None);
                 (
-                    slots_of(gathered, scene, 2),
+                    slots_of(gathered, scene, 2, &image),
                     reference(scene, &sights, lod),
-                    slots_of(&fresh, scene, 1),
+                    slots_of(&fresh, scene, 1, &image),
                 )
             });
             prop_assert_eq!(&kept, &expected);

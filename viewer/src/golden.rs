@@ -132,7 +132,7 @@ fn default_scene_renders_terrain_and_trees() {
     let (shaded, stats) = offscreen
         .frame(&mut scene, &camera, Mode::Shaded)
         .expect("shaded render");
-    let adapter = &offscreen.adapter;
+    let adapter = offscreen.adapter.clone();
     assert!(stats.draws > 100 && stats.instances > 1000, "{stats:?}");
     // Shaded frames draw each tree at its level of detail; the first id frame drew every
     // branch.
@@ -143,6 +143,22 @@ fn default_scene_renders_terrain_and_trees() {
     assert!(
         stats.triangles * 4 < all.triangles,
         "{stats:?} against {all:?}"
+    );
+    // The frame's placements picked from the GPU's pool of the cells' placements, and
+    // copied on the CPU: the same picture, pixel for pixel.
+    assert!(
+        stats.picked || std::env::var_os("SYLVA_REQUIRE_GPU").is_none(),
+        "{adapter} runs compute shaders, so frames pick their placements on the GPU"
+    );
+    offscreen.renderer.instances.pick = false;
+    let (copied, copied_stats) = offscreen
+        .frame(&mut scene, &camera, Mode::Shaded)
+        .expect("shaded render");
+    offscreen.renderer.instances.pick = true;
+    assert!(!copied_stats.picked);
+    assert!(
+        copied == shaded,
+        "picked and copied placements draw different pictures"
     );
     if std::env::var_os("SYLVA_BLESS").is_some() {
         write_png(GOLDEN, &shaded);

@@ -155,6 +155,26 @@ pub(crate) fn targets(
     (colour, cv, dv)
 }
 
+/// The limits the viewer asks of `adapter`'s device: the textures' sizes, and storage
+/// buffers as large as it allows (the GPU's copy of the drawn cells' placements is one);
+/// with no compute at all on an adapter without compute shaders (frames then copy their
+/// placements on the CPU).
+fn limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
+    let most = adapter.limits();
+    let computes = (adapter.get_downlevel_capabilities().flags)
+        .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS);
+    let least = if computes {
+        wgpu::Limits::downlevel_defaults()
+    } else {
+        wgpu::Limits::downlevel_webgl2_defaults()
+    };
+    wgpu::Limits {
+        max_storage_buffer_binding_size: most.max_storage_buffer_binding_size,
+        max_buffer_size: most.max_buffer_size,
+        ..least.using_resolution(most)
+    }
+}
+
 /// Requests an adapter and device; `None` surface for headless use.
 pub(crate) async fn device(
     instance: &wgpu::Instance,
@@ -172,7 +192,7 @@ pub(crate) async fn device(
     let (device, queue) = adapter
         .request_device(&wgpu::DeviceDescriptor {
             label: Some("sylva viewer"),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            required_limits: limits(&adapter),
             ..Default::default()
         })
         .await

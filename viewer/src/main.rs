@@ -91,11 +91,13 @@ mod gather;
 mod golden;
 mod gpu;
 mod guide;
+mod instances;
 mod loader;
 mod materials;
 mod offscreen;
 mod painting;
 mod pipelines;
+mod pool;
 mod rebuild;
 mod render;
 mod scene;
@@ -570,8 +572,13 @@ fn run() -> Result<(), ViewerError> {
                 // The CPU's part of a frame, which the window pays too: streaming the cells
                 // in and out, culling and choosing levels of detail, uploading placements,
                 // recording the draws.
+                let placements = if stats.picked {
+                    "picked on the GPU"
+                } else {
+                    "copied on the CPU"
+                };
                 println!(
-                    "CPU per frame: {cpu:.1} ms (median of {}; streaming, culling, upload and recording the draws)",
+                    "CPU per frame: {cpu:.1} ms (median of {}; streaming, culling, upload and recording the draws; placements {placements})",
                     culling.len()
                 );
             }

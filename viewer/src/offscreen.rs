@@ -30,7 +30,7 @@ pub(crate) fn quiet_wayland_probe() -> Option<()> {
 pub(crate) struct Offscreen {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    renderer: Renderer,
+    pub(crate) renderer: Renderer,
     colour: wgpu::Texture,
     view: wgpu::TextureView,
     depth: wgpu::TextureView,

@@ -12,6 +12,7 @@ use crate::draw::{Draw, DrawIndex};
 use crate::error::ViewerError;
 use crate::gather::{Gathered, Range};
 use crate::gpu::{DEPTH, buffer, index_buffer};
+use crate::instances::Instances;
 use crate::materials::Materials;
 use crate::pipelines::Pipelines;
 use crate::scene::Scene;
@@ -51,6 +52,9 @@ pub(crate) struct FrameStats {
     /// placements for the camera and the sun, choosing levels of detail, gathering and
     /// uploading them, and recording the draws.
     pub(crate) cpu_ms: f64,
+    /// Whether its placements were picked on the GPU from the cells' placements held there
+    /// (otherwise they were copied on the CPU and uploaded).
+    pub(crate) picked: bool,
 }
 
 /// Where the frame is seen from, how it is shaded and how the wind blows.
@@ -87,10 +91,6 @@ struct VariantBuffers {
     leaves: Option<wgpu::Buffer>,
 }
 
-/// Bytes of each staging buffer: room for a default view's placements (about 4.4 MB at
-/// 1280x720) in one.
-const STAGING_CHUNK: u64 = 8 << 20;
-
 pub(crate) struct Renderer {
     texture_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
@@ -111,13 +111,8 @@ pub(crate) struct Renderer {
     terrain_count: u32,
     identity: wgpu::Buffer,
     variants: Vec<VariantBuffers>,
-    /// The placements in view this frame, then those in the sun's box; grown when a frame
-    /// needs more room.
-    instances: Option<wgpu::Buffer>,
-    /// Mapped buffers the placements are written into and copied from, kept and mapped
-    /// again after each frame: a fresh staging buffer per frame (what `Queue::write_buffer`
-    /// makes) costs megabytes of page faults and zeroing, frame after frame.
-    staging: wgpu::util::StagingBelt,
+    /// The buffer the draws read their placements from.
+    pub(crate) instances: Instances,
     draws: Vec<Draw>,
     /// Which draws each slot feeds.
     draw_index: DrawIndex,
@@ -286,8 +281,7 @@ impl Renderer {
                 wgpu::BufferUsages::VERTEX,
             ),
             variants,
-            instances: None,
-            staging: wgpu::util::StagingBelt::new(device.clone(), STAGING_CHUNK),
+            instances: Instances::new(device),
             draw_index: DrawIndex::of(&draws, world.slots()),
             draws,
             gathered: Gathered::default(),
@@ -347,8 +341,13 @@ impl Renderer {
             vec![camera]
         };
         let mut gathered = std::mem::take(&mut self.gathered);
-        gathered.gather(scene, &sights, lod);
-        self.upload_instances(device, encoder, &gathered.visible);
+        let pool = self.instances.hold(device, encoder, scene);
+        gathered.gather(scene, (&sights, lod), pool);
+        if !gathered.picks.is_empty() && !self.instances.can_pick(gathered.picks.len()) {
+            // More placements than one storage binding takes: copied on the CPU instead.
+            gathered.gather(scene, (&sights, lod), None);
+        }
+        self.instances.fill(device, encoder, &gathered);
         if shaded {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -407,9 +406,11 @@ impl Renderer {
             &self.impostor_ids
         };
         let stats = self.draw_scene(&mut pass, gathered.ranges(0), true, Some(impostor));
+        let picked = !gathered.picks.is_empty();
         self.gathered = gathered;
         FrameStats {
             cpu_ms: started.elapsed().as_secs_f64() * 1e3,
+            picked,
             ..stats
         }
     }
@@ -436,37 +437,6 @@ impl Renderer {
             wind: [wind.x, 0.0, wind.z, view.time],
         };
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
-    }
-
-    /// Puts the placements in view into the instance buffer, growing it when they need more
-    /// room than any frame before.
-    fn upload_instances(
-        &mut self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        visible: &[InstanceRaw],
-    ) {
-        // Staging chunks whose copies are done are mapped again by the device's callbacks.
-        // A poll that fails only delays that: the belt then makes another chunk.
-        let _ = device.poll(wgpu::PollType::Poll);
-        let bytes = size_of_val(visible) as u64;
-        if bytes > self.instances.as_ref().map_or(0, wgpu::Buffer::size) {
-            // Room for the most a frame has needed, rounded up, so walking does not
-            // reallocate it frame after frame.
-            self.instances = Some(device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("instances in view"),
-                size: bytes.next_power_of_two(),
-                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }));
-        }
-        if let Some(instances) = &self.instances
-            && let Some(size) = wgpu::BufferSize::new(bytes)
-        {
-            let mut view = self.staging.write_buffer(encoder, instances, 0, size);
-            view.copy_from_slice(bytemuck::cast_slice(visible));
-        }
-        self.staging.finish_and_recall_on_submit(encoder);
     }
 
     /// Draws the terrain and the placements of each slot in `ranges` (a group's level, or a
@@ -496,7 +466,7 @@ impl Renderer {
             stats.instances += 1;
             stats.triangles += u64::from(self.terrain_count / 3);
         }
-        let Some(instances) = &self.instances else {
+        let Some(instances) = self.instances.buffer() else {
             return stats;
         };
         pass.set_vertex_buffer(1, instances.slice(..));
