@@ -361,21 +361,13 @@ impl PatchDensity {
                     else {
                         continue;
                     };
-                    // The nearest canopy tree of the 3 x 3 patches around, the first of
-                    // equals in row order (distances are never NaN).
-                    let mut nearest: Option<(f32, _)> = None;
-                    for b in j - 1..=j + 1 {
-                        let row = at(i - 1, b);
-                        for c in &canopies[row..row + 3] {
-                            if !c.present {
-                                continue;
-                            }
-                            let d = p.distance(c.position);
-                            if nearest.is_none_or(|(best, _)| d < best) {
-                                nearest = Some((d, c.species));
-                            }
-                        }
-                    }
+                    let nearest = nearest_canopy(
+                        p,
+                        (0..3).map(|b| {
+                            let row = at(i - 1, j - 1 + b);
+                            &canopies[row..row + 3]
+                        }),
+                    );
                     let eliminate = match nearest {
                         Some((d, s)) => {
                             let r0 = self.seedling_clearance * self.radius(s);
@@ -398,6 +390,103 @@ impl PatchDensity {
                     }
                 }
             }
+        }
+    }
+}
+
+/// The nearest canopy tree to `p` of the 3 x 3 patches around it (given as three rows of
+/// three), as its distance and species: the first of equal distances in row order, as a
+/// search comparing `p.distance(c)` tree by tree finds it (distances are never NaN).
+///
+/// It compares squared distances and takes one square root, not nine: a square root's
+/// latency chained through the comparisons was most of the seedlings' thinning. Squares
+/// that differ can round to one distance, so the trees whose squares are within a few
+/// ulps of the least are checked by their distance, in order, which keeps the same tree
+/// and the same bits.
+#[inline]
+fn nearest_canopy<'a>(p: Vec2, rows: impl Iterator<Item = &'a [Canopy]>) -> Option<(f32, usize)> {
+    let mut squares = [(f32::INFINITY, 0usize); 9];
+    let mut least = f32::INFINITY;
+    for (r, row) in rows.enumerate() {
+        for (k, c) in row.iter().enumerate() {
+            let square = if c.present {
+                (p - c.position).length_squared()
+            } else {
+                f32::INFINITY
+            };
+            squares[r * 3 + k] = (square, c.species);
+            least = least.min(square);
+        }
+    }
+    if least == f32::INFINITY {
+        return None;
+    }
+    let d = least.sqrt();
+    // A square whose root rounds to `d` is at most about `least * (1 + 2 eps)`.
+    let near = least * (1.0 + 4.0 * f32::EPSILON);
+    squares
+        .iter()
+        .find(|&&(square, _)| square <= near && square.sqrt() == d)
+        .map(|&(_, species)| (d, species))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The search `nearest_canopy` replaces: tree by tree, by distance, the first of equals.
+    fn by_distance(p: Vec2, trees: &[Canopy]) -> Option<(f32, usize)> {
+        let mut nearest: Option<(f32, usize)> = None;
+        for c in trees.iter().filter(|c| c.present) {
+            let d = p.distance(c.position);
+            if nearest.is_none_or(|(best, _)| d < best) {
+                nearest = Some((d, c.species));
+            }
+        }
+        nearest
+    }
+
+    /// An offset of a few kinds: any, one of a handful shared between trees (equal
+    /// distances), or one a few ulps from a shared one (squares that differ by little and
+    /// may round to one distance).
+    fn offset() -> impl Strategy<Value = Vec2> {
+        let shared = prop::sample::select(vec![
+            Vec2::new(1.5, 2.25),
+            Vec2::new(-2.25, 1.5),
+            Vec2::new(0.3, -0.7),
+        ]);
+        prop_oneof![
+            (-6.0f32..6.0, -6.0f32..6.0).prop_map(|(x, y)| Vec2::new(x, y)),
+            shared.clone(),
+            (shared, -3i32..=3, -3i32..=3).prop_map(|(v, a, b)| {
+                let nudge = |x: f32, n: i32| f32::from_bits((x.to_bits() as i32 + n) as u32);
+                Vec2::new(nudge(v.x, a), nudge(v.y, b))
+            }),
+        ]
+    }
+
+    proptest! {
+        /// Squared distances and one square root find the tree a search by distance finds,
+        /// with the same distance's bits, ties and near ties included.
+        #[test]
+        fn nearest_canopy_is_the_first_nearest_by_distance(
+            p in (0.0f32..100.0, 0.0f32..100.0),
+            trees in prop::collection::vec((offset(), any::<bool>(), 0usize..5), 9),
+        ) {
+            let p = Vec2::new(p.0, p.1);
+            let trees: Vec<Canopy> = trees
+                .into_iter()
+                .map(|(offset, present, species)| Canopy {
+                    position: p + offset,
+                    species,
+                    priority: 0,
+                    present,
+                })
+                .collect();
+            let found = nearest_canopy(p, trees.chunks(3));
+            let expected = by_distance(p, &trees);
+            prop_assert_eq!(found.map(|(d, s)| (d.to_bits(), s)), expected.map(|(d, s)| (d.to_bits(), s)));
         }
     }
 }

@@ -4,7 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Quat, Vec3};
 
-use crate::cache::{Instance, InstanceCache};
+use crate::cache::{Candidates, Instance, InstanceCache};
 use crate::error::InstancingError;
 use crate::options::ROOT;
 use crate::similarity::Similarity;
@@ -115,18 +115,6 @@ impl Placements {
     /// Instances with at least one placement (draw calls needed).
     pub fn used_instances(&self) -> usize {
         self.groups.iter().filter(|g| !g.is_empty()).count()
-    }
-}
-
-/// How many of a key's candidates are complete (no exits), given their exit counts in
-/// ascending order. Most keys are all whole branches or have none, and their ends say so
-/// without a search.
-#[inline]
-fn complete_candidates(exits: &[u32]) -> usize {
-    match (exits.first(), exits.last()) {
-        (_, Some(0)) => exits.len(),
-        (Some(&first), _) if first > 0 => 0,
-        _ => exits.partition_point(|&e| e == 0),
     }
 }
 
@@ -308,12 +296,15 @@ impl Assembler {
             if depth > self.limits.max_depth {
                 break Err(InstancingError::AssemblyLimit("depth"));
             }
-            let (candidates, exits) = cache.lookup_with_exits(id, age);
+            let Candidates {
+                indices: candidates,
+                whole: complete,
+                exits,
+            } = cache.candidates_of(id, age);
             if candidates.is_empty() {
                 // Heroes guarantee a candidate for every exit; only a foreign cache gets here.
                 break Err(InstancingError::AssemblyLimit("missing instance"));
             }
-            let complete = complete_candidates(exits);
             let chosen = if depth == 0 {
                 // The root: a crown with exits when there are any (a whole hero would make
                 // every tree that draws it the same tree), so crowns differ from tree to tree.
@@ -489,15 +480,6 @@ mod tests {
                 prop_assert_eq!(&at_once, &pending);
                 prop_assert_eq!(&visited_at_once, &visited);
             }
-        }
-    }
-
-    proptest! {
-        /// The count read from the ends is the search's, for every ascending list.
-        #[test]
-        fn complete_candidates_are_the_zero_prefix(mut exits in proptest::collection::vec(0u32..4, 0..40)) {
-            exits.sort_unstable();
-            prop_assert_eq!(complete_candidates(&exits), exits.partition_point(|&e| e == 0));
         }
     }
 }

@@ -43,6 +43,23 @@ pub const EXIT_BYTES: usize = size_of::<Exit>();
 /// Bytes one lookup candidate costs against the budget (its index and its exit count).
 pub const CANDIDATE_BYTES: usize = 8;
 
+/// The bit of a key's first `candidate_exits` entry that says it counts the key's whole
+/// branches rather than giving an exit count.
+const WHOLE_COUNT: u32 = 1 << 31;
+
+/// One key's candidates, as assembly chooses among them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Candidates<'a> {
+    /// Indices into [`InstanceCache::instances`], fewest exits first (stable), so the whole
+    /// branches are a prefix.
+    pub(crate) indices: &'a [u32],
+    /// How many of them are whole branches (no exits).
+    pub(crate) whole: usize,
+    /// Their exit counts, when none is a whole branch (`whole` 0); otherwise not exit
+    /// counts, and not to be read.
+    pub(crate) exits: &'a [u32],
+}
+
 /// The cache of one species: geometry, instances, exits and the lookup table.
 #[derive(Debug, Clone, Default)]
 pub struct InstanceCache {
@@ -60,7 +77,11 @@ pub struct InstanceCache {
     table: Vec<Span>,
     candidates: Vec<u32>,
     /// Exit counts of `candidates`, side by side so assembly compares them without touching
-    /// the instances.
+    /// the instances; except that where a key's first candidate is a whole branch (no
+    /// exits) its entry holds, with [`WHOLE_COUNT`] set, how many of the key's candidates
+    /// are whole branches. Assembly then knows them from the one entry it reads, with no
+    /// search of a key that mixes whole branches and branches with exits (a binary search
+    /// whose every step waited on memory), and the cache is no larger.
     candidate_exits: Vec<u32>,
     ages: u32,
     budget: usize,
@@ -92,25 +113,35 @@ impl InstanceCache {
     /// Candidates for (id, age) in O(1): indices into [`InstanceCache::instances`].
     #[inline]
     pub fn lookup(&self, id: u32, age: u32) -> &[u32] {
-        self.lookup_with_exits(id, age).0
+        self.candidates_of(id, age).indices
     }
 
-    /// Candidates for (id, age) and their exit counts, fewest exits first (stable), so the
-    /// complete candidates are a prefix.
+    /// The candidates for (id, age), fewest exits first (stable), with how many are whole
+    /// branches.
     #[inline]
-    pub(crate) fn lookup_with_exits(&self, id: u32, age: u32) -> (&[u32], &[u32]) {
-        if age >= self.ages {
-            return (&[], &[]);
-        }
-        match self
-            .table
-            .get((id as usize) * self.ages as usize + age as usize)
-        {
-            Some(span) => (
-                &self.candidates[span.range()],
-                &self.candidate_exits[span.range()],
-            ),
-            None => (&[], &[]),
+    pub(crate) fn candidates_of(&self, id: u32, age: u32) -> Candidates<'_> {
+        let span = (age < self.ages)
+            .then(|| {
+                self.table
+                    .get((id as usize) * self.ages as usize + age as usize)
+            })
+            .flatten();
+        let Some(span) = span else {
+            return Candidates {
+                indices: &[],
+                whole: 0,
+                exits: &[],
+            };
+        };
+        let exits = &self.candidate_exits[span.range()];
+        let whole = match exits.first() {
+            Some(&first) if first & WHOLE_COUNT != 0 => (first & !WHOLE_COUNT) as usize,
+            _ => 0,
+        };
+        Candidates {
+            indices: &self.candidates[span.range()],
+            whole,
+            exits,
         }
     }
 
@@ -137,10 +168,57 @@ impl InstanceCache {
             self.table
                 .push(Span::new(self.candidates.len() as u32, l.len() as u32));
             let instances = &self.instances;
-            self.candidate_exits
-                .extend(l.iter().map(|&i| instances[i as usize].exits.count));
+            let whole = l.partition_point(|&i| instances[i as usize].exits.count == 0);
+            let exits = l.iter().enumerate().map(|(k, &i)| match (k, whole) {
+                // The count fits below the flag: a key has fewer candidates than 2^31.
+                (0, 1..) => WHOLE_COUNT | whole as u32,
+                _ => instances[i as usize].exits.count,
+            });
+            self.candidate_exits.extend(exits);
             self.candidates.extend(l);
         }
         self.ages = ages;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{HeroOptions, build_cache};
+
+    /// Each key knows how many of its candidates are whole branches, and they come first;
+    /// a key with none gives its candidates' exit counts. Across these caches there are
+    /// keys of every kind: all whole branches, none, and a mix.
+    #[test]
+    fn each_key_counts_its_whole_branches() {
+        let mut kinds = [0usize; 3];
+        for (preset, budget) in [("sylva-birch", 256 << 10), ("kenwood-leafy", 2 << 20)] {
+            let grammar = sylva_lsys::preset(preset)
+                .expect("preset")
+                .lsystem()
+                .expect("parses");
+            let options = HeroOptions::default()
+                .with_budget(budget)
+                .with_generations(5);
+            let cache = build_cache(&grammar, &options).expect("fits").cache;
+            let ids = cache.instances.iter().map(|i| i.id + 1).max().unwrap_or(0);
+            for id in 0..ids {
+                for age in 0..cache.ages {
+                    let key = cache.candidates_of(id, age);
+                    let exits: Vec<u32> = (key.indices.iter())
+                        .map(|&i| cache.instances[i as usize].exits.count)
+                        .collect();
+                    let whole = exits.iter().filter(|&&e| e == 0).count();
+                    assert_eq!(key.whole, whole, "key ({id}, {age}): {exits:?}");
+                    assert!(exits[..whole].iter().all(|&e| e == 0), "{exits:?}");
+                    if whole == 0 {
+                        assert_eq!(key.exits, &exits[..]);
+                    }
+                    if !exits.is_empty() {
+                        kinds[usize::from(whole > 0) + usize::from(whole == exits.len())] += 1;
+                    }
+                }
+            }
+        }
+        assert!(kinds.iter().all(|&k| k > 0), "none, mixed, all: {kinds:?}");
     }
 }

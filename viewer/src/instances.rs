@@ -86,8 +86,7 @@ impl Instances {
     /// Whether a frame's `count` placements can be picked on the GPU: the instance buffer
     /// they fill is bound as one storage buffer, and must fit in one binding.
     pub(crate) fn can_pick(&self, count: usize) -> bool {
-        (self.picking.as_ref())
-            .is_some_and(|p| count as u64 * INSTANCE <= p.most)
+        (self.picking.as_ref()).is_some_and(|p| count as u64 * INSTANCE <= p.most)
     }
 
     /// Fills the instance buffer with the frame's placements: picked on the GPU from the
