@@ -148,8 +148,10 @@ impl Heightmap {
     }
 }
 
-/// One row blurred across: `row` through a padded copy (edges as `index` folds them) so that
-/// the inner loops run over contiguous memory and vectorise.
+/// One row blurred across: `row` through a padded copy (edges as `index` folds them), then
+/// summed as the blur down sums rows, the copy shifted by each tap standing for the rows
+/// above and below: strips of outputs stay in registers through every tap instead of being
+/// loaded and stored once per tap (the same sum in the same order, so the same bits).
 fn blur_row(
     row: &[f32],
     out: &mut [f32],
@@ -158,18 +160,16 @@ fn blur_row(
     index: &impl Fn(isize) -> usize,
 ) {
     let (n, r) = (row.len(), w.len() - 1);
-    for (i, p) in pad.iter_mut().enumerate() {
-        *p = row[index(i as isize - r as isize)];
+    // Only the `r` samples past each edge are folded; the row itself is copied whole.
+    pad[r..r + n].copy_from_slice(row);
+    for i in (0..r).chain(r + n..n + 2 * r) {
+        pad[i] = row[index(i as isize - r as isize)];
     }
-    for (x, o) in out.iter_mut().enumerate() {
-        *o = w[0] * pad[x + r];
-    }
-    for (k, &wk) in w.iter().enumerate().skip(1) {
-        let (left, right) = (&pad[r - k..r - k + n], &pad[r + k..r + k + n]);
-        for ((o, a), b) in out.iter_mut().zip(left).zip(right) {
-            *o += wk * (a + b);
-        }
-    }
+    let pad = &*pad;
+    let taps: Vec<(f32, &[f32], &[f32])> = (w.iter().enumerate().skip(1))
+        .map(|(k, &wk)| (wk, &pad[r - k..r - k + n], &pad[r + k..r + k + n]))
+        .collect();
+    blur_down(&pad[r..r + n], &taps, w[0], out);
 }
 
 /// One output row of the blur down: `w0` times `centre`, plus each tap's weight times the
