@@ -20,6 +20,7 @@ const ROW: u32 = 65535;
 /// Bytes of one placement.
 const INSTANCE: u64 = size_of::<InstanceRaw>() as u64;
 
+/// The frame's instance buffer and what fills it.
 pub(crate) struct Instances {
     /// The placements in view this frame, then those in the sun's box; grown when a frame
     /// needs more room.
@@ -36,6 +37,7 @@ pub(crate) struct Instances {
     pub(crate) pick: bool,
 }
 
+/// What picks a frame's placements on the GPU.
 struct Picking {
     pool: Pool,
     pipeline: wgpu::ComputePipeline,
@@ -47,6 +49,8 @@ struct Picking {
 }
 
 impl Instances {
+    /// An empty instance buffer, picking on the GPU where `device` runs compute shaders
+    /// with storage buffers enough.
     pub(crate) fn new(device: &wgpu::Device) -> Instances {
         let limits = device.limits();
         let computes = limits.max_compute_workgroups_per_dimension >= ROW
@@ -106,9 +110,14 @@ impl Instances {
             self.buffer = Some(device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("instances in view"),
                 size: bytes.next_power_of_two(),
+                // Written by the picking pass where there is one.
                 usage: wgpu::BufferUsages::VERTEX
                     | wgpu::BufferUsages::COPY_DST
-                    | wgpu::BufferUsages::STORAGE,
+                    | if self.picking.is_some() {
+                        wgpu::BufferUsages::STORAGE
+                    } else {
+                        wgpu::BufferUsages::empty()
+                    },
                 mapped_at_creation: false,
             }));
         }

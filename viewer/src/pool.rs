@@ -23,6 +23,7 @@ pub(crate) struct Layout {
     held: HashMap<u64, Held>,
 }
 
+/// Where one held cell's instances are.
 #[derive(Debug, Clone, Copy)]
 struct Held {
     first: u32,
@@ -139,6 +140,7 @@ pub(crate) struct Pool {
 }
 
 impl Pool {
+    /// An empty pool, sized to what one storage binding of `device` takes at most.
     pub(crate) fn new(device: &wgpu::Device) -> Pool {
         let limits = device.limits();
         let bytes = (limits.max_storage_buffer_binding_size).min(limits.max_buffer_size);
