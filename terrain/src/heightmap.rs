@@ -1,6 +1,7 @@
 //! The `Heightmap` grid.
 
 use glam::Vec2;
+use rayon::prelude::*;
 
 use crate::error::{TerrainError, check};
 
@@ -68,7 +69,7 @@ impl Heightmap {
                 size,
             });
         }
-        if let Some(index) = heights.iter().position(|h| !h.is_finite()) {
+        if let Some(index) = first_non_finite(&heights) {
             return Err(TerrainError::NonFiniteHeight { index, size });
         }
         Ok(Heightmap {
@@ -155,4 +156,48 @@ pub(crate) fn repeat_first_row_and_column(h: &mut [f32], n: usize) {
 pub(crate) fn checked_len(size: usize) -> Result<usize, TerrainError> {
     levels_of(size)?;
     Ok(size * size)
+}
+
+/// The index of the first height that is not finite, if any. Blocks are checked on every
+/// core without stopping early, so the check vectorises (a search that stops at the first
+/// found did not, and took 15% of diamond-square at 4097²); only a failing block is
+/// searched.
+fn first_non_finite(heights: &[f32]) -> Option<usize> {
+    const BLOCK: usize = 1 << 14;
+    let finite = |block: &[f32]| block.iter().fold(true, |all, h| all & h.is_finite());
+    let bad = heights
+        .par_chunks(BLOCK)
+        .position_first(|block| !finite(block))?;
+    let block = &heights[bad * BLOCK..];
+    block
+        .iter()
+        .position(|h| !h.is_finite())
+        .map(|i| bad * BLOCK + i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The blockwise check finds the first height that is not finite, as a search does,
+        /// across block boundaries and with several bad heights.
+        #[test]
+        fn the_first_non_finite_height_is_found(
+            len in 0usize..70_000,
+            bad in prop::collection::vec((any::<prop::sample::Index>(), 0u8..3), 0..4),
+        ) {
+            let mut heights = vec![1.5f32; len];
+            if len > 0 {
+                for (at, kind) in bad {
+                    heights[at.index(len)] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY][kind as usize];
+                }
+            }
+            prop_assert_eq!(
+                first_non_finite(&heights),
+                heights.iter().position(|h| !h.is_finite())
+            );
+        }
+    }
 }
