@@ -188,7 +188,6 @@ impl Heightmap {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use proptest::prelude::*;
 
     proptest! {
