@@ -94,6 +94,7 @@ mod guide;
 mod instances;
 mod loader;
 mod materials;
+mod meshes;
 mod offscreen;
 mod painting;
 mod pipelines;

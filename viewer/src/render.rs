@@ -1,24 +1,25 @@
-//! The GPU side of the viewer: one shared vertex and index buffer per species variant, one
-//! instance buffer, one `draw_indexed` per instance range and bark or leaves; the materials
-//! are one array bound once per pass, indexed by a material number on each vertex.
+//! A frame on the GPU: the uniforms, the sun's shadow pass and the forest pass, with one
+//! `draw_indexed` per instance range and bark or leaves over the meshes uploaded once
+//! ([`crate::meshes`]) and the one instance buffer; the materials are one array bound once
+//! per pass, indexed by a material number on each vertex.
 
 use bytemuck::{Pod, Zeroable};
 use sylva::terrain::glam::{Mat4, Vec3};
-use sylva::turtle::Vertex;
 
 use crate::cells::{Streamed, VIEW_DISTANCE};
 use crate::cull::{LodView, Sight, Volume};
 use crate::draw::{Draw, DrawIndex};
 use crate::error::ViewerError;
 use crate::gather::{Gathered, Range};
-use crate::gpu::{DEPTH, buffer, index_buffer};
+use crate::gpu::{DEPTH, buffer};
 use crate::instances::Instances;
 use crate::materials::Materials;
+use crate::meshes::Meshes;
 use crate::pipelines::Pipelines;
 use crate::scene::Scene;
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::textures;
-use crate::world::{InstanceRaw, lod_chain};
+use crate::world::lod_chain;
 
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];
@@ -82,15 +83,6 @@ pub(crate) enum Mode {
     Ids,
 }
 
-struct VariantBuffers {
-    vertices: wgpu::Buffer,
-    /// Each vertex's material (an index into the material array): its variant's bark or
-    /// leaf material.
-    materials: wgpu::Buffer,
-    bark: Option<wgpu::Buffer>,
-    leaves: Option<wgpu::Buffer>,
-}
-
 pub(crate) struct Renderer {
     texture_group: wgpu::BindGroup,
     shaded: wgpu::RenderPipeline,
@@ -104,13 +96,8 @@ pub(crate) struct Renderer {
     globals_group: wgpu::BindGroup,
     /// Every material (the terrain's first), bound once per pass; each vertex names its own.
     material_group: wgpu::BindGroup,
-    terrain_vertices: wgpu::Buffer,
-    /// Material 0 (the terrain) for each terrain vertex.
-    terrain_materials: wgpu::Buffer,
-    terrain_indices: wgpu::Buffer,
-    terrain_count: u32,
-    identity: wgpu::Buffer,
-    variants: Vec<VariantBuffers>,
+    /// The variants', proxies' and terrain's meshes.
+    meshes: Meshes,
     /// The buffer the draws read their placements from.
     pub(crate) instances: Instances,
     draws: Vec<Draw>,
@@ -178,71 +165,8 @@ impl Renderer {
                 resource: material_buffer.as_entire_binding(),
             }],
         });
-        // The variants' caches, then their proxies.
-        let variant_buffers =
-            |vertices: &[Vertex],
-             bark: &[u32],
-             leaves: &[u32],
-             (bark_material, leaf_material): (u32, u32)| {
-                let mut of_vertex = vec![leaf_material; vertices.len()];
-                for &i in bark {
-                    of_vertex[i as usize] = bark_material;
-                }
-                VariantBuffers {
-                    vertices: buffer(
-                        device,
-                        "variant vertices",
-                        bytemuck::cast_slice(vertices),
-                        wgpu::BufferUsages::VERTEX,
-                    ),
-                    materials: buffer(
-                        device,
-                        "variant materials",
-                        bytemuck::cast_slice(&of_vertex),
-                        wgpu::BufferUsages::VERTEX,
-                    ),
-                    bark: index_buffer(device, "bark indices", bark),
-                    leaves: index_buffer(device, "leaf indices", leaves),
-                }
-            };
-        let variants: Vec<VariantBuffers> = world
-            .variants
-            .iter()
-            .zip(&materials.variants)
-            .map(|(v, &m)| variant_buffers(&v.vertices, &v.bark, &v.leaves, m))
-            .chain(world.proxies.iter().zip(&materials.proxies).map(|(p, &m)| {
-                // An impostor card's vertices name its bark material (for the id mode).
-                let vertices: Vec<Vertex> = p
-                    .vertices
-                    .iter()
-                    .map(|v| Vertex {
-                        wind: [v.wind[0], v.wind[1], v.wind[2], m.0 as f32],
-                        ..*v
-                    })
-                    .collect();
-                variant_buffers(&vertices, &p.bark, &p.leaves, m)
-            }))
-            .collect();
+        let meshes = Meshes::new(device, scene, &materials);
         let draws = Draw::all(world);
-        let identity = InstanceRaw {
-            rotation: [0.0, 0.0, 0.0, 1.0],
-            translation_scale: [0.0, 0.0, 0.0, 1.0],
-            // Tint w is the fade between levels of detail: 0, whole.
-            tint: [1.0, 1.0, 1.0, 0.0],
-            tree: [0.0; 4],
-        };
-        // Terrain vertices in the trees' vertex layout (no wind: the shader leaves the
-        // terrain material still).
-        let terrain: Vec<Vertex> = scene
-            .terrain_vertices
-            .iter()
-            .map(|t| Vertex {
-                position: t.position,
-                normal: t.normal,
-                uv: t.uv,
-                wind: [0.0; 4],
-            })
-            .collect();
         Ok(Renderer {
             texture_group,
             shaded: pipelines.shaded,
@@ -255,32 +179,7 @@ impl Renderer {
             globals,
             globals_group,
             material_group,
-            terrain_vertices: buffer(
-                device,
-                "terrain vertices",
-                bytemuck::cast_slice(&terrain),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            terrain_materials: buffer(
-                device,
-                "terrain materials",
-                bytemuck::cast_slice(&vec![0u32; terrain.len()]),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            terrain_indices: buffer(
-                device,
-                "terrain indices",
-                bytemuck::cast_slice(&scene.terrain_indices),
-                wgpu::BufferUsages::INDEX,
-            ),
-            terrain_count: scene.terrain_indices.len() as u32,
-            identity: buffer(
-                device,
-                "identity instance",
-                bytemuck::bytes_of(&identity),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            variants,
+            meshes,
             instances: Instances::new(device),
             draw_index: DrawIndex::of(&draws, world.slots()),
             draws,
@@ -457,14 +356,15 @@ impl Renderer {
         pass.set_bind_group(2, &self.texture_group, &[]);
         let mut stats = FrameStats::default();
         if terrain {
-            pass.set_vertex_buffer(0, self.terrain_vertices.slice(..));
-            pass.set_vertex_buffer(2, self.terrain_materials.slice(..));
-            pass.set_vertex_buffer(1, self.identity.slice(..));
-            pass.set_index_buffer(self.terrain_indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..self.terrain_count, 0, 0..1);
+            let t = &self.meshes.terrain;
+            pass.set_vertex_buffer(0, t.vertices.slice(..));
+            pass.set_vertex_buffer(2, t.materials.slice(..));
+            pass.set_vertex_buffer(1, t.identity.slice(..));
+            pass.set_index_buffer(t.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..t.count, 0, 0..1);
             stats.draws += 1;
             stats.instances += 1;
-            stats.triangles += u64::from(self.terrain_count / 3);
+            stats.triangles += u64::from(t.count / 3);
         }
         let Some(instances) = self.instances.buffer() else {
             return stats;
@@ -489,7 +389,7 @@ impl Renderer {
                 cards = true;
             }
             let count = range.count;
-            let v = &self.variants[d.variant];
+            let v = &self.meshes.variants[d.variant];
             let indices = if d.bark { &v.bark } else { &v.leaves };
             let Some(indices) = indices else { continue };
             if bound != Some((d.variant, d.bark)) {
