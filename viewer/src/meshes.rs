@@ -65,43 +65,6 @@ pub(crate) struct TerrainBuffers {
     pub(crate) identity: wgpu::Buffer,
 }
 
-/// Every mesh a frame may draw.
-pub(crate) struct Meshes {
-    /// The variants' meshes in the world's order, then the proxies' (the impostor cards):
-    /// a draw's variant number indexes it.
-    pub(crate) variants: Vec<VariantBuffers>,
-    pub(crate) terrain: TerrainBuffers,
-}
-
-impl Meshes {
-    /// Uploads `scene`'s meshes, each vertex naming its material in `materials`.
-    pub(crate) fn new(device: &wgpu::Device, scene: &Scene, materials: &Materials) -> Meshes {
-        let world = &scene.world;
-        let variants = world
-            .variants
-            .iter()
-            .zip(&materials.variants)
-            .map(|(v, &m)| VariantBuffers::new(device, &v.vertices, (&v.bark, &v.leaves), m))
-            .chain(world.proxies.iter().zip(&materials.proxies).map(|(p, &m)| {
-                // An impostor card's vertices name its bark material (for the id mode).
-                let vertices: Vec<Vertex> = p
-                    .vertices
-                    .iter()
-                    .map(|v| Vertex {
-                        wind: [v.wind[0], v.wind[1], v.wind[2], m.0 as f32],
-                        ..*v
-                    })
-                    .collect();
-                VariantBuffers::new(device, &vertices, (&p.bark, &p.leaves), m)
-            }))
-            .collect();
-        Meshes {
-            variants,
-            terrain: TerrainBuffers::new(device, scene),
-        }
-    }
-}
-
 impl TerrainBuffers {
     /// Uploads `scene`'s terrain mesh, every vertex of it material 0.
     fn new(device: &wgpu::Device, scene: &Scene) -> TerrainBuffers {
@@ -150,6 +113,43 @@ impl TerrainBuffers {
                 bytemuck::bytes_of(&identity),
                 wgpu::BufferUsages::VERTEX,
             ),
+        }
+    }
+}
+
+/// Every mesh a frame may draw.
+pub(crate) struct Meshes {
+    /// The variants' meshes in the world's order, then the proxies' (the impostor cards):
+    /// a draw's variant number indexes it.
+    pub(crate) variants: Vec<VariantBuffers>,
+    pub(crate) terrain: TerrainBuffers,
+}
+
+impl Meshes {
+    /// Uploads `scene`'s meshes, each vertex naming its material in `materials`.
+    pub(crate) fn new(device: &wgpu::Device, scene: &Scene, materials: &Materials) -> Meshes {
+        let world = &scene.world;
+        let variants = world
+            .variants
+            .iter()
+            .zip(&materials.variants)
+            .map(|(v, &m)| VariantBuffers::new(device, &v.vertices, (&v.bark, &v.leaves), m))
+            .chain(world.proxies.iter().zip(&materials.proxies).map(|(p, &m)| {
+                // An impostor card's vertices name its bark material (for the id mode).
+                let vertices: Vec<Vertex> = p
+                    .vertices
+                    .iter()
+                    .map(|v| Vertex {
+                        wind: [v.wind[0], v.wind[1], v.wind[2], m.0 as f32],
+                        ..*v
+                    })
+                    .collect();
+                VariantBuffers::new(device, &vertices, (&p.bark, &p.leaves), m)
+            }))
+            .collect();
+        Meshes {
+            variants,
+            terrain: TerrainBuffers::new(device, scene),
         }
     }
 }
