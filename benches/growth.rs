@@ -13,7 +13,7 @@ use sylva::terrain::FlatPlane;
 
 fn oak() -> Species {
     Species::parse_file(
-        include_str!("../examples/species/oak.species"),
+        include_str!("../world/species/oak/oak.species"),
         Path::new("oak.species"),
     )
     .expect("bundled species parse")

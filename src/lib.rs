@@ -26,5 +26,5 @@ pub use sylva_lsys as lsys;
 pub use sylva_paint as paint;
 pub use sylva_terrain as terrain;
 pub use sylva_turtle as turtle;
-
-pub mod presets;
+pub use sylva_world as world;
+pub use sylva_world::presets;

@@ -11,8 +11,12 @@ use sylva::forest::{ForestBuilder, ForestError, PlacementBlock, Rect};
 use sylva::instancing::Assembler;
 use sylva::terrain::Heightmap;
 
+use sylva::world::Fit;
+use sylva::world::limits::DEFAULT_REGION_SIDE;
+
 use crate::Failure;
 use crate::progress::{ms, peak_rss_mb, phase, print_stats};
+use crate::tiles::TilesArgs;
 use crate::world::WorldArgs;
 
 /// `sylva forest`'s flags.
@@ -26,9 +30,14 @@ use crate::world::WorldArgs;
 pub(crate) struct ForestArgs {
     #[command(flatten)]
     world: WorldArgs,
-    /// The glTF file to write (default forest.glb; with --usd, only when given).
+    /// The glTF file to write (default forest.glb; with --usd, only when given). With
+    /// --whole, the tileset's folder (default forest_tiles).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// Write the whole elevation model (--terrain), up to 20 km a side, as a 3D Tiles world
+    /// (as `sylva tiles` does) instead of one GLB of its middle 1000 m.
+    #[arg(long, requires = "terrain", conflicts_with_all = ["usd", "no_instancing"])]
+    whole: bool,
     /// Also or instead write the forest as USD text (.usda): one point instancer whose
     /// prototypes are the branch instances, for Blender, Houdini, Omniverse, Maya and Unreal.
     #[arg(long, value_name = "FILE")]
@@ -98,7 +107,17 @@ struct Written {
 
 pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
     let hidden = args.quiet || args.stats;
-    let world = args.world.world(hidden)?;
+    if args.whole {
+        let out = args.out.unwrap_or_else(|| PathBuf::from("forest_tiles"));
+        return crate::tiles::run(TilesArgs::of_world(args.world, out, args.stats, args.quiet));
+    }
+    // One file holds a region a desktop viewer opens; a larger model says what it took.
+    let world = args.world.world(
+        hidden,
+        Fit::Middle {
+            side: DEFAULT_REGION_SIDE,
+        },
+    )?;
     let (builder, map, region) = (&world.builder, &world.map, world.region);
     let (terrain_mesh, _) = phase(hidden, "meshing terrain", || map.mesh(1));
     let terrain_mesh = terrain_mesh?;

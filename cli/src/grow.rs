@@ -173,7 +173,7 @@ fn real_ground(args: &GrowArgs, file: &Path, side: f32, quiet: bool) -> Result<H
         spacing: args.terrain_spacing,
         ..ReadOptions::default()
     };
-    let model = read_model(file, &options, None, "--terrain-spacing", quiet)?;
+    let model = read_model(file, &options, "--terrain-spacing", quiet)?;
     let [ex, ez] = model.extent();
     let (x, z) = args.at.unwrap_or((ex / 2.0, ez / 2.0));
     let half = side / 2.0;
@@ -211,8 +211,8 @@ pub(crate) fn run(args: GrowArgs) -> Result<(), Failure> {
     let mut species = match &args.species {
         Some(f) => Species::from_file(f)?,
         None => Species::parse_file(
-            include_str!("../../examples/species/oak.species"),
-            Path::new("examples/species/oak.species"),
+            include_str!("../../world/species/oak/oak.species"),
+            Path::new("world/species/oak/oak.species"),
         )?,
     };
     if let Some(g) = args.generations {

@@ -27,8 +27,18 @@ mod grammar;
 mod grow;
 mod pack;
 mod paint;
+// Plots and the server are features (off in the quick start's build, on in CI's and with
+// `cargo install --path cli --features serve,plots`): each stands in for the other when off.
+#[cfg(feature = "plots")]
+mod plots;
+#[cfg(not(feature = "plots"))]
+#[path = "plots_absent.rs"]
 mod plots;
 mod progress;
+#[cfg(feature = "serve")]
+mod serve;
+#[cfg(not(feature = "serve"))]
+#[path = "serve_absent.rs"]
 mod serve;
 mod succession;
 mod terrain;

@@ -68,7 +68,12 @@ pub(crate) fn run(args: PackArgs) -> Result<(), Failure> {
             args.view_size
         )));
     }
-    let world = args.world.world(hidden)?;
+    let world = args.world.world(
+        hidden,
+        sylva::world::Fit::Middle {
+            side: sylva::world::limits::DEFAULT_REGION_SIDE,
+        },
+    )?;
     let mut chain = LodChain::default().with_pixel_error(args.pixel_error);
     chain.impostor = chain.impostor.with_view_size(args.view_size);
     let start = Instant::now();

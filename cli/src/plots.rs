@@ -14,6 +14,9 @@ use sylva::terrain::analysis::FractalAnalysis;
 
 use crate::Failure;
 
+/// Whether plots are drawn by this build.
+pub(crate) const DRAWN: bool = true;
+
 /// The embedded font: DejaVu Sans cut down to ASCII (its licence is in `assets/`), so plots
 /// draw their labels on any machine.
 const FONT: &[u8] = include_bytes!("../assets/DejaVuSans-ascii.ttf");

@@ -5,8 +5,8 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// Runs `work` under a spinner saying `message` that shows only if it lasts over a second.
-pub(crate) fn phase<T>(hidden: bool, message: &str, work: impl FnOnce() -> T) -> (T, Duration) {
+/// A spinner saying `message` that shows only once a second has passed, or a hidden one.
+pub(crate) fn spinner(hidden: bool, message: &str) -> ProgressBar {
     let bar = if hidden {
         ProgressBar::hidden()
     } else {
@@ -19,6 +19,12 @@ pub(crate) fn phase<T>(hidden: bool, message: &str, work: impl FnOnce() -> T) ->
     bar.set_message(message.to_string());
     // The first tick comes after a second, so quick phases never draw.
     bar.enable_steady_tick(Duration::from_millis(1000));
+    bar
+}
+
+/// Runs `work` under a [`spinner`] saying `message`.
+pub(crate) fn phase<T>(hidden: bool, message: &str, work: impl FnOnce() -> T) -> (T, Duration) {
+    let bar = spinner(hidden, message);
     let start = Instant::now();
     let out = work();
     bar.finish_and_clear();

@@ -19,7 +19,7 @@ use sylva::terrain::glam::Vec2;
 
 use crate::Failure;
 use crate::progress::{bar, ms, peak_rss_mb, phase, print_stats};
-use crate::world::MAX_YEARS;
+use sylva::world::limits::MAX_YEARS;
 
 /// `sylva succession`'s flags.
 #[derive(Debug, Args)]

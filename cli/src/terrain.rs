@@ -263,7 +263,7 @@ fn analyse(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
     crate::plots::variogram(&args.report.join("variogram.png"), &a, label)?;
     if !args.quiet {
         println!(
-            "{name}: H = {:.3} (dimension {:.3}) over {:.0} to {:.0} m; spectrum H = {:.3}; H along x, z = {:.3}, {:.3}; anisotropy {:.2}; heights {:.0} to {:.0} m; wrote {} and variogram.png",
+            "{name}: H = {:.3} (dimension {:.3}) over {:.0} to {:.0} m; spectrum H = {:.3}; H along x, z = {:.3}, {:.3}; anisotropy {:.2}; heights {:.0} to {:.0} m; wrote {}{}",
             a.hurst,
             a.dimension,
             a.variogram_fit.scale_range[0],
@@ -274,7 +274,12 @@ fn analyse(path: &std::path::Path, args: &TerrainArgs) -> Result<(), Failure> {
             a.anisotropy,
             h.min,
             h.max,
-            out.display()
+            out.display(),
+            if crate::plots::DRAWN {
+                " and variogram.png"
+            } else {
+                ""
+            }
         );
     }
     Ok(())

@@ -30,11 +30,11 @@ pub(crate) struct TilesArgs {
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
     /// Side of a fine tile in metres.
-    #[arg(long, value_name = "M", default_value_t = 250.0)]
+    #[arg(long, value_name = "M", default_value_t = sylva::world::limits::DEFAULT_TILE_SIZE)]
     tile_size: f32,
     /// Fine tiles along each side of a coarse tile (1 to 64): smaller coarse tiles refine to
     /// branches over a smaller area near the camera.
-    #[arg(long, value_name = "N", default_value_t = 4)]
+    #[arg(long, value_name = "N", default_value_t = sylva::world::limits::DEFAULT_GROUP)]
     group: u32,
     /// Write this tile alone (c_X_Y or f_X_Y).
     #[arg(long, value_name = "ID", conflicts_with = "tileset_only")]
@@ -51,6 +51,27 @@ pub(crate) struct TilesArgs {
     /// Print nothing but errors.
     #[arg(long, short)]
     quiet: bool,
+}
+
+impl TilesArgs {
+    /// The whole tileset of `world` into `out` (`sylva forest --whole`), every other flag at
+    /// its default.
+    pub(crate) fn of_world(world: WorldArgs, out: PathBuf, stats: bool, quiet: bool) -> TilesArgs {
+        TilesArgs {
+            world,
+            out,
+            tile_size: sylva::world::limits::DEFAULT_TILE_SIZE,
+            group: sylva::world::limits::DEFAULT_GROUP,
+            tile: None,
+            tileset_only: false,
+            origin: (
+                sylva::world::limits::DEFAULT_ORIGIN[0],
+                sylva::world::limits::DEFAULT_ORIGIN[1],
+            ),
+            stats,
+            quiet,
+        }
+    }
 }
 
 fn parse_origin(v: &str) -> Result<(f64, f64), String> {
@@ -81,7 +102,8 @@ pub(crate) fn run(args: TilesArgs) -> Result<(), Failure> {
     // The folder and the tile id are checked before the world is built.
     check_tileset_folder(dir)?;
     let tile: Option<TileId> = args.tile.as_deref().map(str::parse).transpose()?;
-    let world = args.world.world(hidden)?;
+    // A tileset streams: it takes a model whole, up to the largest world.
+    let world = args.world.world(hidden, sylva::world::Fit::WHOLE)?;
     let (builder, map) = (&world.builder, &world.map);
     let scheme = TileScheme::new(world.region, args.tile_size, args.group)?;
     let mut options = TilesetOptions::default();

@@ -1,19 +1,21 @@
-//! The world `forest` and `tiles` share: species, terrain (generated or the user's), size,
-//! density, paint masks.
+//! The world `forest`, `tiles` and `pack` share, from their flags: species, terrain
+//! (generated or the user's), size, density, paint masks, year. The flags are read here; the
+//! world is assembled by the world layer (`sylva::world`), as the viewer's and the server's.
 
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Duration;
 
 use clap::Args;
-use sylva::forest::{Constraints, ForestBuilder, ForestConfig, Rect, SitingReport, Species};
+use indicatif::ProgressBar;
+use sylva::forest::{Constraints, ForestBuilder, Rect, SitingReport, Species};
 use sylva::terrain::Heightmap;
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
-use sylva::terrain::glam::Vec2;
-
-use sylva_server::project::Project;
+use sylva::world::limits::{DEFAULT_SIDE, MAX_DENSITY, MAX_SIDE, MAX_TREES};
+use sylva::world::{Fit, Ground, Progress, Project, Stage, WorldBuilder, WorldError};
 
 use crate::Failure;
-use crate::progress::{bar, phase};
+use crate::progress::{bar, phase, spinner};
 
 /// The world's flags.
 #[derive(Debug, Args)]
@@ -26,7 +28,10 @@ pub(crate) struct WorldArgs {
     trees: Option<usize>,
     /// Your own elevation model, of any size: GeoTIFF, SRTM .hgt, ESRI ASCII grid (.asc),
     /// 16-bit PNG, or RAW of little-endian 16-bit samples (.raw or .r16, with --height-range,
-    /// and --raw-size unless square). Georeferencing gives the spacing; nodata is filled.
+    /// and --raw-size unless square). Georeferencing gives the spacing; nodata is filled. A
+    /// forest takes the model's middle 1000 m (and says which window: --crop names another,
+    /// `forest --whole` writes the whole model as 3D Tiles); a tileset takes it whole, up to
+    /// 20 km a side.
     #[arg(long, value_name = "HEIGHTS")]
     terrain: Option<PathBuf>,
     /// Metres between the model's samples (for --terrain): overrides the file's.
@@ -35,8 +40,8 @@ pub(crate) struct WorldArgs {
     /// Width and height of a RAW model (for --terrain).
     #[arg(long, value_name = "W,H", value_parser = parse_pair::<usize>)]
     raw_size: Option<(usize, usize)>,
-    /// Use only this window of the model (for --terrain): its north-west sample's column
-    /// and row, then its width and height in samples. For models larger than a world.
+    /// Use this window of the model (for --terrain) instead of the default region: its
+    /// north-west sample's column and row, then its width and height in samples.
     #[arg(long, value_name = "COL,ROW,W,H")]
     crop: Option<Window>,
     /// Heights of the samples 0 and 65535, in metres (for --terrain).
@@ -84,7 +89,7 @@ pub(crate) struct WorldArgs {
 }
 
 /// A world made from its flags.
-pub(crate) struct World {
+pub(crate) struct BuiltWorld {
     pub(crate) builder: ForestBuilder,
     pub(crate) map: Heightmap,
     pub(crate) region: Rect,
@@ -94,12 +99,6 @@ pub(crate) struct World {
     /// What the terrain made of the candidate tree spots.
     pub(crate) siting: SitingReport,
 }
-
-/// Longest side of a world, metres (as `--area`'s limit).
-const MAX_WORLD_SIDE: f32 = 20_000.0;
-
-/// Most years one forest over time simulates (`--year`, `sylva succession --years`).
-pub(crate) const MAX_YEARS: u32 = 10_000;
 
 /// `--budget-mb`'s bytes: an error for 0 or a size beyond memory's reach.
 pub(crate) fn budget_bytes(mb: usize) -> Result<usize, Failure> {
@@ -115,25 +114,163 @@ pub(crate) fn parse_pair<T: std::str::FromStr>(v: &str) -> Result<(T, T), String
         .ok_or_else(|| format!("'{v}': expected two numbers, A,B"))
 }
 
+/// A world layer's error as the command's failure: a setting or file the user gave is a
+/// usage mistake (exit status 2), a failure to make the world the job's (1).
+pub(crate) fn failure(e: WorldError) -> Failure {
+    match e {
+        WorldError::Invalid(_) | WorldError::NoSpacing { .. } => Failure::usage(e.to_string()),
+        _ => Failure::job(e.to_string()),
+    }
+}
+
+/// The world layer's stages as spinners and a bar of years on stderr; keeps how long the
+/// hero trees took.
+struct Bars {
+    hidden: bool,
+    spinner: Mutex<Option<ProgressBar>>,
+    years: Mutex<Option<ProgressBar>>,
+    hero_time: Mutex<Duration>,
+}
+
+impl Bars {
+    fn new(hidden: bool) -> Bars {
+        Bars {
+            hidden,
+            spinner: Mutex::new(None),
+            years: Mutex::new(None),
+            hero_time: Mutex::new(Duration::ZERO),
+        }
+    }
+}
+
+impl Progress for Bars {
+    fn begin(&self, stage: Stage) {
+        // Years count on a bar of their own; other stages spin.
+        if stage != Stage::Years {
+            let bar = spinner(self.hidden, stage.describe());
+            *self.spinner.lock().unwrap_or_else(|p| p.into_inner()) = Some(bar);
+        }
+    }
+
+    fn end(&self, stage: Stage, elapsed: Duration) {
+        if let Some(bar) = self
+            .spinner
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .take()
+        {
+            bar.finish_and_clear();
+        }
+        if let Some(bar) = self.years.lock().unwrap_or_else(|p| p.into_inner()).take() {
+            bar.finish_and_clear();
+        }
+        if stage == Stage::HeroTrees {
+            *self.hero_time.lock().unwrap_or_else(|p| p.into_inner()) = elapsed;
+        }
+    }
+
+    fn years(&self, done: u32, total: u32) {
+        let mut years = self.years.lock().unwrap_or_else(|p| p.into_inner());
+        years
+            .get_or_insert_with(|| bar(self.hidden, u64::from(total), Stage::Years.describe()))
+            .set_position(u64::from(done));
+    }
+}
+
 impl WorldArgs {
     /// Builds the caches, the terrain and, with --paint, the painted builder. Flags and the
-    /// user's files are checked first, so a mistake is reported before seconds of hero trees.
-    pub(crate) fn world(&self, quiet: bool) -> Result<World, Failure> {
-        if let Some(d) = self.density.filter(|d| !(*d > 0.0 && *d <= 10_000.0)) {
+    /// user's files are checked first, so a mistake is reported before seconds of hero
+    /// trees. A model given with --terrain is taken as `fit` says unless --crop names a
+    /// window.
+    pub(crate) fn world(&self, quiet: bool, fit: Fit) -> Result<BuiltWorld, Failure> {
+        if let Some(a) = self.area.filter(|a| !(*a > 0.0 && *a <= MAX_SIDE)) {
             return Err(Failure::usage(format!(
-                "--density {d}: expected 0 < trees per hectare <= 10000"
+                "--area {a}: expected a side length from 0 to {MAX_SIDE} metres"
             )));
         }
-        if let Some(a) = self.area.filter(|a| !(*a > 0.0 && *a <= MAX_WORLD_SIDE)) {
+        if let Some(n) = self.trees.filter(|n| *n == 0 || *n > MAX_TREES) {
             return Err(Failure::usage(format!(
-                "--area {a}: expected a side length from 0 to {MAX_WORLD_SIDE} metres"
+                "--trees {n}: expected 1 to {MAX_TREES}"
             )));
         }
-        if let Some(n) = self.trees.filter(|n| *n == 0 || *n > 10_000_000) {
+        if let Some(d) = self.density.filter(|d| !(*d > 0.0 && *d <= MAX_DENSITY)) {
             return Err(Failure::usage(format!(
-                "--trees {n}: expected 1 to 10000000"
+                "--density {d}: expected 0 < trees per hectare <= {MAX_DENSITY}"
             )));
         }
+        let constraints = self.constraints()?;
+        let bars = Bars::new(quiet);
+        let (recipe, ground) = match &self.project {
+            Some(dir) => {
+                let project = Project::read(dir).map_err(failure)?;
+                // The ground first: a missing model is reported before seconds of hero trees.
+                let ground = project.ground().map_err(failure)?;
+                self.tell(&ground, &project.folder.display().to_string(), quiet);
+                let recipe = project
+                    .description
+                    .world_builder()
+                    .map_err(failure)?
+                    .with_masks(project.masks());
+                (recipe, Some(ground))
+            }
+            None => {
+                let species = if self.species.is_empty() {
+                    sylva::presets::species()?
+                } else {
+                    self.species
+                        .iter()
+                        .map(Species::from_file)
+                        .collect::<Result<Vec<_>, _>>()?
+                };
+                let ground = match &self.terrain {
+                    Some(file) => Some(self.model_ground(file, fit, quiet)?),
+                    None => None,
+                };
+                let recipe = WorldBuilder::new(species)
+                    .with_seed(self.seed)
+                    .with_budget(budget_bytes(self.budget_mb)?)
+                    .with_density(self.density)
+                    .with_masks(self.paint.clone());
+                (recipe, ground)
+            }
+        };
+        let recipe = recipe.with_constraints(constraints).with_year(self.year);
+        recipe.check().map_err(failure)?;
+        let forest = recipe.forest(&bars).map_err(failure)?;
+        let ground = match ground {
+            Some(ground) => ground,
+            None => {
+                let side = match (self.area, self.trees) {
+                    (Some(a), _) => a,
+                    (None, Some(n)) => forest.side_for_canopy_trees(n),
+                    (None, None) => DEFAULT_SIDE,
+                };
+                let (ground, _) = phase(quiet, "generating terrain", || {
+                    Ground::generated(self.seed, side)
+                });
+                ground.map_err(failure)?
+            }
+        };
+        let world = recipe.finish(forest, ground, &bars).map_err(failure)?;
+        let siting = world.siting().map_err(failure)?;
+        if !quiet && let Some(note) = siting_note(&siting, &world.forest.config().constraints) {
+            eprintln!("{note}");
+        }
+        let hero_time = *bars.hero_time.lock().unwrap_or_else(|p| p.into_inner());
+        Ok(BuiltWorld {
+            region: world.region(),
+            // A model longer than wide is drawn over its own extent, not the square map's.
+            side: world.side(),
+            seed: world.seed,
+            builder: world.forest,
+            map: world.ground.map,
+            hero_time,
+            siting,
+        })
+    }
+
+    /// Where trees may stand: the slope limit and the height range.
+    fn constraints(&self) -> Result<Constraints, Failure> {
         if !(0.0..=90.0).contains(&self.max_slope) {
             return Err(Failure::usage(format!(
                 "--max-slope {}: expected 0 to 90 degrees",
@@ -147,126 +284,41 @@ impl WorldArgs {
                 "--min-height {lowest} --max-height {highest}: expected the lower below the higher"
             )));
         }
-        if let Some(dir) = &self.project {
-            return self.project_world(dir, lowest, highest, quiet);
-        }
-        let budget = budget_bytes(self.budget_mb)?;
-        let species = if self.species.is_empty() {
-            sylva::presets::species()?
-        } else {
-            self.species
-                .iter()
-                .map(Species::from_file)
-                .collect::<Result<Vec<_>, _>>()?
-        };
-        let user_map = match &self.terrain {
-            Some(file) => Some(read_terrain(self, file, quiet)?),
-            None => None,
-        };
-        let mut config = ForestConfig::new(species);
-        config.seed = self.seed;
-        config.budget = budget;
-        self.adjust(&mut config, lowest, highest);
-        let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
-            ForestBuilder::new(config)
-        });
-        let mut builder = builder?;
-        if let Some(d) = self.density {
-            builder.density_mut().patch = (10_000.0 / d).sqrt();
-        }
-        let (map, extent) = match user_map {
-            Some((map, extent)) => (map, extent),
-            None => {
-                let side = match (self.area, self.trees) {
-                    (Some(a), _) => a,
-                    (None, Some(n)) => builder.side_for_canopy_trees(n),
-                    (None, None) => 800.0,
-                };
-                let (map, _) = phase(quiet, "generating terrain", || {
-                    sylva::presets::terrain(self.seed, side)
-                });
-                (map?, [side, side])
-            }
-        };
-        self.finish(
-            (builder, hero_time),
-            (map, extent),
-            self.paint.as_deref(),
-            self.seed,
-            quiet,
-        )
-    }
-
-    /// What the flags add to a forest's configuration: where trees may stand (the slope
-    /// limit, heights from `lowest` to `highest`) and whether trees of every age are drawn.
-    fn adjust(&self, config: &mut ForestConfig, lowest: f32, highest: f32) {
-        config.all_ages = self.year.is_some();
-        config.constraints = Constraints::default()
+        Ok(Constraints::default()
             .with_max_slope_degrees(self.max_slope)
-            .with_height_range(lowest, highest);
+            .with_height_range(lowest, highest))
     }
 
-    /// The world of `builder` on `map` over `extent`: painted with the masks in `masks`,
-    /// drawn in `--year`'s year, its siting reported unless `quiet`.
-    fn finish(
-        &self,
-        (mut builder, hero_time): (ForestBuilder, Duration),
-        (map, extent): (Heightmap, [f32; 2]),
-        masks: Option<&Path>,
-        seed: u64,
-        quiet: bool,
-    ) -> Result<World, Failure> {
-        if let Some(dir) = masks {
-            builder = sylva::paint::with_masks(&builder, dir, &map)?;
-        }
-        let region = Rect::new(Vec2::ZERO, Vec2::new(extent[0], extent[1]));
-        if let Some(year) = self.year {
-            builder = builder_at_year(&builder, region, year, quiet)?;
-        }
-        let siting = builder.siting(&map, region)?;
-        if !quiet && let Some(note) = siting_note(&siting, &builder.config().constraints) {
-            eprintln!("{note}");
-        }
-        Ok(World {
-            builder,
-            map,
-            region,
-            // A model longer than wide is drawn over its own extent, not the square map's.
-            side: extent[0].max(extent[1]),
-            seed,
-            hero_time,
-            siting,
-        })
-    }
-}
-
-impl WorldArgs {
-    /// The world of a project folder (`--project`), with the flags that say where trees may
-    /// stand and which year to draw.
-    fn project_world(
-        &self,
-        dir: &Path,
-        lowest: f32,
-        highest: f32,
-        quiet: bool,
-    ) -> Result<World, Failure> {
-        let project = Project::read(dir).map_err(|e| Failure::job(e.to_string()))?;
-        let description = &project.description;
-        // The ground first: a missing model is reported before seconds of hero trees.
-        let (ground, _) = phase(quiet, "making the project's terrain", || project.ground());
-        let (map, extent) = ground.map_err(|e| Failure::job(e.to_string()))?;
-        let (builder, hero_time) = phase(quiet, "building instance caches from hero trees", || {
-            description.builder_with(|config| self.adjust(config, lowest, highest))
+    /// The ground of `--terrain`'s model: `--crop`'s window, or what `fit` takes; says what
+    /// was filled and chosen unless `quiet`.
+    fn model_ground(&self, file: &Path, fit: Fit, quiet: bool) -> Result<Ground, Failure> {
+        let options = ReadOptions {
+            spacing: self.spacing,
+            height_range: self.height_range.map(|(lo, hi)| [lo, hi]),
+            raw_size: self.raw_size.map(|(w, h)| [w, h]),
+        };
+        let (ground, _) = phase(quiet, "reading the elevation model", || {
+            Ground::read(file, &options, self.crop, fit, "--spacing M")
         });
-        let builder =
-            builder.map_err(|e| Failure::job(format!("{}: {}", dir.display(), e.message)))?;
-        self.finish(
-            (builder, hero_time),
-            (map, extent),
-            project.masks().as_deref(),
-            description.seed,
-            quiet,
-        )
+        let ground = ground.map_err(failure)?;
+        self.tell(&ground, &file.display().to_string(), quiet);
+        Ok(ground)
+    }
+
+    /// Prints what was made of a model, unless `quiet`: cells filled, the window chosen, and
+    /// for a forest the flag that writes the whole model.
+    fn tell(&self, ground: &Ground, name: &str, quiet: bool) {
+        if quiet {
+            return;
+        }
+        for note in ground.notes(name) {
+            let whole = if ground.chosen.is_some() && note.contains("--crop") {
+                ", --whole writes the whole model as 3D Tiles"
+            } else {
+                ""
+            };
+            eprintln!("{note}{whole}");
+        }
     }
 }
 
@@ -310,67 +362,23 @@ pub(crate) fn siting_note(report: &SitingReport, constraints: &Constraints) -> O
     Some(lines.join("\n"))
 }
 
-/// Reads a user's elevation model of any size (GeoTIFF, SRTM .hgt, ESRI ASCII grid, 16-bit
-/// PNG or RAW) onto a square heightmap; answers it with the model's own extent.
-fn read_terrain(
-    args: &WorldArgs,
-    file: &Path,
-    quiet: bool,
-) -> Result<(Heightmap, [f32; 2]), Failure> {
-    let name = file.display();
-    let options = ReadOptions {
-        spacing: args.spacing,
-        height_range: args.height_range.map(|(lo, hi)| [lo, hi]),
-        raw_size: args.raw_size.map(|(w, h)| [w, h]),
-    };
-    let model = read_model(file, &options, args.crop, "--spacing", quiet)?;
-    let [x, z] = model.extent();
-    if !(x > 10.0 && z > 10.0 && x <= MAX_WORLD_SIDE && z <= MAX_WORLD_SIDE) {
-        // The largest window a world holds, about the model's middle.
-        let fit = |n: usize, spacing: f32| n.min((MAX_WORLD_SIDE / spacing) as usize + 1);
-        let (w, h) = (
-            fit(model.width, model.spacing[0]),
-            fit(model.height, model.spacing[1]),
-        );
-        let hint = if x > MAX_WORLD_SIDE || z > MAX_WORLD_SIDE {
-            format!(
-                "; --crop {},{},{w},{h} takes the middle {:.0} x {:.0} m",
-                (model.width - w) / 2,
-                (model.height - h) / 2,
-                (w - 1) as f32 * model.spacing[0],
-                (h - 1) as f32 * model.spacing[1]
-            )
-        } else {
-            String::new()
-        };
-        return Err(Failure::job(format!(
-            "{name}: {} x {} samples at {:.2} x {:.2} m cover {x:.0} x {z:.0} m; a world is 10 to {MAX_WORLD_SIDE:.0} m a side (--spacing sets the samples' distance){hint}",
-            model.width, model.height, model.spacing[0], model.spacing[1]
-        )));
-    }
-    let (map, extent) = model
-        .to_heightmap()
-        .map_err(|e| Failure::job(format!("{name}: {e}")))?;
-    Ok((map, extent))
-}
-
-/// Reads an elevation model and takes `crop`'s window of it; an error when the spacing is
-/// neither in the file nor in `options` (it names `spacing_flag`). The count of cells without data is reported unless
-/// `quiet`.
+/// Reads an elevation model (not a world's ground: `sylva grow`'s stand samples it); an
+/// error when the spacing is neither in the file nor in `options` (it names
+/// `spacing_flag`). The count of cells without data is reported unless `quiet`.
 pub(crate) fn read_model(
     file: &Path,
     options: &ReadOptions,
-    crop: Option<Window>,
     spacing_flag: &str,
     quiet: bool,
 ) -> Result<ElevationModel, Failure> {
     let name = file.display();
-    let mut model =
+    let model =
         ElevationModel::read(file, options).map_err(|e| Failure::job(format!("{name}: {e}")))?;
     if !model.spacing_from_file && options.spacing.is_none() {
-        return Err(Failure::usage(format!(
-            "{name}: the file does not say how far apart its samples are: give {spacing_flag} M"
-        )));
+        return Err(failure(WorldError::NoSpacing {
+            name: name.to_string(),
+            hint: format!("{spacing_flag} M"),
+        }));
     }
     if model.nodata > 0 && !quiet {
         eprintln!(
@@ -379,33 +387,5 @@ pub(crate) fn read_model(
             model.width * model.height
         );
     }
-    if let Some(window) = crop {
-        model = model
-            .crop(window)
-            .map_err(|e| Failure::usage(format!("--crop: {name}: {e}")))?;
-    }
     Ok(model)
-}
-
-/// The builder drawing the forest over time of `region` in `year`, grown from bare ground
-/// with `builder`'s species and seed (`sylva forest --year`, `sylva tiles --year`).
-pub(crate) fn builder_at_year(
-    builder: &ForestBuilder,
-    region: Rect,
-    year: u32,
-    quiet: bool,
-) -> Result<ForestBuilder, Failure> {
-    if year > MAX_YEARS {
-        return Err(Failure::usage(format!(
-            "--year {year}: expected 0 to {MAX_YEARS}"
-        )));
-    }
-    let mut forest = builder.succession(region)?;
-    let progress = bar(quiet, u64::from(year), "years of the forest over time");
-    for _ in 0..year {
-        forest.step()?;
-        progress.inc(1);
-    }
-    progress.finish_and_clear();
-    Ok(builder.drawing(&forest)?)
 }

@@ -6,8 +6,8 @@ mod common;
 use std::path::Path;
 
 use common::{scratch, stderr, sylva};
-use sylva_server::project::Project;
-use sylva_server::{SpeciesEntry, WorldDescription};
+use sylva::world::Project;
+use sylva::world::{SpeciesEntry, WorldDescription};
 
 const SPECIES: &str = "name: shrub\ngrammar: shrub.lsys\ngenerations: 4\nangle: 25\n";
 const GRAMMAR: &str = "axiom: A\nA -> F[+A][-A]FA\nF -> F\n";

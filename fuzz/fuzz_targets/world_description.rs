@@ -4,7 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use sylva_server::WorldDescription;
+use sylva_world::WorldDescription;
 
 fuzz_target!(|data: &[u8]| {
     let Ok(description) = WorldDescription::parse(data) else { return };

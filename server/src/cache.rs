@@ -15,9 +15,9 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
-use crate::description::WorldDescription;
 use crate::error::ApiError;
-use crate::id::WorldId;
+use sylva::world::WorldDescription;
+use sylva::world::WorldId;
 
 /// The generator's version: the crate's, and a revision of the files' layout.
 pub const GENERATOR: &str = concat!("sylva-", env!("CARGO_PKG_VERSION"), "-1");
@@ -90,8 +90,7 @@ impl Cache {
         match std::fs::read(self.description_path(id)) {
             Ok(bytes) => WorldDescription::parse(&bytes).map_err(|e| {
                 ApiError::internal(format!(
-                    "world {id}: its kept description no longer parses: {}",
-                    e.message
+                    "world {id}: its kept description no longer parses: {e}"
                 ))
             }),
             Err(e) if e.kind() == io::ErrorKind::NotFound => Err(ApiError::not_found(

@@ -102,6 +102,20 @@ impl ApiError {
     }
 }
 
+impl From<sylva::world::WorldError> for ApiError {
+    /// A world's mistake in what was asked is a 400 (413 for a size), with the world
+    /// layer's code; a failure to make it goes as any generation's.
+    fn from(e: sylva::world::WorldError) -> ApiError {
+        if e.code() == "too_large" {
+            ApiError::too_large(e.to_string())
+        } else if e.is_user_mistake() {
+            ApiError::bad_request(e.code(), e.to_string())
+        } else {
+            ApiError::generation(&e, "the world")
+        }
+    }
+}
+
 /// Whether an I/O error is a full disk or an exhausted quota.
 fn is_disk_full(e: &io::Error) -> bool {
     // ENOSPC and EDQUOT on Linux.

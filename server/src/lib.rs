@@ -6,7 +6,7 @@
 //!
 //! | request | answer |
 //! |---|---|
-//! | `POST /worlds` (a [`WorldDescription`] as JSON) | `201 {"id", "tileset", "page"}` |
+//! | `POST /worlds` (a [`WorldDescription`] as JSON) | `201 {"id", "tileset", "page", "notes"}` |
 //! | `GET /worlds/{id}` | the kept description |
 //! | `GET /worlds/{id}/tileset.json`, `/shared.bin`, `/impostors/variant_K.png` | the world's root |
 //! | `GET /worlds/{id}/tiles/{c_X_Y,f_X_Y}.glb` | a tile |
@@ -31,15 +31,11 @@
 
 mod body;
 mod cache;
-mod description;
 mod error;
 mod files;
-mod ground;
 mod heightmaps;
-mod id;
 mod jobs;
 mod page;
-pub mod project;
 mod state;
 mod trees;
 mod world;
@@ -57,14 +53,10 @@ use axum::routing::{get, post};
 
 pub use body::BODY_TIMEOUT;
 pub use cache::{Cache, GENERATOR};
-pub use description::{
-    BUNDLED_SPECIES, MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_SIDE, MAX_SPECIES, SpeciesEntry,
-    TerrainDescription, WorldDescription,
-};
 pub use error::ApiError;
-pub use heightmaps::{MAX_HEIGHTMAP_BYTES, MAX_HEIGHTMAP_SIDE};
-pub use id::WorldId;
+// The description a client posts is the world layer's; named here for the server's users.
 pub use state::{Server, ServerOptions};
+pub use sylva::world::{SpeciesEntry, TerrainDescription, WorldDescription, WorldId};
 pub use trees::MAX_AGE;
 
 /// The server's routes over `server`'s state.

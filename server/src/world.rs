@@ -6,14 +6,12 @@ use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use sylva::export::{TileScheme, TilesetOptions};
-use sylva::forest::{ForestBuilder, Rect};
+use sylva::forest::ForestBuilder;
 use sylva::terrain::Heightmap;
-use sylva::terrain::glam::Vec2;
+use sylva::world::{Quiet, WorldDescription, WorldError, WorldId};
 
 use crate::cache::Cache;
-use crate::description::WorldDescription;
 use crate::error::ApiError;
-use crate::id::WorldId;
 
 /// A world ready to draw.
 #[derive(Debug)]
@@ -28,32 +26,30 @@ pub(crate) struct BuiltWorld {
     pub(crate) options: TilesetOptions,
 }
 
-/// Builds a world (seconds: hero trees for every species). Blocking.
+/// Builds a world through the world layer (seconds: hero trees for every species). Blocking.
 pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<BuiltWorld, ApiError> {
-    // The world is the model's own extent, which the square map covers.
-    let (map, side) = description.ground(|id| uploaded_model(cache, id))?;
-    let builder = description.builder()?;
-    let region = Rect::new(Vec2::ZERO, Vec2::new(side[0], side[1]));
-    let scheme = TileScheme::new(region, description.tile_size, description.group)
-        .map_err(|e| ApiError::bad_request("bad_description", e.to_string()))?;
-    let [lon, lat] = description.origin;
-    let options = TilesetOptions::default().with_origin((lon, lat));
+    // The ground first: a missing model is reported before seconds of hero trees.
+    let ground = description.ground(|id| uploaded_model(cache, id))?;
+    let world = description.world_builder()?.build(ground, &Quiet)?;
+    let (scheme, options) =
+        world.tiling(description.tile_size, description.group, description.origin)?;
     Ok(BuiltWorld {
-        builder,
-        map,
+        builder: world.forest,
+        map: world.ground.map,
         scheme,
         options,
     })
 }
 
 /// The bytes of the elevation model uploaded as `id`.
-fn uploaded_model(cache: &Cache, id: &WorldId) -> Result<Vec<u8>, ApiError> {
-    std::fs::read(cache.heightmap_path(id)).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => ApiError::bad_request(
-            "unknown_heightmap",
-            format!("no heightmap {id}: upload it with POST /heightmaps first"),
-        ),
-        _ => ApiError::internal(format!("heightmap {id}: {e}")),
+pub(crate) fn uploaded_model(cache: &Cache, id: &WorldId) -> Result<Vec<u8>, WorldError> {
+    let path = cache.heightmap_path(id);
+    std::fs::read(&path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => WorldError::UnknownModel {
+            id: id.as_str().to_owned(),
+            hint: "upload it with POST /heightmaps first".into(),
+        },
+        _ => WorldError::File(sylva::base::file::FileError::new(&path, e)),
     })
 }
 

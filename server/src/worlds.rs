@@ -15,10 +15,11 @@ use sylva::forest::Rect;
 use sylva::terrain::glam::Vec2;
 
 use crate::cache::GENERATOR;
-use crate::description::{MAX_DESCRIPTION_BYTES, TerrainDescription, WorldDescription};
+use sylva::world::limits::MAX_DESCRIPTION_BYTES;
+use sylva::world::{TerrainDescription, WorldDescription, WorldId};
+
 use crate::error::ApiError;
 use crate::files;
-use crate::id::WorldId;
 use crate::state::Server;
 
 /// `POST /worlds`: keeps a world description, answers its id and URLs (201).
@@ -30,29 +31,31 @@ pub(crate) async fn create(
     let description = WorldDescription::parse(&body)?;
     // Inline species are parsed now, so a mistake in one is this answer's, with its line.
     description.species()?;
-    if let TerrainDescription::Heightmap { id, .. } = &description.terrain {
-        let id = WorldId::parse(id)
-            .ok_or_else(|| ApiError::bad_request("bad_description", "bad heightmap id"))?;
-        if !tokio::fs::try_exists(server.cache.heightmap_path(&id))
-            .await
-            .unwrap_or(false)
-        {
-            return Err(ApiError::bad_request(
-                "unknown_heightmap",
-                format!("no heightmap {id}: upload it with POST /heightmaps first"),
-            ));
-        }
-    }
     let keeper = server.clone();
-    let id = tokio::task::spawn_blocking(move || keeper.cache.keep_description(&description))
-        .await
-        .map_err(|e| ApiError::internal(e.to_string()))??;
+    let (id, notes) = tokio::task::spawn_blocking(move || {
+        // A model's ground is made now, so a model that makes no world (too large without
+        // a crop, no spacing) is this answer's 400, and the window taken of a large one is
+        // said in its notes.
+        let notes = match &description.terrain {
+            TerrainDescription::Heightmap { id, .. } => {
+                let ground =
+                    description.ground(|id| crate::world::uploaded_model(&keeper.cache, id))?;
+                ground.notes(&format!("heightmap {id}"))
+            }
+            TerrainDescription::Generated { .. } => Vec::new(),
+        };
+        let id = keeper.cache.keep_description(&description)?;
+        Ok::<_, ApiError>((id, notes))
+    })
+    .await
+    .map_err(|e| ApiError::internal(e.to_string()))??;
     let location = format!("/worlds/{id}");
     let body = Json(json!({
         "id": id.as_str(),
         "description": location,
         "tileset": format!("/worlds/{id}/tileset.json"),
         "page": format!("/?world={id}"),
+        "notes": notes,
     }));
     let mut response = (StatusCode::CREATED, body).into_response();
     if let Ok(v) = HeaderValue::from_str(&location) {

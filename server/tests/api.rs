@@ -5,7 +5,8 @@ mod common;
 
 use common::{Client, SMALL_WORLD, options, scratch, start, world};
 use hyper::{Method, StatusCode};
-use sylva_server::{MAX_DESCRIPTION_BYTES, WorldDescription};
+use sylva::world::limits::MAX_DESCRIPTION_BYTES;
+use sylva_server::WorldDescription;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_served_world_is_the_batch_writers_world() {
@@ -449,7 +450,7 @@ async fn a_world_on_a_real_elevation_model() {
 /// world whose tiles are served.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_saved_project_is_taken_as_posted() {
-    use sylva_server::project::{Project, WORLD_FILE};
+    use sylva::world::{Project, WORLD_FILE};
     let server = start(options(scratch("project"))).await;
     let folder = scratch("project-folder");
     let model = std::path::Path::new(concat!(

@@ -7,7 +7,8 @@ use sylva::forest::{ForestError, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva::instancing::CompactTree;
 use sylva::terrain::glam::{Vec2, Vec3};
 
-use crate::world::{InstanceRaw, World, world_sphere};
+use crate::geometry::{InstanceRaw, world_sphere};
+use crate::world::World;
 
 /// Side of a cell in metres.
 pub(crate) const CELL: f32 = 100.0;

@@ -6,7 +6,7 @@
 use sylva::terrain::glam::{Mat4, Vec3, Vec4};
 
 use crate::cell::RunBounds;
-use crate::world::MESH_LEVELS;
+use crate::geometry::MESH_LEVELS;
 
 /// A convex view volume as inward-facing planes `n . p + d >= 0`.
 #[derive(Debug, Clone, Copy)]

@@ -1,7 +1,8 @@
 //! The draw list: one instanced draw per group, level and material, then one per impostor
 //! card, ordered so that a pass binds each variant's buffers once.
 
-use crate::world::{MESH_LEVELS, World};
+use crate::geometry::MESH_LEVELS;
+use crate::world::World;
 
 /// One instanced draw: a group's bark or leaf triangles, over the group's placements that
 /// survive culling this frame.

@@ -26,12 +26,9 @@ pub(crate) enum ViewerError {
     /// Making or meshing the terrain failed.
     #[error(transparent)]
     Terrain(#[from] TerrainError),
-    /// The world's side is outside what the viewer streams.
-    #[error("a world of {side} m: expected 10 to 20000 metres a side")]
-    WorldSize {
-        /// The side asked for, in metres.
-        side: f32,
-    },
+    /// The world could not be assembled (its ground, species, paint or year).
+    #[error(transparent)]
+    World(#[from] sylva::world::WorldError),
     /// No graphics adapter was found.
     #[error(
         "no graphics adapter ({0}); without a GPU install Mesa's software drivers (Debian: libvulkan1 mesa-vulkan-drivers, or libegl1 libegl-mesa0 libgl1-mesa-dri with WGPU_BACKEND=gl)"

@@ -3,13 +3,13 @@
 //! group's placements. Items are drawn while they span a few pixels, then fade out.
 
 use sylva::export::lod::{LodChain, simplify_mesh};
-use sylva::forest::{FloorItem, ForestError, ForestFloor, GroundKind, Rect};
+use sylva::forest::{FloorItem, ForestError, GroundKind};
 use sylva::instancing::Span;
 use sylva::terrain::glam::{Quat, Vec3};
 use sylva::turtle::Mesh;
 
-use crate::world::{
-    Group, InstanceRaw, MESH_LEVELS, Proxy, VariantGeometry, VariantLod, World, bounding_sphere,
+use crate::geometry::{
+    Group, InstanceRaw, MESH_LEVELS, Proxy, VariantGeometry, VariantLod, bounding_sphere,
 };
 
 /// Floor items smaller on screen than this many pixels are faded out: the error of their
@@ -89,30 +89,9 @@ pub(crate) fn floor_parts(
     Ok(parts)
 }
 
-impl World {
-    /// The floor items of the cell over `rect`, as placements tagged with their groups:
-    /// shaded by the canopy trees of the forest as it stands.
-    pub(crate) fn floor_instances(
-        &self,
-        floor: &ForestFloor,
-        rect: Rect,
-    ) -> Result<Vec<(u32, InstanceRaw)>, ForestError> {
-        let (forest, _) = self.forest();
-        let trees = forest.trees(&self.heightmap, rect.expanded(floor.reach()));
-        let items = floor.items(&self.heightmap, rect, &trees)?;
-        Ok(items
-            .iter()
-            .filter_map(|item| {
-                let k = GroundKind::ALL.iter().position(|&g| g == item.kind)?;
-                Some((self.first_floor_group? + k as u32, instance(item)))
-            })
-            .collect())
-    }
-}
-
 /// An item as the vertex shader reads a placement: its own base and phase for the wind, a
 /// shade of its own.
-fn instance(item: &FloorItem) -> InstanceRaw {
+pub(crate) fn instance(item: &FloorItem) -> InstanceRaw {
     let [x, y, z] = item.position;
     let shade = 0.85 + 0.3 * item.phase;
     InstanceRaw {

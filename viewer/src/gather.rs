@@ -9,9 +9,10 @@ use rayon::prelude::*;
 
 use crate::cell::{Cell, Level};
 use crate::cull::{Cover, LodView, MAX_SIGHTS, Sight};
+use crate::geometry::InstanceRaw;
 use crate::pool::Layout;
 use crate::scene::Scene;
-use crate::world::{InstanceRaw, World};
+use crate::world::World;
 use pass::gather_cell;
 
 /// What a frame's culling gathers for each sight, kept from frame to frame so that its

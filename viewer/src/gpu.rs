@@ -5,7 +5,7 @@ use sylva::turtle::Vertex;
 use wgpu::util::DeviceExt;
 
 use crate::error::ViewerError;
-use crate::world::InstanceRaw;
+use crate::geometry::InstanceRaw;
 
 /// The format of every depth target, the shadow map's included.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

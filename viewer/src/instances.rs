@@ -6,9 +6,9 @@
 use std::num::NonZeroU64;
 
 use crate::gather::Gathered;
+use crate::geometry::InstanceRaw;
 use crate::pool::{Layout, Pool};
 use crate::scene::Scene;
-use crate::world::InstanceRaw;
 
 /// Bytes of each staging buffer: room for a default view's placements (about 4.4 MB at
 /// 1280x720) in one, or for several cells' placements on their way to the pool.

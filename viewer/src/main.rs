@@ -88,6 +88,7 @@ mod editor;
 mod error;
 mod floor;
 mod gather;
+mod geometry;
 #[cfg(test)]
 mod golden;
 mod gpu;
@@ -104,6 +105,7 @@ mod rebuild;
 mod render;
 mod scene;
 mod shadow;
+mod specimen;
 mod textures;
 mod timelapse;
 mod tour;

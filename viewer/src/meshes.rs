@@ -4,10 +4,10 @@
 
 use sylva::turtle::Vertex;
 
+use crate::geometry::InstanceRaw;
 use crate::gpu::{buffer, index_buffer};
 use crate::materials::Materials;
 use crate::scene::Scene;
-use crate::world::InstanceRaw;
 
 /// One variant's (or proxy's) mesh: a vertex buffer shared by its bark and leaf draws.
 pub(crate) struct VariantBuffers {

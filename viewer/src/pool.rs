@@ -6,7 +6,7 @@
 use std::collections::{HashMap, HashSet};
 
 use crate::cell::Cell;
-use crate::world::InstanceRaw;
+use crate::geometry::InstanceRaw;
 
 /// Bytes of one placement.
 const INSTANCE: u64 = size_of::<InstanceRaw>() as u64;

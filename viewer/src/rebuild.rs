@@ -175,7 +175,7 @@ mod tests {
         let settings = |density: f32, roughness: f32| {
             let mut s = ForestSettings::of_flags(4, 250.0, 8);
             s.description.density = Some(density);
-            if let sylva_server::TerrainDescription::Generated { roughness: r, .. } =
+            if let sylva::world::TerrainDescription::Generated { roughness: r, .. } =
                 &mut s.description.terrain
             {
                 *r = roughness;

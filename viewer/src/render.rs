@@ -11,6 +11,7 @@ use crate::cull::{LodView, Sight, Volume};
 use crate::draw::{Draw, DrawIndex};
 use crate::error::ViewerError;
 use crate::gather::{Gathered, Range};
+use crate::geometry::lod_chain;
 use crate::gpu::{DEPTH, buffer};
 use crate::instances::Instances;
 use crate::materials::Materials;
@@ -19,7 +20,6 @@ use crate::pipelines::Pipelines;
 use crate::scene::Scene;
 use crate::shadow::{SHADOW_TEXEL, ShadowMap, light_view_proj};
 use crate::textures::textures;
-use crate::world::lod_chain;
 
 /// Sky colours at the horizon and overhead (linear RGB); fog fades towards the horizon's.
 pub(crate) const HORIZON: [f32; 3] = [0.62, 0.74, 0.86];

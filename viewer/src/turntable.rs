@@ -1,52 +1,13 @@
 //! A turntable: one tree of a species alone on its ground, seen from views evenly round it,
 //! each written as a PNG, and a contact sheet of them all.
 
-use std::sync::Arc;
-
-use sylva::forest::{Composition, Extent, PatchDensity, Rect};
+use sylva::forest::{Extent, Rect};
 use sylva::terrain::glam::{Vec2, Vec3};
 
 use crate::error::ViewerError;
 use crate::offscreen::Offscreen;
 use crate::render::Mode;
 use crate::scene::{Camera, FIELD_OF_VIEW_DEGREES, Scene};
-
-/// A composition that grows the first species in one square of the world and nothing
-/// elsewhere: a specimen with no neighbours.
-#[derive(Debug)]
-pub(crate) struct Specimen {
-    /// Where a tree may stand.
-    pub(crate) plot: Rect,
-}
-
-impl Composition for Specimen {
-    fn choose(&self, _density: &PatchDensity, p: Vec2, _draw: u64) -> Option<usize> {
-        self.plot.contains(p).then_some(0)
-    }
-
-    fn species(&self) -> Option<usize> {
-        None
-    }
-}
-
-/// The least side of a turntable's world, metres: enough ground that its edge stays out of
-/// the views.
-const WORLD_SIDE: f32 = 80.0;
-
-/// How many density patches of side `patch` a turntable's world is wide: an odd number, so
-/// one patch is its middle, covering at least [`WORLD_SIDE`].
-pub(crate) fn world_patches(patch: f32) -> u32 {
-    let k = ((WORLD_SIDE / patch.max(1.0) - 1.0) * 0.5)
-        .ceil()
-        .clamp(1.0, 64.0) as u32;
-    2 * k + 1
-}
-
-/// The square a specimen stands in: the middle patch of the world.
-pub(crate) fn plot(patch: f32) -> Rect {
-    let k = (world_patches(patch) / 2) as f32;
-    Rect::new(Vec2::splat(k * patch), Vec2::splat((k + 1.0) * patch))
-}
 
 /// `views` pictures of the world's one tree from evenly spaced directions.
 pub(crate) struct Turntable {
@@ -204,11 +165,6 @@ pub(crate) fn contact_sheet(
     (sheet, (sw, sh))
 }
 
-/// The composition of a turntable's world for patches of side `patch`.
-pub(crate) fn specimen(patch: f32) -> Arc<dyn Composition> {
-    Arc::new(Specimen { plot: plot(patch) })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -225,27 +181,5 @@ mod tests {
         // The third picture starts the second row; the empty slot beside it stays clear.
         assert_eq!(&sheet[16..20], &[0, 0, 100, 255]);
         assert_eq!(&sheet[24..28], &[0, 0, 0, 0]);
-    }
-
-    /// The specimen's plot is the only place it grows.
-    #[test]
-    fn the_specimen_grows_only_in_its_plot() {
-        let density = PatchDensity::new(Vec::new());
-        let n = world_patches(10.0);
-        assert!(n % 2 == 1 && n as f32 * 10.0 >= WORLD_SIDE, "{n}");
-        let s = Specimen { plot: plot(10.0) };
-        let middle = n as f32 * 10.0 * 0.5;
-        assert_eq!(
-            s.choose(&density, Vec2::new(middle, middle + 2.0), 7),
-            Some(0)
-        );
-        assert_eq!(
-            s.choose(&density, Vec2::new(middle - 10.0, middle), 7),
-            None
-        );
-        assert_eq!(
-            s.choose(&density, Vec2::new(middle, middle + 10.0), 7),
-            None
-        );
     }
 }

@@ -104,7 +104,7 @@ pub(crate) fn run(
     editor: Option<Editor>,
 ) -> Result<(), ViewerError> {
     let save_to = match &editor {
-        Some(e) => e.project.join(sylva_server::project::MASKS_FOLDER),
+        Some(e) => e.project.join(sylva::world::MASKS_FOLDER),
         None => save_to,
     };
     let event_loop = EventLoop::new().map_err(ViewerError::NoDisplay)?;

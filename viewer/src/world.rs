@@ -1,102 +1,39 @@
 //! What never changes while the camera moves: the forest's recipe, the terrain, and the
 //! geometry every placement refers to, shared by the streaming, the culling and the drawing.
+//! The world itself (species, ground, paint, year) is assembled by the world layer
+//! (`sylva::world`), as the CLI's and the server's are; this adds what the GPU draws.
 
-use bytemuck::{Pod, Zeroable};
 use std::sync::{Arc, PoisonError, RwLock};
 
 use rayon::prelude::*;
 use sylva::export::Texture;
-use sylva::export::lod::{CacheLods, Impostor, LodChain, VariantLods};
+use sylva::export::lod::{CacheLods, Impostor, VariantLods};
 use sylva::forest::{
-    BarkPattern, Composition, Constraints, FloorOptions, ForestBuilder, ForestConfig, ForestError,
-    ForestFloor, GroundKind, LeafShape, Rect, Species,
+    Composition, Constraints, FloorOptions, ForestBuilder, ForestError, ForestFloor, GroundKind,
+    Rect, Species,
 };
-use sylva::instancing::Span;
 use sylva::paint::PaintLayer;
 use sylva::terrain::Heightmap;
-use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
-use sylva::terrain::glam::{Quat, Vec2, Vec3};
-use sylva::turtle::Vertex;
+use sylva::terrain::dem::{ReadOptions, Window};
+use sylva::terrain::glam::Vec3;
+use sylva::world::limits::{DEFAULT_REGION_SIDE, MAX_SIDE, MIN_SIDE};
+use sylva::world::{Fit, Ground, Progress, Stage, WorldBuilder, density_patch};
 
 use crate::error::ViewerError;
+use crate::floor::FloorParts;
+use crate::geometry::{
+    Group, InstanceRaw, MESH_LEVELS, Proxy, VariantGeometry, VariantLod, bounding_sphere, lod_chain,
+};
 
-/// One placement as the vertex shader reads it: rotation, then translation and scale.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, Pod, Zeroable)]
-pub(crate) struct InstanceRaw {
-    pub(crate) rotation: [f32; 4],
-    pub(crate) translation_scale: [f32; 4],
-    /// The tree's tint (`sylva_forest::tree_tint`), and 1.
-    pub(crate) tint: [f32; 4],
-    /// The tree's base and wind phase (`sylva_forest::tree_wind`).
-    pub(crate) tree: [f32; 4],
-}
+/// The world layer's stages as lines on stderr, for those that take over a second.
+struct Lines;
 
-impl InstanceRaw {
-    /// The base of the tree it belongs to, where its level of detail is measured from.
-    pub(crate) fn base(&self) -> Vec3 {
-        Vec3::new(self.tree[0], self.tree[1], self.tree[2])
+impl Progress for Lines {
+    fn end(&self, stage: Stage, elapsed: std::time::Duration) {
+        if stage == Stage::Years || elapsed.as_secs_f32() > 1.0 {
+            eprintln!("{}: {:.1} s", stage.describe(), elapsed.as_secs_f64());
+        }
     }
-}
-
-/// One species variant's shared buffers: the cache's vertices (and its coarser levels' grown
-/// leaf cards), and every level's bark and leaf triangles one after another.
-#[derive(Clone)]
-pub(crate) struct VariantGeometry {
-    pub(crate) vertices: Vec<Vertex>,
-    pub(crate) bark: Vec<u32>,
-    pub(crate) leaves: Vec<u32>,
-    pub(crate) bark_colour: [f32; 3],
-    pub(crate) leaf_colour: [f32; 3],
-    pub(crate) leaf_shape: LeafShape,
-    pub(crate) bark_pattern: BarkPattern,
-    /// Whether its leaves are textured cards (grass blades are plain triangles).
-    pub(crate) textured_leaves: bool,
-}
-
-/// Levels of detail drawn from meshes: the full cache and its two coarser levels.
-pub(crate) const MESH_LEVELS: usize = 3;
-
-/// One cached instance drawn with its placements: one instanced draw per level and non-empty
-/// index range. Its placements live in the streamed cells.
-#[derive(Clone)]
-pub(crate) struct Group {
-    pub(crate) variant: usize,
-    /// Per level of detail, its bark and leaf triangles in the variant's buffers.
-    pub(crate) levels: [(Span, Span); MESH_LEVELS],
-    /// A sphere around the instance's triangles in its own space (centre, radius), with room
-    /// for the wind's sway.
-    pub(crate) sphere: (Vec3, f32),
-}
-
-/// A variant's impostor card, drawn for trees far from the camera: a quad of corners
-/// `(±1, ±1)` that the impostor shader turns to face the camera, whose vertices carry the
-/// atlas (normal: the centre of the sphere the views frame; wind: atlas number, views per
-/// side, the sphere's radius and the variant's bark material). Empty for variants without an
-/// impostor (seedlings, which are not drawn that far).
-#[derive(Clone)]
-pub(crate) struct Proxy {
-    pub(crate) vertices: Vec<Vertex>,
-    pub(crate) bark: Vec<u32>,
-    pub(crate) leaves: Vec<u32>,
-    /// A sphere around it in the tree's own space (centre, radius).
-    pub(crate) sphere: (Vec3, f32),
-}
-
-/// When a variant's coarser levels are drawn: each level's error in metres (level 1, level 2,
-/// the impostor; infinite for a variant without one), turned into distances by the view's
-/// pixels per radian.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct VariantLod {
-    pub(crate) errors: [f32; MESH_LEVELS],
-}
-
-/// The levels of detail the viewer draws: `LodChain`'s defaults, with impostors of 8 x 8 views
-/// of 96 pixels (the viewer's 720p needs less than 1080p's 128).
-pub(crate) fn lod_chain() -> LodChain {
-    let mut chain = LodChain::default();
-    chain.impostor = chain.impostor.with_view_size(96);
-    chain
 }
 
 /// The forest as it is painted: its builder, how many times it has been repainted (cells
@@ -165,7 +102,8 @@ pub(crate) struct SceneOptions {
     /// Where on the terrain trees may stand (slope limit, height range).
     pub(crate) constraints: Constraints,
     /// The user's elevation model instead of generated terrain (`side` and `trees` are not
-    /// used): the largest square of its own land.
+    /// used): its middle square of at most 1000 m (the world layer's default region), or
+    /// the window its crop names.
     pub(crate) terrain: Option<TerrainFile>,
     /// Ground made already (the editor's forest tab): a square heightmap and the extent the
     /// world covers on it, instead of generated terrain or `terrain` (`side` and `trees` are
@@ -186,35 +124,22 @@ pub(crate) struct TerrainFile {
 }
 
 impl TerrainFile {
-    /// The model's largest square of land as a heightmap, read, cropped and checked.
-    fn heightmap(&self) -> Result<Heightmap, ViewerError> {
-        let name = self.path.display();
+    /// The model's ground: the window its crop names, else its middle square of at most
+    /// [`DEFAULT_REGION_SIDE`] (land on every side of the viewer's square world); says what
+    /// was filled and chosen.
+    pub(crate) fn ground(&self) -> Result<Ground, ViewerError> {
         let options = ReadOptions {
             spacing: self.spacing,
             ..ReadOptions::default()
         };
-        let mut model = ElevationModel::read(&self.path, &options)?;
-        if !model.spacing_from_file && self.spacing.is_none() {
-            return Err(ViewerError::Usage(format!(
-                "{name}: the file does not say how far apart its samples are: give --spacing M"
-            )));
+        let fit = Fit::MiddleSquare {
+            side: DEFAULT_REGION_SIDE,
+        };
+        let ground = Ground::read(&self.path, &options, self.crop, fit, "--spacing M")?;
+        for note in ground.notes(&self.path.display().to_string()) {
+            eprintln!("{note}");
         }
-        if let Some(window) = self.crop {
-            model = model.crop(window)?;
-        }
-        if model.nodata > 0 {
-            eprintln!(
-                "{name}: {} cells had no data and were filled from their neighbours",
-                model.nodata
-            );
-        }
-        let [x, z] = model.extent();
-        if x.max(z) > 20_000.0 {
-            return Err(ViewerError::Usage(format!(
-                "{name}: {x:.0} x {z:.0} m is larger than a world (20000 m a side): give --crop COL,ROW,W,H"
-            )));
-        }
-        Ok(model.square_heightmap()?)
+        Ok(ground)
     }
 }
 
@@ -250,66 +175,54 @@ impl World {
     /// The forest's caches and the terrain ([`sylva::presets::terrain`], as the forest
     /// example's); no trees are placed until cells are streamed.
     pub(crate) fn build(options: SceneOptions) -> Result<World, ViewerError> {
-        let mut config = ForestConfig::new(options.species);
-        config.seed = options.seed;
-        config.budget = options.budget;
-        if options.specimen {
-            config.seedlings_per_patch = 0;
-        }
-        config.all_ages = options.year.is_some();
-        config.constraints = options.constraints;
-        let mut builder = ForestBuilder::new(config)?;
-        let own_patch = builder.density().patch;
-        if let Some(d) = options.density {
-            builder.density_mut().patch = (10_000.0 / d).sqrt();
-        }
-        let patch = builder.density().patch;
-        // A square world: the larger side of the ground's extent.
-        let user_map = match options.ground {
-            Some((map, _)) => Some(map),
+        // The ground first: a model's mistake is reported before seconds of hero trees.
+        let ground = match options.ground {
+            Some((map, extent)) => Some(Ground {
+                map,
+                extent,
+                chosen: None,
+                filled: 0,
+            }),
             None => options
                 .terrain
                 .as_ref()
-                .map(TerrainFile::heightmap)
+                .map(TerrainFile::ground)
                 .transpose()?,
         };
-        let side = match (&user_map, options.trees) {
-            (Some(map), _) => (map.size() - 1) as f32 * map.spacing(),
-            _ if options.specimen => crate::turntable::world_patches(patch) as f32 * patch,
-            (None, Some(n)) => builder.side_for_canopy_trees(n as usize),
-            (None, None) => options.side,
+        // The species' own density is kept, for a world carried onto other ground.
+        let recipe = WorldBuilder::new(options.species)
+            .with_seed(options.seed)
+            .with_budget(options.budget)
+            .with_constraints(options.constraints)
+            .with_year(options.year)
+            .with_masks(options.paint.clone())
+            .with_seedlings(!options.specimen);
+        let mut builder = recipe.forest(&Lines)?;
+        let own_patch = builder.density().patch;
+        if let Some(d) = options.density {
+            builder.density_mut().patch = density_patch(d);
+        }
+        let patch = builder.density().patch;
+        let ground = match ground {
+            Some(ground) => ground,
+            None => {
+                let side = match options.trees {
+                    _ if options.specimen => crate::specimen::world_patches(patch) as f32 * patch,
+                    Some(n) => builder.side_for_canopy_trees(n as usize),
+                    None => options.side,
+                };
+                Ground::generated(options.seed, side)?
+            }
         };
         if options.specimen {
-            builder = builder.with_composition(Some(crate::turntable::specimen(patch)))?;
+            builder = builder.with_composition(Some(crate::specimen::specimen(patch)))?;
         }
-        if !(side > 10.0 && side <= 20_000.0) {
-            return Err(ViewerError::WorldSize { side });
-        }
-        let heightmap = match user_map {
-            Some(map) => map,
-            None => sylva::presets::terrain(options.seed, side)?,
-        };
-        let mut layer = None;
-        if let Some(dir) = &options.paint {
-            let loaded = Arc::new(sylva::paint::load_masks_for(&builder, dir, &heightmap)?);
-            let composition: Arc<dyn Composition> = loaded.clone();
-            builder = builder.with_composition(Some(composition))?;
-            layer = Some(loaded);
-        }
-        let years = match options.year {
-            Some(year) => {
-                let t = std::time::Instant::now();
-                let region = Rect::new(Vec2::ZERO, Vec2::splat(side));
-                let (years, drawn) = crate::years::Years::grow(&builder, region, year)?;
-                eprintln!(
-                    "forest over time: grew {side:.0} m from bare ground to year {year} in {:.1} s",
-                    t.elapsed().as_secs_f64()
-                );
-                builder = drawn;
-                Some(years)
-            }
-            None => None,
-        };
+        // The viewer's world is square: the ground's shorter side, so every sample of it is
+        // the model's own land (the default region is square within a sample).
+        let side = ground.extent[0].min(ground.extent[1]);
+        let built = recipe.finish(builder, ground, &Lines)?;
+        let (builder, heightmap, layer) = (built.forest, built.ground.map, built.layer);
+        let years = built.succession.map(crate::years::Years::of);
         let species = &builder.config().species;
         let chain = lod_chain();
         // Each variant's levels (cards grown to its whole tree's coverage) and, for canopy
@@ -403,7 +316,7 @@ impl World {
         let (floor, first_floor_group) = if options.specimen || !options.floor {
             (None, None)
         } else {
-            let parts = crate::floor::floor_parts(&chain, variants.len())?;
+            let parts: FloorParts = crate::floor::floor_parts(&chain, variants.len())?;
             let first = groups.len() as u32;
             variants.extend(parts.variants);
             groups.extend(parts.groups);
@@ -450,11 +363,13 @@ impl World {
         }
         // A square world over the whole map, as `build` makes one on a map given.
         let side = (heightmap.size() - 1) as f32 * heightmap.spacing();
-        if !(side > 10.0 && side <= 20_000.0) {
-            return Err(ViewerError::WorldSize { side });
+        if !(MIN_SIDE..=MAX_SIDE).contains(&side) {
+            return Err(ViewerError::Usage(format!(
+                "a world of {side} m: expected {MIN_SIDE} to {MAX_SIDE} metres a side"
+            )));
         }
         let mut builder = ForestBuilder::clone(&self.forest().0);
-        builder.density_mut().patch = density.map_or(self.own_patch, |d| (10_000.0 / d).sqrt());
+        builder.density_mut().patch = density.map_or(self.own_patch, density_patch);
         let floor = self.floor.as_ref().map(|_| floor_of(&builder, self.seed));
         Ok(Some(World {
             forest: RwLock::new(Recipe {
@@ -477,40 +392,6 @@ impl World {
             own_patch: self.own_patch,
             seed: self.seed,
         }))
-    }
-}
-
-impl Proxy {
-    /// Nothing: a variant with no impostor.
-    pub(crate) fn none() -> Proxy {
-        Proxy {
-            vertices: Vec::new(),
-            bark: Vec::new(),
-            leaves: Vec::new(),
-            sphere: (Vec3::ZERO, -1.0),
-        }
-    }
-
-    /// The card of `impostor`, atlas number `number`; its bark material is filled in by the
-    /// renderer, which knows the materials.
-    fn card(impostor: &Impostor, number: f32) -> Proxy {
-        let vertex = |x: f32, y: f32| Vertex {
-            position: [x, y, 0.0],
-            normal: impostor.centre,
-            uv: [0.5 * x + 0.5, 0.5 - 0.5 * y],
-            wind: [number, impostor.grid as f32, impostor.radius, 0.0],
-        };
-        Proxy {
-            vertices: vec![
-                vertex(-1.0, -1.0),
-                vertex(1.0, -1.0),
-                vertex(1.0, 1.0),
-                vertex(-1.0, 1.0),
-            ],
-            bark: Vec::new(),
-            leaves: vec![0, 1, 2, 0, 2, 3],
-            sphere: (Vec3::from(impostor.centre), impostor.radius),
-        }
     }
 }
 
@@ -565,6 +446,30 @@ impl World {
     }
 }
 
+impl World {
+    /// The floor items of the cell over `rect`, as placements tagged with their groups:
+    /// shaded by the canopy trees of the forest as it stands.
+    pub(crate) fn floor_instances(
+        &self,
+        floor: &ForestFloor,
+        rect: Rect,
+    ) -> Result<Vec<(u32, InstanceRaw)>, ForestError> {
+        let (forest, _) = self.forest();
+        let trees = forest.trees(&self.heightmap, rect.expanded(floor.reach()));
+        let items = floor.items(&self.heightmap, rect, &trees)?;
+        Ok(items
+            .iter()
+            .filter_map(|item| {
+                let k = GroundKind::ALL.iter().position(|&g| g == item.kind)?;
+                Some((
+                    self.first_floor_group? + k as u32,
+                    crate::floor::instance(item),
+                ))
+            })
+            .collect())
+    }
+}
+
 /// The forest floor of `builder`'s forest, drawn from the world's `seed`.
 fn floor_of(builder: &ForestBuilder, seed: u64) -> ForestFloor {
     ForestFloor::of(
@@ -573,52 +478,11 @@ fn floor_of(builder: &ForestBuilder, seed: u64) -> ForestFloor {
     )
 }
 
-/// A sphere given in an instance's own space, placed in the world by the instance.
-pub(crate) fn world_sphere(i: &InstanceRaw, (centre, radius): (Vec3, f32)) -> (Vec3, f32) {
-    let [x, y, z, scale] = i.translation_scale;
-    let rotation = Quat::from_array(i.rotation);
-    (
-        Vec3::new(x, y, z) + rotation * (centre * scale),
-        radius * scale,
-    )
-}
-
-/// A bounding sphere in an instance's own space, as (centre, radius).
-pub(crate) fn bounding_sphere(points: impl Iterator<Item = Vec3>) -> (Vec3, f32) {
-    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    let mut all = Vec::new();
-    for p in points {
-        lo = lo.min(p);
-        hi = hi.max(p);
-        all.push(p);
-    }
-    if all.is_empty() {
-        return (Vec3::ZERO, 0.0);
-    }
-    let centre = (lo + hi) * 0.5;
-    let radius = all
-        .iter()
-        .map(|p| p.distance(centre))
-        .fold(0.0f32, f32::max);
-    (centre, radius)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn the_sphere_holds_every_point() {
-        let points = [
-            Vec3::ZERO,
-            Vec3::new(4.0, 1.0, 0.0),
-            Vec3::new(-1.0, 6.0, 2.0),
-        ];
-        let (c, r) = bounding_sphere(points.into_iter());
-        assert!(points.iter().all(|p| p.distance(c) <= r + 1e-5));
-    }
-
-    /// A real elevation model of any size is walked: the world is its largest square of
+    /// A real elevation model's window is walked: the world is the largest square of its
     /// land, at its heights, and a treeline keeps trees below it.
     #[test]
     fn a_real_model_is_the_world() {
@@ -626,7 +490,8 @@ mod tests {
             env!("CARGO_MANIFEST_DIR"),
             "/../terrain/tests/data/dems/west_bijou_escarpment.asc"
         );
-        let model = ElevationModel::read(path, &ReadOptions::default()).unwrap();
+        let model =
+            sylva::terrain::dem::ElevationModel::read(path, &ReadOptions::default()).unwrap();
         let [x, z] = model.extent();
         let cropped = Window {
             column: 10,
@@ -661,14 +526,19 @@ mod tests {
             ..options
         })
         .unwrap();
-        let whole = Rect::new(Vec2::ZERO, Vec2::splat(below.side));
+        let whole = Rect::new(
+            sylva::terrain::glam::Vec2::ZERO,
+            sylva::terrain::glam::Vec2::splat(below.side),
+        );
         let trees = below.forest().0.trees(&below.heightmap, whole);
         assert!(!trees.is_empty());
         assert!(trees.iter().all(|t| t.position[1] <= treeline));
     }
 
+    /// A model of any size makes a world: an SRTM tile (80 x 111 km) gives its middle
+    /// square of at most 1000 m, and a crop names another window.
     #[test]
-    fn a_model_larger_than_a_world_asks_for_a_crop() {
+    fn a_large_model_gives_its_middle_square() {
         let path = concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/../terrain/tests/data/dems/N44W072.hgt"
@@ -678,17 +548,18 @@ mod tests {
             spacing: None,
             crop,
         };
-        let message = file(None).heightmap().unwrap_err().to_string();
-        assert!(message.contains("--crop"), "{message}");
-        assert!(
-            file(Some(Window {
-                column: 0,
-                row: 0,
-                width: 100,
-                height: 100
-            }))
-            .heightmap()
-            .is_ok()
-        );
+        let middle = file(None).ground().unwrap();
+        let chosen = middle.chosen.expect("a window was chosen");
+        assert!(chosen.note().contains("--crop"), "{}", chosen.note());
+        assert!(middle.side() <= DEFAULT_REGION_SIDE && middle.side() > 900.0);
+        assert!((middle.extent[0] - middle.extent[1]).abs() < 100.0);
+        let window = Window {
+            column: 0,
+            row: 0,
+            width: 100,
+            height: 100,
+        };
+        let cropped = file(Some(window)).ground().unwrap();
+        assert!(cropped.chosen.is_none() && cropped.side() > 6000.0);
     }
 }

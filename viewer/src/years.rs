@@ -4,7 +4,7 @@
 use std::sync::{Mutex, PoisonError};
 
 use sylva::forest::succession::Succession;
-use sylva::forest::{ForestBuilder, ForestError, Rect};
+use sylva::forest::{ForestBuilder, ForestError};
 
 /// Most years the viewer simulates.
 pub(crate) const MAX_YEARS: u32 = 2000;
@@ -15,22 +15,11 @@ pub(crate) struct Years {
 }
 
 impl Years {
-    /// The forest of `builder`'s species over `region`, grown from bare ground to `year`
-    /// with the builder's seed; returns it and the builder drawing that year.
-    pub(crate) fn grow(
-        builder: &ForestBuilder,
-        region: Rect,
-        year: u32,
-    ) -> Result<(Years, ForestBuilder), ForestError> {
-        let mut forest = builder.succession(region)?;
-        forest.run(year, |_| Ok(()))?;
-        let drawn = builder.drawing(&forest)?;
-        Ok((
-            Years {
-                forest: Mutex::new(forest),
-            },
-            drawn,
-        ))
+    /// The forest over time the world layer grew (to the year asked for).
+    pub(crate) fn of(forest: Succession) -> Years {
+        Years {
+            forest: Mutex::new(forest),
+        }
     }
 
     /// The year reached.

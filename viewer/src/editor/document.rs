@@ -266,8 +266,8 @@ mod tests {
     use super::*;
 
     fn oak() -> Document {
-        let (path, text) = sylva::presets::SPECIES_FILES[0];
-        Document::open(Path::new(path), text, false).unwrap()
+        let oak = &sylva::presets::BUNDLED[0];
+        Document::open(Path::new(oak.path), oak.text, false).unwrap()
     }
 
     #[test]

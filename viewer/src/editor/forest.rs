@@ -6,8 +6,9 @@
 use std::path::{Path, PathBuf};
 
 use sylva::forest::Species;
-use sylva_server::project::{Project, model_id, read_model};
-use sylva_server::{SpeciesEntry, TerrainDescription, WorldDescription};
+use sylva::world::limits::{MAX_BUDGET_MB, MAX_SIDE, MIN_SIDE};
+use sylva::world::{Project, model_id, read_model_bytes};
+use sylva::world::{SpeciesEntry, TerrainDescription, WorldDescription};
 
 use crate::world::SceneOptions;
 
@@ -33,8 +34,8 @@ impl ForestSettings {
         ForestSettings {
             description: WorldDescription {
                 seed,
-                area: side.clamp(10.0, sylva_server::MAX_SIDE),
-                budget_mb: budget_mb.clamp(1, 128) as u32,
+                area: side.clamp(MIN_SIDE, MAX_SIDE),
+                budget_mb: budget_mb.clamp(1, MAX_BUDGET_MB as usize) as u32,
                 ..WorldDescription::default()
             },
             model: None,
@@ -46,7 +47,7 @@ impl ForestSettings {
     pub(crate) fn of_project(
         folder: &Path,
     ) -> Result<Option<(ForestSettings, Vec<InlineSpecies>)>, String> {
-        if !folder.join(sylva_server::project::WORLD_FILE).is_file() {
+        if !folder.join(sylva::world::WORLD_FILE).is_file() {
             return Ok(None);
         }
         let project = Project::read(folder).map_err(|e| e.to_string())?;
@@ -56,10 +57,8 @@ impl ForestSettings {
             .filter_map(|s| match s {
                 SpeciesEntry::Inline { file, grammar } => Some((file, grammar)),
                 // A bundled species by name: its own file, as the bundle holds it.
-                SpeciesEntry::Bundled(name) => sylva::presets::SPECIES_FILES
-                    .iter()
-                    .find(|(path, _)| Path::new(path).file_stem().is_some_and(|s| *s == *name))
-                    .map(|(_, text)| (text.to_string(), None)),
+                SpeciesEntry::Bundled(name) => sylva::presets::bundled(&name)
+                    .map(|b| (b.text.to_string(), b.grammar.map(str::to_string))),
             })
             .collect();
         let model = match &description.terrain {
@@ -76,18 +75,19 @@ impl ForestSettings {
     /// Uses the elevation model in `file` as the terrain (its spacing from the file, or
     /// `spacing` metres); an error when it cannot be read as one.
     pub(crate) fn use_model(&mut self, file: &Path, spacing: Option<f32>) -> Result<(), String> {
-        let bytes = read_model(file).map_err(|e| e.to_string())?;
+        let bytes = read_model_bytes(file).map_err(|e| e.to_string())?;
         let mut trial = self.clone();
         trial.description.terrain = TerrainDescription::Heightmap {
             id: model_id(&bytes).as_str().to_owned(),
             spacing,
             height_range: None,
+            crop: None,
         };
-        trial.description.check().map_err(|e| e.message)?;
+        trial.description.check().map_err(|e| e.to_string())?;
         trial
             .description
             .ground(|_| Ok(bytes))
-            .map_err(|e| format!("{}: {}", file.display(), e.message))?;
+            .map_err(|e| format!("{}: {e}", file.display()))?;
         trial.model = Some(file.to_path_buf());
         *self = trial;
         Ok(())
@@ -118,11 +118,9 @@ impl ForestSettings {
         let ground = d
             .ground(|_| {
                 let file = self.model.as_deref().unwrap_or(Path::new(""));
-                read_model(file).map_err(|e| {
-                    sylva_server::ApiError::bad_request("unknown_heightmap", e.to_string())
-                })
+                Ok(read_model_bytes(file)?)
             })
-            .map_err(|e| e.message)?;
+            .map_err(|e| e.to_string())?;
         Ok(SceneOptions {
             seed: d.seed,
             side: d.area,
@@ -130,7 +128,7 @@ impl ForestSettings {
             species,
             budget: d.budget_mb as usize * (1 << 20),
             terrain: None,
-            ground: Some(ground),
+            ground: Some((ground.map, ground.extent)),
             density: d.density,
             ..base.clone()
         })

@@ -3,7 +3,8 @@
 //! density. The forest is built again around the camera once the edits pause.
 
 use egui::{Color32, RichText, Slider, Ui};
-use sylva_server::{MAX_EROSION, MAX_SIDE, TerrainDescription};
+use sylva::world::TerrainDescription;
+use sylva::world::limits::{MAX_EROSION, MAX_SIDE};
 
 use super::Editor;
 

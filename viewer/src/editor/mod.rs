@@ -101,9 +101,9 @@ impl Editor {
                 .map(|(file, grammar)| Document::inline(&project, file, grammar.as_deref()))
                 .collect::<Result<Vec<_>, _>>()?
         } else if paths.is_empty() {
-            sylva::presets::SPECIES_FILES
+            sylva::presets::BUNDLED[..sylva::presets::DEFAULT_SPECIES]
                 .iter()
-                .map(|(path, text)| Document::open(Path::new(path), text, false))
+                .map(|b| Document::open(Path::new(b.path), b.text, false))
                 .collect::<Result<Vec<_>, _>>()?
         } else {
             paths
@@ -342,7 +342,7 @@ impl Editor {
 
     /// The world's description with the species inline, as the project's world file holds
     /// it.
-    pub(crate) fn description(&self) -> sylva_server::WorldDescription {
+    pub(crate) fn description(&self) -> sylva::world::WorldDescription {
         let species = self
             .documents
             .iter()
@@ -653,7 +653,7 @@ mod tests {
         });
         e.edit(|d| document::set_setting(&mut d.species_text, "generations", "6"));
         e.save();
-        let saved = sylva_server::project::Project::read(&project).unwrap();
+        let saved = sylva::world::Project::read(&project).unwrap();
         assert_eq!(saved.description, e.description());
         assert_eq!(saved.description.species.len(), 5);
         let again = Editor::open(&[], project.clone(), settings()).unwrap();

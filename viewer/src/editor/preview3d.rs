@@ -300,7 +300,7 @@ fn upload(device: &wgpu::Device, mesh: &Arc<Mesh>, [bark, leaf]: [[f32; 3]; 2]) 
         .collect();
     let indices: Vec<u32> = mesh.bark.iter().chain(&mesh.leaves).copied().collect();
     let (centre, radius) =
-        crate::world::bounding_sphere(mesh.vertices.iter().map(|v| Vec3::from(v.position)));
+        crate::geometry::bounding_sphere(mesh.vertices.iter().map(|v| Vec3::from(v.position)));
     let buffer = |label, contents: &[u8], usage| {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),

@@ -1,5 +1,5 @@
 //! The editor's project folder: species files and their grammars saved side by side with
-//! the world file (`sylva_server::project`), so that `sylva forest --project DIR` and the
+//! the world file (`sylva::world::Project`), so that `sylva forest --project DIR` and the
 //! server take them; an autosave
 //! beside them, with marks that say a session is running and that the autosave holds edits
 //! never saved, so that the next start (after a crash, or a quit without saving) offers the
@@ -8,8 +8,8 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use sylva_server::WorldDescription;
-use sylva_server::project::Project;
+use sylva::world::Project;
+use sylva::world::WorldDescription;
 
 /// The autosave's folder inside a project.
 const AUTOSAVE: &str = ".autosave";

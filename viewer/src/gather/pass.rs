@@ -9,7 +9,8 @@ use crate::cell::{Cell, Level, RunBounds};
 use crate::cull::{
     Cover, Levels, LodView, MAX_SIGHTS, Sight, farthest_distance, nearest_distance, run_covers,
 };
-use crate::world::{InstanceRaw, MESH_LEVELS, World, world_sphere};
+use crate::geometry::{InstanceRaw, MESH_LEVELS, world_sphere};
+use crate::world::World;
 
 /// Appends to `out` the placements of one cell that `sights` see.
 pub(super) fn gather_cell(

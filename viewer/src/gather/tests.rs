@@ -3,8 +3,9 @@
 
 use super::*;
 use crate::cull::Volume;
+use crate::geometry::{MESH_LEVELS, lod_chain, world_sphere};
 use crate::shadow::{SHADOW_TEXEL, light_view_proj};
-use crate::world::{MESH_LEVELS, SceneOptions, lod_chain, world_sphere};
+use crate::world::SceneOptions;
 use proptest::prelude::*;
 use std::sync::{Mutex, OnceLock, PoisonError};
 use sylva::terrain::glam::Vec3;

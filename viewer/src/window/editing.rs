@@ -76,7 +76,7 @@ impl App {
     /// The project's masks folder, with an editor.
     fn masks_folder(&self) -> Option<std::path::PathBuf> {
         let w = self.editor.as_ref()?;
-        Some(w.editor.project.join(sylva_server::project::MASKS_FOLDER))
+        Some(w.editor.project.join(sylva::world::MASKS_FOLDER))
     }
 
     /// Starts a rebuild when the editor has a change and none is under way; swaps a

@@ -7,14 +7,13 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use sylva::base::file::FileError;
-use sylva::terrain::Heightmap;
+use sylva_base::file::FileError;
 
 use crate::description::{TerrainDescription, WorldDescription};
-use crate::error::ApiError;
-use crate::heightmaps::MAX_HEIGHTMAP_BYTES;
-pub use crate::heightmaps::model_id;
-use crate::id::WorldId;
+use crate::error::WorldError;
+use crate::ground::Ground;
+use crate::id::{WorldId, model_id};
+use crate::limits::{MAX_DESCRIPTION_BYTES, MAX_MODEL_BYTES};
 
 /// The world's description in a project folder.
 pub const WORLD_FILE: &str = "world.json";
@@ -22,42 +21,6 @@ pub const WORLD_FILE: &str = "world.json";
 pub const MASKS_FOLDER: &str = "masks";
 /// The stem of the elevation model's file in a project (`heightmap.tif`, `heightmap.png`...).
 const MODEL_STEM: &str = "heightmap";
-
-/// A project folder could not be read or written.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum ProjectError {
-    /// A file could not be read or written.
-    #[error(transparent)]
-    File(#[from] FileError),
-    /// `world.json` is not a world description; the message names the field.
-    #[error("{}: {message}", path.display())]
-    Description {
-        /// The description's file.
-        path: PathBuf,
-        /// What is wrong.
-        message: String,
-    },
-    /// The terrain names an elevation model no file in the folder holds.
-    #[error(
-        "{}: the terrain names heightmap {id}, but no {MODEL_STEM}.* file in the folder holds it",
-        folder.display()
-    )]
-    MissingModel {
-        /// The project folder.
-        folder: PathBuf,
-        /// The id `world.json` names.
-        id: String,
-    },
-    /// The ground could not be made (an unreadable model, a bad spacing).
-    #[error("{}: {message}", folder.display())]
-    Ground {
-        /// The project folder.
-        folder: PathBuf,
-        /// What is wrong.
-        message: String,
-    },
-}
 
 /// A project folder's world.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,26 +35,24 @@ impl Project {
     /// Reads `folder/world.json`, checked as the server checks a posted description.
     ///
     /// ```
-    /// use sylva_server::{WorldDescription, project::Project};
+    /// use sylva_world::{Project, WorldDescription};
     /// let folder = std::env::temp_dir().join("sylva-project-doctest");
     /// let description = WorldDescription::parse(br#"{"seed": 4, "area": 300}"#)?;
     /// Project::write(&folder, &description, None)?;
     /// let project = Project::read(&folder)?;
     /// assert_eq!(project.description, description);
-    /// let (map, extent) = project.ground()?;
-    /// assert_eq!(extent, [300.0, 300.0]);
+    /// assert_eq!(project.ground()?.extent, [300.0, 300.0]);
     /// # std::fs::remove_dir_all(&folder).ok();
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn read(folder: impl AsRef<Path>) -> Result<Project, ProjectError> {
+    pub fn read(folder: impl AsRef<Path>) -> Result<Project, WorldError> {
         let folder = folder.as_ref().to_path_buf();
         let path = folder.join(WORLD_FILE);
-        let bytes = read_bounded(&path, crate::description::MAX_DESCRIPTION_BYTES as u64 + 1)?;
-        let description =
-            WorldDescription::parse(&bytes).map_err(|e| ProjectError::Description {
-                path,
-                message: e.message,
-            })?;
+        let bytes = read_bounded(&path, MAX_DESCRIPTION_BYTES as u64 + 1)?;
+        let description = WorldDescription::parse(&bytes).map_err(|e| WorldError::Project {
+            path,
+            message: e.to_string(),
+        })?;
         Ok(Project {
             folder,
             description,
@@ -105,12 +66,12 @@ impl Project {
         folder: impl AsRef<Path>,
         description: &WorldDescription,
         model: Option<&Path>,
-    ) -> Result<WorldDescription, ProjectError> {
+    ) -> Result<WorldDescription, WorldError> {
         let folder = folder.as_ref();
         std::fs::create_dir_all(folder).map_err(FileError::at(folder))?;
         let mut description = description.clone();
         if let Some(model) = model {
-            let bytes = read_model(model)?;
+            let bytes = read_model_bytes(model)?;
             let ext = model
                 .extension()
                 .map_or("dem".into(), |e| e.to_string_lossy().to_lowercase());
@@ -119,47 +80,43 @@ impl Project {
             for old in model_files(folder).into_iter().filter(|p| *p != copy) {
                 let _ = std::fs::remove_file(old);
             }
-            sylva::base::file::write(&copy, |f| f.write_all(&bytes))?;
-            let (spacing, height_range) = match &description.terrain {
+            sylva_base::file::write(&copy, |f| f.write_all(&bytes))?;
+            let (spacing, height_range, crop) = match &description.terrain {
                 TerrainDescription::Heightmap {
                     spacing,
                     height_range,
+                    crop,
                     ..
-                } => (*spacing, *height_range),
-                TerrainDescription::Generated { .. } => (None, None),
+                } => (*spacing, *height_range, *crop),
+                TerrainDescription::Generated { .. } => (None, None, None),
             };
             description.terrain = TerrainDescription::Heightmap {
                 id: model_id(&bytes).as_str().to_owned(),
                 spacing,
                 height_range,
+                crop,
             };
         }
         let path = folder.join(WORLD_FILE);
         let mut json = serde_json::to_string_pretty(&description).unwrap_or_default();
         json.push('\n');
-        sylva::base::file::write(&path, |f| f.write_all(json.as_bytes()))?;
+        sylva_base::file::write(&path, |f| f.write_all(json.as_bytes()))?;
         Ok(description)
     }
 
     /// The ground: generated from the description, or read from the folder's model file
-    /// whose id the terrain names.
-    pub fn ground(&self) -> Result<(Heightmap, [f32; 2]), ProjectError> {
-        let mut missing = None;
-        let ground = self.description.ground(|id| {
-            self.model_bytes(id).ok_or_else(|| {
-                missing = Some(id.as_str().to_owned());
-                ApiError::bad_request("unknown_heightmap", "")
-            })
-        });
-        if let Some(id) = missing {
-            return Err(ProjectError::MissingModel {
-                folder: self.folder.clone(),
-                id,
-            });
-        }
-        ground.map_err(|e| ProjectError::Ground {
-            folder: self.folder.clone(),
-            message: e.message,
+    /// whose id the terrain names ([`WorldDescription::ground`]).
+    pub fn ground(&self) -> Result<Ground, WorldError> {
+        self.description.ground(|id| {
+            self.model_bytes(id)
+                .ok_or_else(|| WorldError::UnknownModel {
+                    id: id.as_str().to_owned(),
+                    hint: format!(
+                        "{} names it, but no {MODEL_STEM}.* file in {} holds it",
+                        WORLD_FILE,
+                        self.folder.display()
+                    ),
+                })
         })
     }
 
@@ -180,7 +137,7 @@ impl Project {
     /// The folder's model file whose bytes have the id `id`, and its bytes.
     fn model_with(&self, id: &WorldId) -> Option<(PathBuf, Vec<u8>)> {
         model_files(&self.folder).into_iter().find_map(|p| {
-            let bytes = read_model(&p).ok()?;
+            let bytes = read_model_bytes(&p).ok()?;
             (model_id(&bytes) == *id).then_some((p, bytes))
         })
     }
@@ -206,9 +163,9 @@ fn model_files(folder: &Path) -> Vec<PathBuf> {
 }
 
 /// An elevation model's bytes, refused before they are read beyond the size an upload may
-/// have ([`MAX_HEIGHTMAP_BYTES`]).
-pub fn read_model(path: &Path) -> Result<Vec<u8>, FileError> {
-    read_bounded(path, MAX_HEIGHTMAP_BYTES as u64)
+/// have ([`MAX_MODEL_BYTES`]).
+pub fn read_model_bytes(path: &Path) -> Result<Vec<u8>, FileError> {
+    read_bounded(path, MAX_MODEL_BYTES as u64)
 }
 
 /// A file's bytes, refused beyond `limit` before they are read.
@@ -253,12 +210,12 @@ mod tests {
         let project = Project::read(&dir).unwrap();
         assert_eq!(project.model(), Some(dir.join("heightmap.asc")));
         assert_eq!(project.description, written);
-        let (map, extent) = project.ground().unwrap();
-        assert!(extent[0] > 10.0 && map.size() > 2);
+        let ground = project.ground().unwrap();
+        assert!(ground.extent[0] > 10.0 && ground.map.size() > 2);
         // Without its file the project says which id it misses.
         std::fs::remove_file(dir.join("heightmap.asc")).unwrap();
         let e = Project::read(&dir).unwrap().ground().unwrap_err();
-        assert!(matches!(e, ProjectError::MissingModel { .. }), "{e}");
+        assert_eq!(e.code(), "unknown_heightmap", "{e}");
         assert!(e.to_string().contains(id.as_str()), "{e}");
         let _ = std::fs::remove_dir_all(&dir);
     }
@@ -271,7 +228,7 @@ mod tests {
         let e = Project::read(&dir).unwrap_err().to_string();
         assert!(e.contains("world.json") && e.contains("area"), "{e}");
         let missing = Project::read(folder("none")).unwrap_err();
-        assert!(matches!(missing, ProjectError::File(_)), "{missing}");
+        assert!(matches!(missing, WorldError::File(_)), "{missing}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -1,56 +1,60 @@
-//! A world description: the JSON a client posts to make a world, checked, completed with
-//! defaults and written back in one canonical form whose hash is the world's id.
+//! A world description: what a world is made of, as JSON (what a client posts to the
+//! server, what a project folder's `world.json` holds), checked, completed with defaults and
+//! written back in one canonical form whose hash is the world's id.
 
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
-use sylva::forest::Species;
+use sylva_forest::Species;
 
-use crate::error::ApiError;
+use crate::error::WorldError;
 use crate::id::WorldId;
-
-/// Most bytes a description may have (inline species files included).
-pub const MAX_DESCRIPTION_BYTES: usize = 256 << 10;
-/// Most species a world may have.
-pub const MAX_SPECIES: usize = 16;
-/// Largest side of a world, metres (the batch writer's limit too).
-pub const MAX_SIDE: f32 = 20_000.0;
+use crate::limits::{
+    DEFAULT_BUDGET_MB, DEFAULT_GROUP, DEFAULT_ORIGIN, DEFAULT_SIDE, DEFAULT_TILE_SIZE,
+    MAX_BUDGET_MB, MAX_DENSITY, MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_GROUP, MAX_HEIGHT_RANGE,
+    MAX_SIDE, MAX_SPACING, MAX_SPECIES, MIN_SIDE, TILE_SIZE_RANGE,
+};
+use crate::presets::{self, DEFAULT_RELIEF, DEFAULT_ROUGHNESS, DEFAULT_SMOOTHING};
 
 /// What a world is made of. Every field has a default, so `{}` is the default world of
 /// `sylva tiles`: the five bundled species on an 800 m diamond-square terrain, seed 1, in
 /// 250 m tiles grouped 4 x 4.
 ///
 /// ```
-/// use sylva_server::WorldDescription;
+/// use sylva_world::WorldDescription;
 ///
 /// let a = WorldDescription::parse(br#"{"seed": 7, "area": 600}"#)?;
 /// let b = WorldDescription::parse(br#"{ "area": 600.0, "seed": 7, "tile_size": 250 }"#)?;
 /// assert_eq!(a.id(), b.id()); // the same world, written two ways
 /// assert!(WorldDescription::parse(br#"{"area": -1}"#).is_err());
-/// # Ok::<(), sylva_server::ApiError>(())
+/// # Ok::<(), sylva_world::WorldError>(())
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldDescription {
-    /// The species: bundled ones by name, or species files inline.
+    /// The species: bundled ones by name, or species files inline. Default: none, which
+    /// grows the five default species ([`presets::species`]).
     pub species: Vec<SpeciesEntry>,
-    /// The ground: generated, or an uploaded heightmap.
+    /// The ground: generated, or an elevation model. Default: generated at the default
+    /// terrain's settings.
     pub terrain: TerrainDescription,
-    /// Side of the square world, metres (for generated terrain; an uploaded heightmap's own
-    /// extent decides otherwise).
+    /// Side of the square world, metres (for generated terrain; an elevation model's own
+    /// extent decides otherwise). Default: [`DEFAULT_SIDE`], 800.
     pub area: f32,
-    /// World seed: trees, and generated terrain unless its own seed is given.
+    /// World seed: trees, and generated terrain unless its own seed is given. Default: 1.
     pub seed: u64,
-    /// Side of a fine tile, metres.
+    /// Side of a fine tile, metres. Default: [`DEFAULT_TILE_SIZE`], 250.
     pub tile_size: f32,
-    /// Fine tiles along each side of a coarse tile.
+    /// Fine tiles along each side of a coarse tile. Default: [`DEFAULT_GROUP`], 4.
     pub group: u32,
-    /// Longitude and latitude (degrees) of the world's low corner on the globe.
+    /// Longitude and latitude (degrees) of the world's low corner on the globe. Default:
+    /// [`DEFAULT_ORIGIN`], Zürich.
     pub origin: [f64; 2],
-    /// Canopy trees per hectare; `None` keeps the species' own spacing.
+    /// Canopy trees per hectare. Default: `None`, the species' own spacing.
     pub density: Option<f32>,
-    /// Instance-cache budget, MiB, shared among the species.
+    /// Instance-cache budget, MiB, shared among the species. Default:
+    /// [`DEFAULT_BUDGET_MB`], 32.
     pub budget_mb: u32,
 }
 
@@ -58,7 +62,8 @@ pub struct WorldDescription {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum SpeciesEntry {
-    /// A bundled species by name: oak, birch, spruce, pine or hazel.
+    /// A bundled species by name ([`presets::bundled_names`]: oak, birch, spruce, pine,
+    /// hazel...).
     Bundled(String),
     /// A species file's text (the format of `Species::parse_file`), and the text of its
     /// grammar unless it names a preset: nothing is read from the server's disk.
@@ -77,51 +82,56 @@ pub enum SpeciesEntry {
 pub enum TerrainDescription {
     /// Diamond-square, smoothed: the batch tools' default terrain with its settings open.
     Generated {
-        /// Terrain seed; `None` uses the world seed.
+        /// Terrain seed. Default: `None`, the world seed.
         #[serde(default)]
         seed: Option<u64>,
-        /// Diamond-square's roughness (0 to 1).
+        /// Diamond-square's roughness (0 to 1). Default: [`DEFAULT_ROUGHNESS`], 0.75.
         #[serde(default = "default_roughness")]
         roughness: f32,
-        /// Relief, as a share of the world's side.
+        /// Relief, as a share of the world's side. Default: [`DEFAULT_RELIEF`], 0.06.
         #[serde(default = "default_relief")]
         relief: f32,
-        /// Gaussian smoothing, in samples (0 for none).
+        /// Gaussian smoothing, in samples (0 for none). Default: [`DEFAULT_SMOOTHING`], 2.
         #[serde(default = "default_smoothing")]
         smoothing: f32,
         /// Hydraulic erosion after smoothing, as rain droplets per sample (0 for none, up
-        /// to 4; 1 cuts gullies). Left out of the canonical form when 0, so worlds described
+        /// to [`MAX_EROSION`]; 1 cuts gullies). Default: 0. Left out of the canonical form when 0, so worlds described
         /// before erosion keep their ids.
         #[serde(default, skip_serializing_if = "is_zero")]
         erosion: f32,
     },
-    /// A heightmap uploaded with `POST /heightmaps`.
+    /// An elevation model: uploaded with `POST /heightmaps`, or a project's `heightmap.*`.
     Heightmap {
-        /// The id the upload returned.
+        /// The model's id ([`crate::model_id`] of its bytes; what the upload returned).
         id: String,
-        /// Metres between samples (when the file does not say).
+        /// Metres between samples (when the file does not say). Default: the file's.
         #[serde(default)]
         spacing: Option<f32>,
-        /// Heights of samples 0 and 65535, metres (when the file does not say).
+        /// Heights of samples 0 and 65535, metres (when the file does not say). Default: the
+        /// file's.
         #[serde(default)]
         height_range: Option<[f32; 2]>,
+        /// The window of the model the world stands on: its north-west sample's column and
+        /// row, then its width and height in samples. Default: `None`, the whole model when it
+        /// is at most [`MAX_SIDE`] a side, else its middle [`MAX_SIDE`] square. Left out of
+        /// the canonical form when `None`, so worlds described before it keep their ids.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        crop: Option<[usize; 4]>,
     },
 }
 
 fn default_roughness() -> f32 {
-    0.75
+    DEFAULT_ROUGHNESS
 }
 fn default_relief() -> f32 {
-    0.06
+    DEFAULT_RELIEF
 }
 fn default_smoothing() -> f32 {
-    2.0
+    DEFAULT_SMOOTHING
 }
 fn is_zero(x: &f32) -> bool {
     *x == 0.0
 }
-/// Most hydraulic-erosion droplets per sample.
-pub const MAX_EROSION: f32 = 4.0;
 
 impl Default for TerrainDescription {
     fn default() -> Self {
@@ -140,36 +150,29 @@ impl Default for WorldDescription {
         WorldDescription {
             species: Vec::new(),
             terrain: TerrainDescription::default(),
-            area: 800.0,
+            area: DEFAULT_SIDE,
             seed: 1,
-            tile_size: 250.0,
-            group: 4,
-            origin: [8.54, 47.37],
+            tile_size: DEFAULT_TILE_SIZE,
+            group: DEFAULT_GROUP,
+            origin: DEFAULT_ORIGIN,
             density: None,
-            budget_mb: 32,
+            budget_mb: DEFAULT_BUDGET_MB,
         }
     }
 }
 
-/// The names of the bundled species, in their order.
-pub const BUNDLED_SPECIES: [&str; 5] = ["oak", "birch", "spruce", "pine", "hazel"];
-
 impl WorldDescription {
     /// Parses and checks a description: JSON of at most [`MAX_DESCRIPTION_BYTES`], no field
     /// unknown, every number in its range. The error says which field is wrong and why.
-    pub fn parse(bytes: &[u8]) -> Result<WorldDescription, ApiError> {
+    pub fn parse(bytes: &[u8]) -> Result<WorldDescription, WorldError> {
         if bytes.len() > MAX_DESCRIPTION_BYTES {
-            return Err(ApiError::too_large(format!(
+            return Err(WorldError::TooLarge(format!(
                 "a world description of {} bytes is over the limit of {MAX_DESCRIPTION_BYTES}",
                 bytes.len()
             )));
         }
-        let invalid = |m: String| {
-            ApiError::bad_request(
-                "bad_description",
-                format!("the world description is not valid: {m}"),
-            )
-        };
+        let invalid =
+            |m: String| WorldError::Invalid(format!("the world description is not valid: {m}"));
         let mut json = serde_json::Deserializer::from_slice(bytes);
         let description: WorldDescription =
             serde_path_to_error::deserialize(&mut json).map_err(|e| {
@@ -188,8 +191,8 @@ impl WorldDescription {
     }
 
     /// Every field in its range (the checks `parse` makes).
-    pub fn check(&self) -> Result<(), ApiError> {
-        let bad = |m: String| Err(ApiError::bad_request("bad_description", m));
+    pub fn check(&self) -> Result<(), WorldError> {
+        let bad = |m: String| Err(WorldError::Invalid(m));
         if self.species.len() > MAX_SPECIES {
             return bad(format!(
                 "{} species: a world has at most {MAX_SPECIES}",
@@ -198,32 +201,26 @@ impl WorldDescription {
         }
         for s in &self.species {
             if let SpeciesEntry::Bundled(name) = s
-                && !BUNDLED_SPECIES.contains(&name.as_str())
+                && presets::bundled(name).is_none()
             {
-                return Err(ApiError::bad_request(
-                    "unknown_species",
-                    format!(
-                        "unknown species '{}': the bundled ones are {}; or give a species file inline as {{\"file\": \"...\"}}",
-                        name.chars().take(80).collect::<String>(),
-                        BUNDLED_SPECIES.join(", ")
-                    ),
-                ));
+                return Err(unknown_species(name));
             }
         }
-        if !(self.area >= 10.0 && self.area <= MAX_SIDE) {
+        if !(self.area >= MIN_SIDE && self.area <= MAX_SIDE) {
             return bad(format!(
-                "area {}: expected a side from 10 to {MAX_SIDE} metres",
+                "area {}: expected a side from {MIN_SIDE} to {MAX_SIDE} metres",
                 self.area
             ));
         }
-        if !(self.tile_size >= 10.0 && self.tile_size <= 5_000.0) {
+        let (small, large) = TILE_SIZE_RANGE;
+        if !(self.tile_size >= small && self.tile_size <= large) {
             return bad(format!(
-                "tile_size {}: expected 10 to 5000 metres",
+                "tile_size {}: expected {small} to {large} metres",
                 self.tile_size
             ));
         }
-        if !(1..=64).contains(&self.group) {
-            return bad(format!("group {}: expected 1 to 64", self.group));
+        if !(1..=MAX_GROUP).contains(&self.group) {
+            return bad(format!("group {}: expected 1 to {MAX_GROUP}", self.group));
         }
         let [lon, lat] = self.origin;
         if !(lon.abs() <= 180.0 && lat.abs() <= 90.0) {
@@ -232,14 +229,17 @@ impl WorldDescription {
             ));
         }
         if let Some(d) = self.density
-            && !(d > 0.0 && d <= 10_000.0)
+            && !(d > 0.0 && d <= MAX_DENSITY)
         {
             return bad(format!(
-                "density {d}: expected 0 < trees per hectare <= 10000"
+                "density {d}: expected 0 < trees per hectare <= {MAX_DENSITY}"
             ));
         }
-        if !(1..=128).contains(&self.budget_mb) {
-            return bad(format!("budget_mb {}: expected 1 to 128", self.budget_mb));
+        if !(1..=MAX_BUDGET_MB).contains(&self.budget_mb) {
+            return bad(format!(
+                "budget_mb {}: expected 1 to {MAX_BUDGET_MB}",
+                self.budget_mb
+            ));
         }
         match &self.terrain {
             TerrainDescription::Generated {
@@ -268,6 +268,7 @@ impl WorldDescription {
                 id,
                 spacing,
                 height_range,
+                crop,
             } => {
                 if !WorldId::is_valid(id) {
                     return bad(format!(
@@ -276,15 +277,27 @@ impl WorldDescription {
                     ));
                 }
                 if let Some(s) = spacing
-                    && !(*s > 0.0 && *s <= 1_000.0)
-                {
-                    return bad(format!("terrain spacing {s}: expected 0 to 1000 metres"));
-                }
-                if let Some([lo, hi]) = height_range
-                    && !(lo.is_finite() && hi.is_finite() && lo < hi && (hi - lo) <= 20_000.0)
+                    && !(*s > 0.0 && *s <= MAX_SPACING)
                 {
                     return bad(format!(
-                        "terrain height_range [{lo}, {hi}]: expected low < high, within 20000 m"
+                        "terrain spacing {s}: expected 0 to {MAX_SPACING} metres"
+                    ));
+                }
+                if let Some([lo, hi]) = height_range
+                    && !(lo.is_finite()
+                        && hi.is_finite()
+                        && lo < hi
+                        && (hi - lo) <= MAX_HEIGHT_RANGE)
+                {
+                    return bad(format!(
+                        "terrain height_range [{lo}, {hi}]: expected low < high, within {MAX_HEIGHT_RANGE} m"
+                    ));
+                }
+                if let Some([_, _, w, h]) = crop
+                    && (*w < 2 || *h < 2)
+                {
+                    return bad(format!(
+                        "terrain crop {w} x {h} samples: expected at least 2 x 2"
                     ));
                 }
             }
@@ -292,40 +305,33 @@ impl WorldDescription {
         Ok(())
     }
 
-    /// The world's species, parsed: the bundled ones by name (all five for none), inline
+    /// The world's species, parsed: the bundled ones by name (the default five for none), inline
     /// files as written with their grammars (a mistake in one is a 400 with its line and
     /// column); an inline species never reads a file.
     ///
     /// ```
-    /// use sylva_server::WorldDescription;
+    /// use sylva_world::WorldDescription;
     /// let d = WorldDescription::parse(br#"{"species": ["pine", "oak"]}"#)?;
     /// let names: Vec<String> = d.species()?.into_iter().map(|s| s.name).collect();
     /// assert_eq!(names, ["pine", "oak"]);
-    /// # Ok::<(), sylva_server::ApiError>(())
+    /// # Ok::<(), sylva_world::WorldError>(())
     /// ```
-    pub fn species(&self) -> Result<Vec<Species>, ApiError> {
-        let bundled = sylva::presets::species().map_err(|e| ApiError::internal(e.to_string()))?;
+    pub fn species(&self) -> Result<Vec<Species>, WorldError> {
         if self.species.is_empty() {
-            return Ok(bundled);
+            return presets::species().map_err(WorldError::Species);
         }
         self.species
             .iter()
             .enumerate()
             .map(|(k, entry)| match entry {
-                SpeciesEntry::Bundled(name) => BUNDLED_SPECIES
-                    .iter()
-                    .position(|b| b == name)
-                    .map(|i| bundled[i].clone())
-                    .ok_or_else(|| {
-                        ApiError::bad_request(
-                            "unknown_species",
-                            format!("unknown species '{name}'"),
-                        )
-                    }),
+                SpeciesEntry::Bundled(name) => presets::bundled(name)
+                    .ok_or_else(|| unknown_species(name))?
+                    .species()
+                    .map_err(WorldError::Species),
                 SpeciesEntry::Inline { file, grammar } => {
                     let name = format!("species[{k}]");
                     Species::parse_detached(file, Path::new(&name), grammar.as_deref())
-                        .map_err(|e| ApiError::bad_request("bad_species", e.to_string()))
+                        .map_err(WorldError::Species)
                 }
             })
             .collect()
@@ -341,6 +347,14 @@ impl WorldDescription {
     /// The world's id: the first 128 bits of the SHA-256 of its canonical form, in hex.
     pub fn id(&self) -> WorldId {
         WorldId::of(&Sha256::digest(self.canonical().as_bytes()))
+    }
+}
+
+/// The error for a species name no folder bundles.
+fn unknown_species(name: &str) -> WorldError {
+    WorldError::UnknownSpecies {
+        name: name.chars().take(80).collect(),
+        known: presets::bundled_names().join(", "),
     }
 }
 
@@ -391,19 +405,20 @@ mod tests {
             (r#"[1, 2"#, "description"),
         ] {
             let e = WorldDescription::parse(json.as_bytes()).unwrap_err();
-            assert_eq!(e.status.as_u16(), 400, "{json}");
-            assert!(e.message.contains(field), "{json}: {}", e.message);
+            assert!(e.is_user_mistake(), "{json}");
+            assert!(e.to_string().contains(field), "{json}: {e}");
         }
     }
 
     #[test]
     fn unknown_species_and_oversize_are_refused() {
         let e = WorldDescription::parse(br#"{"species": ["baobab"]}"#).unwrap_err();
-        assert_eq!((e.status.as_u16(), e.code), (400, "unknown_species"));
+        assert_eq!(e.code(), "unknown_species");
+        assert!(e.to_string().contains("oak, birch"), "{e}");
         let big = vec![b' '; MAX_DESCRIPTION_BYTES + 1];
         assert_eq!(
-            WorldDescription::parse(&big).unwrap_err().status.as_u16(),
-            413
+            WorldDescription::parse(&big).unwrap_err().code(),
+            "too_large"
         );
     }
 

@@ -1,7 +1,9 @@
-//! Ids of worlds and uploaded heightmaps: 32 lowercase hex digits, the first 128 bits of a
-//! SHA-256. Checked before they name any path, so an id can never climb out of the cache.
+//! Ids of worlds and elevation models: 32 lowercase hex digits, the first 128 bits of a
+//! SHA-256. Checked before they name any path, so an id can never climb out of a cache.
 
 use std::fmt;
+
+use sha2::{Digest, Sha256};
 
 /// A world's or heightmap's id.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -36,6 +38,17 @@ impl WorldId {
     pub fn as_str(&self) -> &str {
         &self.0
     }
+}
+
+/// The id of an elevation model's bytes: the one the server answers for an upload of them,
+/// and the one a project's description names (the first 128 bits of their SHA-256).
+///
+/// ```
+/// let id = sylva_world::model_id(b"not really a model");
+/// assert_eq!(id.as_str().len(), 32);
+/// ```
+pub fn model_id(bytes: &[u8]) -> WorldId {
+    WorldId::of(&Sha256::digest(bytes))
 }
 
 impl fmt::Display for WorldId {

@@ -1,0 +1,264 @@
+//! The builder that turns species, settings and ground into a [`World`]: a forest ready for
+//! any writer (glTF, USD, 3D Tiles, an engine's own instancing). The CLI, the viewer and the
+//! server each build their worlds here, so one description makes one forest everywhere.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use sylva_export::{TileScheme, TilesetOptions};
+use sylva_forest::succession::Succession;
+use sylva_forest::{
+    Composition, Constraints, ForestBuilder, ForestConfig, Rect, SitingReport, Species,
+};
+use sylva_paint::PaintLayer;
+
+use crate::error::WorldError;
+use crate::ground::Ground;
+use crate::limits::{DEFAULT_BUDGET_MB, MAX_DENSITY, MAX_YEARS};
+use crate::progress::{Progress, Stage, timed};
+
+/// How to build a world: its species and the settings that shape its forest. Public fields
+/// with a `with_*` method each; [`WorldBuilder::build`] makes the world on a [`Ground`].
+///
+/// ```
+/// use sylva_world::{Ground, Quiet, WorldBuilder};
+///
+/// let species = sylva_world::presets::species()?[..2].to_vec();
+/// let world = WorldBuilder::new(species)
+///     .with_seed(7)
+///     .with_budget(4 << 20)
+///     .build(Ground::generated(7, 120.0)?, &Quiet)?;
+/// assert!(!world.forest.trees(&world.ground.map, world.region()).is_empty());
+/// # Ok::<(), sylva_world::WorldError>(())
+/// ```
+#[derive(Debug, Clone)]
+#[must_use]
+pub struct WorldBuilder {
+    /// The species. Required.
+    pub species: Vec<Species>,
+    /// World seed. Default: 1.
+    pub seed: u64,
+    /// Instance-cache budget in bytes, shared among the species. Default: 32 MiB
+    /// ([`DEFAULT_BUDGET_MB`]).
+    pub budget: usize,
+    /// Canopy trees per hectare. Default: `None`, the species' own spacing.
+    pub density: Option<f32>,
+    /// Where on the terrain trees may stand. Default: [`Constraints::default`].
+    pub constraints: Constraints,
+    /// Draw year N of a forest over time grown from bare ground (trees of every age, dead,
+    /// broken and fallen ones) instead of the density model's forest. Default: `None`.
+    pub year: Option<u32>,
+    /// A folder of painted masks (as `sylva paint` and the viewer save them) that decide
+    /// where each species grows. Default: `None`.
+    pub masks: Option<PathBuf>,
+    /// Whether seedlings grow under the canopy. Default: `true`.
+    pub seedlings: bool,
+}
+
+impl WorldBuilder {
+    /// A world of `species` with every other setting at its default.
+    pub fn new(species: Vec<Species>) -> WorldBuilder {
+        WorldBuilder {
+            species,
+            seed: 1,
+            budget: DEFAULT_BUDGET_MB as usize * (1 << 20),
+            density: None,
+            constraints: Constraints::default(),
+            year: None,
+            masks: None,
+            seedlings: true,
+        }
+    }
+
+    /// Sets [`WorldBuilder::seed`].
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Sets [`WorldBuilder::budget`].
+    pub fn with_budget(mut self, bytes: usize) -> Self {
+        self.budget = bytes;
+        self
+    }
+
+    /// Sets [`WorldBuilder::density`].
+    pub fn with_density(mut self, trees_per_hectare: Option<f32>) -> Self {
+        self.density = trees_per_hectare;
+        self
+    }
+
+    /// Sets [`WorldBuilder::constraints`].
+    pub fn with_constraints(mut self, constraints: Constraints) -> Self {
+        self.constraints = constraints;
+        self
+    }
+
+    /// Sets [`WorldBuilder::year`].
+    pub fn with_year(mut self, year: Option<u32>) -> Self {
+        self.year = year;
+        self
+    }
+
+    /// Sets [`WorldBuilder::masks`].
+    pub fn with_masks(mut self, folder: Option<PathBuf>) -> Self {
+        self.masks = folder;
+        self
+    }
+
+    /// Sets [`WorldBuilder::seedlings`].
+    pub fn with_seedlings(mut self, seedlings: bool) -> Self {
+        self.seedlings = seedlings;
+        self
+    }
+
+    /// Every setting in its range: checked before seconds of hero trees are spent.
+    pub fn check(&self) -> Result<(), WorldError> {
+        let bad = |m: String| Err(WorldError::Invalid(m));
+        if self.species.is_empty() {
+            return bad("a world needs at least one species".into());
+        }
+        if self.budget == 0 {
+            return bad("an instance-cache budget of 0 bytes: expected at least 1 MiB".into());
+        }
+        if let Some(d) = self.density
+            && !(d > 0.0 && d <= MAX_DENSITY)
+        {
+            return bad(format!(
+                "density {d}: expected 0 < trees per hectare <= {MAX_DENSITY}"
+            ));
+        }
+        if let Some(year) = self.year
+            && year > MAX_YEARS
+        {
+            return bad(format!("year {year}: expected 0 to {MAX_YEARS}"));
+        }
+        Ok(())
+    }
+
+    /// The forest's recipe: the species' instance caches from hero trees (seconds), at the
+    /// density asked for. No ground is needed yet: its side may follow from the density
+    /// ([`ForestBuilder::side_for_canopy_trees`]).
+    pub fn forest(&self, progress: &dyn Progress) -> Result<ForestBuilder, WorldError> {
+        self.check()?;
+        let mut config = ForestConfig::new(self.species.clone())
+            .with_seed(self.seed)
+            .with_budget(self.budget)
+            .with_all_ages(self.year.is_some())
+            .with_constraints(self.constraints.clone());
+        if !self.seedlings {
+            config.seedlings_per_patch = 0;
+        }
+        let (builder, _) = timed(progress, Stage::HeroTrees, || ForestBuilder::new(config));
+        let mut builder = builder?;
+        if let Some(d) = self.density {
+            builder.density_mut().patch = density_patch(d);
+        }
+        Ok(builder)
+    }
+
+    /// The world of `forest` (from [`WorldBuilder::forest`]) on `ground`: painted with the
+    /// masks, grown to the year.
+    pub fn finish(
+        &self,
+        forest: ForestBuilder,
+        ground: Ground,
+        progress: &dyn Progress,
+    ) -> Result<World, WorldError> {
+        let mut forest = forest;
+        let mut layer = None;
+        if let Some(folder) = &self.masks {
+            let (loaded, _) = timed(progress, Stage::Painting, || {
+                sylva_paint::load_masks_for(&forest, folder, &ground.map)
+            });
+            let loaded = Arc::new(loaded?);
+            let composition: Arc<dyn Composition> = loaded.clone();
+            forest = forest.with_composition(Some(composition))?;
+            layer = Some(loaded);
+        }
+        let mut succession = None;
+        if let Some(year) = self.year {
+            let (grown, _) = timed(progress, Stage::Years, || {
+                let mut years = forest.succession(ground.region())?;
+                for done in 0..year {
+                    years.step()?;
+                    progress.years(done + 1, year);
+                }
+                let drawn = forest.drawing(&years)?;
+                Ok::<_, WorldError>((years, drawn))
+            });
+            let (years, drawn) = grown?;
+            forest = drawn;
+            succession = Some(years);
+        }
+        Ok(World {
+            forest,
+            ground,
+            seed: self.seed,
+            layer,
+            succession,
+        })
+    }
+
+    /// [`WorldBuilder::forest`] then [`WorldBuilder::finish`] on `ground`.
+    pub fn build(&self, ground: Ground, progress: &dyn Progress) -> Result<World, WorldError> {
+        let forest = self.forest(progress)?;
+        self.finish(forest, ground, progress)
+    }
+}
+
+/// The side of the density model's patch for `trees_per_hectare` canopy trees: one
+/// canopy tree stands in each patch.
+///
+/// ```
+/// assert_eq!(sylva_world::density_patch(100.0), 10.0);
+/// ```
+pub fn density_patch(trees_per_hectare: f32) -> f32 {
+    (10_000.0 / trees_per_hectare).sqrt()
+}
+
+/// A world ready for any writer: its forest's recipe, its ground, and what made them.
+#[derive(Debug, Clone)]
+pub struct World {
+    /// The forest's recipe: instance caches, placement, composition.
+    pub forest: ForestBuilder,
+    /// The ground.
+    pub ground: Ground,
+    /// The world seed.
+    pub seed: u64,
+    /// The painted layer the forest is composed by, if masks were given.
+    pub layer: Option<Arc<PaintLayer>>,
+    /// The forest over time the trees come from, at its year, if a year was asked for.
+    pub succession: Option<Succession>,
+}
+
+impl World {
+    /// The world's region on its ground.
+    pub fn region(&self) -> Rect {
+        self.ground.region()
+    }
+
+    /// The world's longer side, metres.
+    pub fn side(&self) -> f32 {
+        self.ground.side()
+    }
+
+    /// What the terrain makes of the candidate tree spots (slopes, heights, masks).
+    pub fn siting(&self) -> Result<SitingReport, WorldError> {
+        Ok(self.forest.siting(&self.ground.map, self.region())?)
+    }
+
+    /// The world cut into 3D Tiles: fine tiles of `tile_size` metres grouped `group` x
+    /// `group` into coarse ones, standing at `origin` (longitude, latitude in degrees).
+    pub fn tiling(
+        &self,
+        tile_size: f32,
+        group: u32,
+        origin: [f64; 2],
+    ) -> Result<(TileScheme, TilesetOptions), WorldError> {
+        let scheme = TileScheme::new(self.region(), tile_size, group)
+            .map_err(|e| WorldError::Invalid(e.to_string()))?;
+        let options = TilesetOptions::default().with_origin((origin[0], origin[1]));
+        Ok((scheme, options))
+    }
+}

@@ -1,0 +1,52 @@
+//! Every limit and default of a world, in one place: the CLI's flags, the viewer's, the
+//! server's descriptions and uploads check against these, and their messages quote them.
+
+/// Shortest side of a world, metres.
+pub const MIN_SIDE: f32 = 10.0;
+/// Longest side of a world, metres: 20 km, 400 km² (a forest of 20 million canopy trees).
+pub const MAX_SIDE: f32 = 20_000.0;
+/// Side of the generated world when none is asked for, metres.
+pub const DEFAULT_SIDE: f32 = 800.0;
+/// Side of the region of an elevation model larger than this that a single-file forest
+/// takes by default (its middle), metres: a forest of this side is a GLB of about 70 MB,
+/// which desktop viewers open; the whole model goes to 3D Tiles (`--whole`).
+pub const DEFAULT_REGION_SIDE: f32 = 1_000.0;
+
+/// Most canopy trees per hectare a density may ask for.
+pub const MAX_DENSITY: f32 = 10_000.0;
+/// Most canopy trees a world may be sized for (`--trees`).
+pub const MAX_TREES: usize = 10_000_000;
+/// Most years one forest over time simulates.
+pub const MAX_YEARS: u32 = 10_000;
+
+/// Instance-cache budget when none is asked for, MiB.
+pub const DEFAULT_BUDGET_MB: u32 = 32;
+/// Largest instance-cache budget a description may ask for, MiB.
+pub const MAX_BUDGET_MB: u32 = 128;
+
+/// Most species a world may have.
+pub const MAX_SPECIES: usize = 16;
+/// Most bytes a world description may have (inline species files included).
+pub const MAX_DESCRIPTION_BYTES: usize = 256 << 10;
+/// Most hydraulic-erosion droplets per sample of generated terrain.
+pub const MAX_EROSION: f32 = 4.0;
+
+/// Most bytes an elevation model may have, read from a project or uploaded.
+pub const MAX_MODEL_BYTES: usize = 64 << 20;
+/// Most samples along a side of an uploaded elevation model.
+pub const MAX_MODEL_SIDE: u32 = 4097;
+/// Largest spacing between an elevation model's samples a description may give, metres.
+pub const MAX_SPACING: f32 = 1_000.0;
+/// Largest height range of a 16-bit model a description may give, metres.
+pub const MAX_HEIGHT_RANGE: f32 = 20_000.0;
+
+/// Side of a fine tile when none is asked for, metres.
+pub const DEFAULT_TILE_SIZE: f32 = 250.0;
+/// Fine tiles along each side of a coarse tile when none is asked for.
+pub const DEFAULT_GROUP: u32 = 4;
+/// Smallest and largest side of a fine tile, metres.
+pub const TILE_SIZE_RANGE: (f32, f32) = (10.0, 5_000.0);
+/// Most fine tiles along each side of a coarse tile.
+pub const MAX_GROUP: u32 = 64;
+/// Longitude and latitude (degrees) of a world's low corner when none is given: Zürich.
+pub const DEFAULT_ORIGIN: [f64; 2] = [8.54, 47.37];
