@@ -84,18 +84,21 @@ impl Default for StreamSettings {
 
 impl StreamSettings {
     /// Sets [`StreamSettings::view_distance`].
+    #[must_use]
     pub fn with_view_distance(mut self, metres: f32) -> Self {
         self.view_distance = metres;
         self
     }
 
     /// Sets [`StreamSettings::fine_distance`].
+    #[must_use]
     pub fn with_fine_distance(mut self, metres: Option<f32>) -> Self {
         self.fine_distance = metres;
         self
     }
 
     /// Sets [`StreamSettings::wind`].
+    #[must_use]
     pub fn with_wind(mut self, strength: f32) -> Self {
         self.wind = strength;
         self
@@ -141,6 +144,7 @@ impl Forest {
     }
 
     /// Sets [`Forest::settings`].
+    #[must_use]
     pub fn with_settings(mut self, settings: StreamSettings) -> Forest {
         self.settings = settings;
         self

@@ -114,6 +114,7 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
     // One file holds a region a desktop viewer opens; a larger model says what it took.
     let world = args.world.world(
         hidden,
+        args.quiet,
         Fit::Middle {
             side: DEFAULT_REGION_SIDE,
         },

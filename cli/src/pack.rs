@@ -70,6 +70,7 @@ pub(crate) fn run(args: PackArgs) -> Result<(), Failure> {
     }
     let world = args.world.world(
         hidden,
+        args.quiet,
         sylva::world::Fit::Middle {
             side: sylva::world::limits::DEFAULT_REGION_SIDE,
         },

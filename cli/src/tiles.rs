@@ -103,7 +103,9 @@ pub(crate) fn run(args: TilesArgs) -> Result<(), Failure> {
     check_tileset_folder(dir)?;
     let tile: Option<TileId> = args.tile.as_deref().map(str::parse).transpose()?;
     // A tileset streams: it takes a model whole, up to the largest world.
-    let world = args.world.world(hidden, sylva::world::Fit::WHOLE)?;
+    let world = args
+        .world
+        .world(hidden, args.quiet, sylva::world::Fit::WHOLE)?;
     let (builder, map) = (&world.builder, &world.map);
     let scheme = TileScheme::new(world.region, args.tile_size, args.group)?;
     let mut options = TilesetOptions::default();

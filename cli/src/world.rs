@@ -181,8 +181,9 @@ impl WorldArgs {
     /// Builds the caches, the terrain and, with --paint, the painted builder. Flags and the
     /// user's files are checked first, so a mistake is reported before seconds of hero
     /// trees. A model given with --terrain is taken as `fit` says unless --crop names a
-    /// window.
-    pub(crate) fn world(&self, quiet: bool, fit: Fit) -> Result<BuiltWorld, Failure> {
+    /// window. `hidden` hides progress (--stats, --quiet); `quiet` also the notes on what was
+    /// made of a model and why a forest is thin (--quiet: --stats keeps them, on stderr).
+    pub(crate) fn world(&self, hidden: bool, quiet: bool, fit: Fit) -> Result<BuiltWorld, Failure> {
         if let Some(a) = self.area.filter(|a| !(*a > 0.0 && *a <= MAX_SIDE)) {
             return Err(Failure::usage(format!(
                 "--area {a}: expected a side length from 0 to {MAX_SIDE} metres"
@@ -199,7 +200,7 @@ impl WorldArgs {
             )));
         }
         let constraints = self.constraints()?;
-        let bars = Bars::new(quiet);
+        let bars = Bars::new(hidden);
         let (recipe, ground) = match &self.project {
             Some(dir) => {
                 let project = Project::read(dir).map_err(failure)?;
@@ -223,7 +224,7 @@ impl WorldArgs {
                         .collect::<Result<Vec<_>, _>>()?
                 };
                 let ground = match &self.terrain {
-                    Some(file) => Some(self.model_ground(file, fit, quiet)?),
+                    Some(file) => Some(self.model_ground(file, fit, hidden, quiet)?),
                     None => None,
                 };
                 let recipe = WorldBuilder::new(species)
@@ -245,7 +246,7 @@ impl WorldArgs {
                     (None, Some(n)) => forest.side_for_canopy_trees(n),
                     (None, None) => DEFAULT_SIDE,
                 };
-                let (ground, _) = phase(quiet, "generating terrain", || {
+                let (ground, _) = phase(hidden, "generating terrain", || {
                     Ground::generated(self.seed, side)
                 });
                 ground.map_err(failure)?
@@ -291,13 +292,19 @@ impl WorldArgs {
 
     /// The ground of `--terrain`'s model: `--crop`'s window, or what `fit` takes; says what
     /// was filled and chosen unless `quiet`.
-    fn model_ground(&self, file: &Path, fit: Fit, quiet: bool) -> Result<Ground, Failure> {
+    fn model_ground(
+        &self,
+        file: &Path,
+        fit: Fit,
+        hidden: bool,
+        quiet: bool,
+    ) -> Result<Ground, Failure> {
         let options = ReadOptions {
             spacing: self.spacing,
             height_range: self.height_range.map(|(lo, hi)| [lo, hi]),
             raw_size: self.raw_size.map(|(w, h)| [w, h]),
         };
-        let (ground, _) = phase(quiet, "reading the elevation model", || {
+        let (ground, _) = phase(hidden, "reading the elevation model", || {
             Ground::read(file, &options, self.crop, fit, "--spacing M")
         });
         let ground = ground.map_err(failure)?;

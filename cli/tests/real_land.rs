@@ -13,14 +13,43 @@ fn dem(name: &str) -> String {
     )
 }
 
+/// An SRTM tile, 80 x 111 km, makes a forest on the first try: its middle 1000 m, with a
+/// note naming the window as a crop; a crop outside the model is a usage mistake.
 #[test]
-fn a_tile_larger_than_a_world_names_the_crop_that_fits() {
+fn a_tile_of_any_size_gives_its_middle_and_names_its_crop() {
+    let dir = scratch("land-middle");
+    let (glb, png) = (dir.join("f.glb"), dir.join("f.png"));
     let hgt = dem("N44W072.hgt");
-    let out = sylva(&["forest", "--terrain", &hgt, "--out", "/nonexistent/x.glb"]);
-    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let birch = format!(
+        "{}/../world/species/birch/birch.species",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = sylva(&[
+        "forest",
+        "--terrain",
+        &hgt,
+        "--species",
+        &birch,
+        "--density",
+        "20",
+        "--budget-mb",
+        "4",
+        "--out",
+        glb.to_str().unwrap(),
+        "--heightmap",
+        png.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
     let message = stderr(&out);
-    // The middle window: 302 x 216 samples of 66 x 93 m.
-    assert!(message.contains("--crop 449,492,302,216"), "{message}");
+    // The middle window: 16 x 11 samples of 66 x 93 m.
+    assert!(
+        message.contains("the model covers 79530 x 111122 m (1201 x 1201 samples); took the middle 994 x 926 m (columns 592..607, rows 595..605); --crop 592,595,16,11 names this window, --whole writes the whole model as 3D Tiles"),
+        "{message}"
+    );
+    let stats: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(stats["area_m"].as_f64().unwrap() <= 1000.0, "{stats}");
+    let _ = std::fs::remove_dir_all(&dir);
     let out = sylva(&["forest", "--terrain", &hgt, "--crop", "1200,0,10,10"]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(

@@ -31,6 +31,7 @@ impl Rect {
     }
 
     /// The overlap of two rectangles.
+    #[must_use]
     pub fn intersect(&self, other: &Rect) -> Rect {
         Rect {
             min: self.min.max(other.min),
@@ -39,6 +40,7 @@ impl Rect {
     }
 
     /// The smallest rectangle holding both.
+    #[must_use]
     pub fn union(&self, other: &Rect) -> Rect {
         Rect {
             min: self.min.min(other.min),
@@ -68,6 +70,7 @@ impl Rect {
     }
 
     /// The rectangle grown by `margin` on every side.
+    #[must_use]
     pub fn expanded(&self, margin: f32) -> Rect {
         Rect {
             min: self.min - margin,

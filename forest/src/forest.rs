@@ -87,42 +87,49 @@ pub struct ForestConfig {
 
 impl ForestConfig {
     /// Sets [`ForestConfig::constraints`].
+    #[must_use]
     pub fn with_constraints(mut self, constraints: Constraints) -> Self {
         self.constraints = constraints;
         self
     }
 
     /// Sets [`ForestConfig::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets [`ForestConfig::budget`].
+    #[must_use]
     pub fn with_budget(mut self, budget: usize) -> Self {
         self.budget = budget;
         self
     }
 
     /// Sets [`ForestConfig::scale_variation`].
+    #[must_use]
     pub fn with_scale_variation(mut self, scale_variation: f32) -> Self {
         self.scale_variation = scale_variation;
         self
     }
 
     /// Sets [`ForestConfig::spacing_factor`].
+    #[must_use]
     pub fn with_spacing_factor(mut self, spacing_factor: f32) -> Self {
         self.spacing_factor = spacing_factor;
         self
     }
 
     /// Sets [`ForestConfig::all_ages`].
+    #[must_use]
     pub fn with_all_ages(mut self, all_ages: bool) -> Self {
         self.all_ages = all_ages;
         self
     }
 
     /// Sets [`ForestConfig::seedlings_per_patch`].
+    #[must_use]
     pub fn with_seedlings_per_patch(mut self, seedlings_per_patch: u32) -> Self {
         self.seedlings_per_patch = seedlings_per_patch;
         self

@@ -72,54 +72,63 @@ pub const SEEDLING_HEIGHT: f32 = 0.1;
 
 impl Life {
     /// Sets [`Life::max_height`].
+    #[must_use]
     pub fn with_max_height(mut self, metres: f32) -> Self {
         self.max_height = metres;
         self
     }
 
     /// Sets [`Life::growth_rate`].
+    #[must_use]
     pub fn with_growth_rate(mut self, per_year: f32) -> Self {
         self.growth_rate = per_year;
         self
     }
 
     /// Sets [`Life::growth_shape`].
+    #[must_use]
     pub fn with_growth_shape(mut self, shape: f32) -> Self {
         self.growth_shape = shape;
         self
     }
 
     /// Sets [`Life::max_age`].
+    #[must_use]
     pub fn with_max_age(mut self, years: f32) -> Self {
         self.max_age = years;
         self
     }
 
     /// Sets [`Life::maturity_age`].
+    #[must_use]
     pub fn with_maturity_age(mut self, years: f32) -> Self {
         self.maturity_age = years;
         self
     }
 
     /// Sets [`Life::shade_tolerance`].
+    #[must_use]
     pub fn with_shade_tolerance(mut self, tolerance: f32) -> Self {
         self.shade_tolerance = tolerance;
         self
     }
 
     /// Sets [`Life::dispersal`].
+    #[must_use]
     pub fn with_dispersal(mut self, metres: f32) -> Self {
         self.dispersal = metres;
         self
     }
 
     /// Sets [`Life::seeds_per_year`].
+    #[must_use]
     pub fn with_seeds_per_year(mut self, seeds: f32) -> Self {
         self.seeds_per_year = seeds;
         self
     }
 
     /// Sets [`Life::leaf_area_index`].
+    #[must_use]
     pub fn with_leaf_area_index(mut self, lai: f32) -> Self {
         self.leaf_area_index = lai;
         self

@@ -13,12 +13,14 @@ use crate::siting_report::{Refusal, SitingReport};
 
 impl Constraints {
     /// Sets [`Constraints::max_slope_degrees`].
+    #[must_use]
     pub fn with_max_slope_degrees(mut self, degrees: f32) -> Self {
         self.max_slope_degrees = degrees;
         self
     }
 
     /// Sets [`Constraints::min_height`] and [`Constraints::max_height`].
+    #[must_use]
     pub fn with_height_range(mut self, min: f32, max: f32) -> Self {
         self.min_height = min;
         self.max_height = max;

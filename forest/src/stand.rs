@@ -59,30 +59,35 @@ impl Default for StandOptions {
 
 impl StandOptions {
     /// Sets [`StandOptions::voxel`].
+    #[must_use]
     pub fn with_voxel(mut self, voxel: f32) -> Self {
         self.voxel = voxel;
         self
     }
 
     /// Sets [`StandOptions::margin`].
+    #[must_use]
     pub fn with_margin(mut self, margin: f32) -> Self {
         self.margin = margin;
         self
     }
 
     /// Sets [`StandOptions::height`].
+    #[must_use]
     pub fn with_height(mut self, height: f32) -> Self {
         self.height = height;
         self
     }
 
     /// Sets [`StandOptions::obstacles`].
+    #[must_use]
     pub fn with_obstacles(mut self, obstacles: Vec<(Vec<Vec3>, Vec<u32>)>) -> Self {
         self.obstacles = obstacles;
         self
     }
 
     /// Sets [`StandOptions::growth`].
+    #[must_use]
     pub fn with_growth(mut self, growth: GrowthOptions) -> Self {
         self.growth = growth;
         self

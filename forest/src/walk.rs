@@ -56,54 +56,63 @@ impl Default for WalkOptions {
 
 impl WalkOptions {
     /// Sets [`WalkOptions::step`].
+    #[must_use]
     pub fn with_step(mut self, step: f32) -> Self {
         self.step = step;
         self
     }
 
     /// Sets [`WalkOptions::influence`].
+    #[must_use]
     pub fn with_influence(mut self, influence: f32) -> Self {
         self.influence = influence;
         self
     }
 
     /// Sets [`WalkOptions::repulsion`].
+    #[must_use]
     pub fn with_repulsion(mut self, repulsion: f32) -> Self {
         self.repulsion = repulsion;
         self
     }
 
     /// Sets [`WalkOptions::body`].
+    #[must_use]
     pub fn with_body(mut self, body: f32) -> Self {
         self.body = body;
         self
     }
 
     /// Sets [`WalkOptions::arrival`].
+    #[must_use]
     pub fn with_arrival(mut self, arrival: f32) -> Self {
         self.arrival = arrival;
         self
     }
 
     /// Sets [`WalkOptions::margin`].
+    #[must_use]
     pub fn with_margin(mut self, margin: f32) -> Self {
         self.margin = margin;
         self
     }
 
     /// Sets [`WalkOptions::turn`].
+    #[must_use]
     pub fn with_turn(mut self, turn: f32) -> Self {
         self.turn = turn;
         self
     }
 
     /// Sets [`WalkOptions::deviation`].
+    #[must_use]
     pub fn with_deviation(mut self, deviation: f32) -> Self {
         self.deviation = deviation;
         self
     }
 
     /// Sets [`WalkOptions::patience`].
+    #[must_use]
     pub fn with_patience(mut self, patience: u32) -> Self {
         self.patience = patience;
         self

@@ -305,7 +305,7 @@ proptest! {
 /// The table of the crate README: how closely tiles agree with one run, by halo and years.
 /// `cargo test --release -p sylva-forest --test succession -- --ignored --nocapture`
 #[test]
-#[ignore = "a table for the README, about a minute in release"]
+#[ignore = "a table for docs/growth-and-succession.md, about a minute in release"]
 fn tile_agreement_table() {
     for years in [80, 300] {
         for halo in [0.0, 30.0, 60.0, 120.0, 240.0] {

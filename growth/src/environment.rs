@@ -1,7 +1,7 @@
 //! The voxel space as a derivation's environment: cpfg's communication module `?E` answered
 //! with the light where it stands.
 
-use sylva_lsys::{Environment, Word};
+use sylva_lsys::{Environment, EnvironmentError, Word};
 use sylva_turtle::glam::Vec3;
 use sylva_turtle::{TurtleOptions, query_frames};
 
@@ -68,11 +68,12 @@ impl LightEnvironment {
 }
 
 impl Environment for LightEnvironment {
-    fn respond(&mut self, word: &mut Word, _generation: u32) -> Result<(), String> {
+    fn respond(&mut self, word: &mut Word, _generation: u32) -> Result<(), EnvironmentError> {
         if !word.iter().any(|m| m.name == "?E") {
             return Ok(());
         }
-        let frames = query_frames(word, &self.turtle, &["?E"]).map_err(|e| e.to_string())?;
+        let frames = query_frames(word, &self.turtle, &["?E"])
+            .map_err(|e| EnvironmentError::Interpretation(e.to_string()))?;
         for (index, frame) in frames {
             let light = self.sky.light_at(&self.grid, self.base + frame.position);
             let values = [

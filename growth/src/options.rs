@@ -121,48 +121,56 @@ impl Default for GrowthOptions {
 
 impl GrowthOptions {
     /// Sets [`GrowthOptions::sun`].
+    #[must_use]
     pub fn with_sun(mut self, sun: SunPath) -> Self {
         self.sun = sun;
         self
     }
 
     /// Sets [`GrowthOptions::sky_rays`].
+    #[must_use]
     pub fn with_sky_rays(mut self, sky_rays: u32) -> Self {
         self.sky_rays = sky_rays;
         self
     }
 
     /// Sets [`GrowthOptions::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets [`GrowthOptions::retries`].
+    #[must_use]
     pub fn with_retries(mut self, retries: u32) -> Self {
         self.retries = retries;
         self
     }
 
     /// Sets [`GrowthOptions::cone_degrees`].
+    #[must_use]
     pub fn with_cone_degrees(mut self, cone_degrees: f32) -> Self {
         self.cone_degrees = cone_degrees;
         self
     }
 
     /// Sets [`GrowthOptions::query`].
+    #[must_use]
     pub fn with_query(mut self, query: Option<char>) -> Self {
         self.query = query;
         self
     }
 
     /// Sets [`GrowthOptions::query_radius`].
+    #[must_use]
     pub fn with_query_radius(mut self, query_radius: f32) -> Self {
         self.query_radius = query_radius;
         self
     }
 
     /// Sets [`GrowthOptions::max_iterations`].
+    #[must_use]
     pub fn with_max_iterations(mut self, max_iterations: u32) -> Self {
         self.max_iterations = max_iterations;
         self

@@ -83,18 +83,21 @@ impl Default for HeroOptions {
 
 impl HeroOptions {
     /// Sets [`HeroOptions::max_rejections`].
+    #[must_use]
     pub fn with_max_rejections(mut self, max_rejections: u32) -> Self {
         self.max_rejections = max_rejections;
         self
     }
 
     /// Sets [`HeroOptions::markers`].
+    #[must_use]
     pub fn with_markers(mut self, markers: Markers) -> Self {
         self.markers = markers;
         self
     }
 
     /// Sets [`HeroOptions::limits`].
+    #[must_use]
     pub fn with_limits(mut self, limits: Limits) -> Self {
         self.limits = limits;
         self
@@ -103,24 +106,28 @@ impl HeroOptions {
 
 impl HeroOptions {
     /// Sets [`HeroOptions::budget`] in bytes.
+    #[must_use]
     pub fn with_budget(mut self, bytes: usize) -> Self {
         self.budget = bytes;
         self
     }
 
     /// Sets [`HeroOptions::generations`].
+    #[must_use]
     pub fn with_generations(mut self, n: u32) -> Self {
         self.generations = n;
         self
     }
 
     /// Sets [`HeroOptions::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets both ends of the probability schedule.
+    #[must_use]
     pub fn with_probability(mut self, p_min: f64, p_max: f64) -> Self {
         self.p_min = p_min;
         self.p_max = p_max;
@@ -128,24 +135,28 @@ impl HeroOptions {
     }
 
     /// Sets [`HeroOptions::turtle`].
+    #[must_use]
     pub fn with_turtle(mut self, turtle: TurtleOptions) -> Self {
         self.turtle = turtle;
         self
     }
 
     /// Sets [`HeroOptions::cap_per_key`].
+    #[must_use]
     pub fn with_cap(mut self, cap: usize) -> Self {
         self.cap_per_key = cap;
         self
     }
 
     /// Sets [`HeroOptions::max_heroes`].
+    #[must_use]
     pub fn with_max_heroes(mut self, n: u32) -> Self {
         self.max_heroes = n;
         self
     }
 
     /// Sets [`HeroOptions::complete_share`] and [`HeroOptions::max_tree_exits`].
+    #[must_use]
     pub fn with_granularity(mut self, complete_share: f64, max_tree_exits: u32) -> Self {
         self.complete_share = complete_share;
         self.max_tree_exits = max_tree_exits;
@@ -153,6 +164,7 @@ impl HeroOptions {
     }
 
     /// Sets [`HeroOptions::keep_words`].
+    #[must_use]
     pub fn with_words(mut self, keep: bool) -> Self {
         self.keep_words = keep;
         self

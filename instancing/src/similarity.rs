@@ -44,6 +44,7 @@ impl Similarity {
     /// within float rounding over the few levels a tree nests, so it is not renormalised here
     /// (exporters normalise once at the end).
     #[inline]
+    #[must_use]
     pub fn mul(&self, other: &Similarity) -> Similarity {
         Similarity {
             rotation: self.rotation * other.rotation,
@@ -53,6 +54,7 @@ impl Similarity {
     }
 
     /// The inverse transform.
+    #[must_use]
     pub fn inverse(&self) -> Similarity {
         let r = self.rotation.conjugate();
         let s = 1.0 / self.scale;

@@ -49,6 +49,7 @@ impl Span {
     }
 
     /// The same run moved `offset` elements on.
+    #[must_use]
     pub const fn offset(self, offset: u32) -> Self {
         Span {
             start: self.start.saturating_add(offset),

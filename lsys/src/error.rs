@@ -98,12 +98,13 @@ pub enum GrammarError {
 #[non_exhaustive]
 pub enum DeriveError {
     /// The [`Environment`](crate::Environment) could not answer.
-    #[error("generation {generation}: the environment failed: {message}")]
+    #[error("generation {generation}: the environment failed: {error}")]
     Environment {
         /// The generation it was asked about.
         generation: u32,
-        /// What it said.
-        message: String,
+        /// Why it could not answer.
+        #[source]
+        error: crate::EnvironmentError,
     },
     /// A statement block ran more statements than
     /// [`MAX_BLOCK_STATEMENTS`](crate::MAX_BLOCK_STATEMENTS) in one run: a loop that does

@@ -144,7 +144,7 @@ mod syntax;
 
 pub use engine::block::MAX_BLOCK_STATEMENTS;
 pub use engine::derive::{Deriver, Limits};
-pub use engine::environment::Environment;
+pub use engine::environment::{Environment, EnvironmentError};
 pub use engine::lsystem::LSystem;
 pub use error::{DeriveError, GrammarError, GrammarFileError, Location, ParseError};
 pub use model::alphabet::{Alphabet, CUT, MAX_NAME_CHARS, POP, PUSH, RESERVED, SymbolId};

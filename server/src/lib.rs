@@ -10,7 +10,7 @@
 //! | `GET /worlds/{id}` | the kept description |
 //! | `GET /worlds/{id}/tileset.json`, `/shared.bin`, `/impostors/variant_K.png` | the world's root |
 //! | `GET /worlds/{id}/tiles/{c_X_Y,f_X_Y}.glb` | a tile |
-//! | `POST /heightmaps` (a 16-bit PNG) | `201 {"id"}`, for `"terrain": {"heightmap": {"id": ...}}` |
+//! | `POST /heightmaps` (an elevation model: GeoTIFF, SRTM .hgt, ESRI ASCII grid or 16-bit PNG) | `201 {"id"}`, for `"terrain": {"heightmap": {"id": ...}}` |
 //! | `GET /trees/{species}.glb?seed=S&age=A` | one tree of a bundled species |
 //! | `GET /` | a page that opens a world in three.js and walks it |
 //! | `GET /status` | the queue and memory |

@@ -57,46 +57,55 @@ impl Default for ServerOptions {
 
 impl ServerOptions {
     /// Sets [`ServerOptions::address`].
+    #[must_use]
     pub fn with_address(mut self, address: SocketAddr) -> Self {
         self.address = address;
         self
     }
     /// Sets [`ServerOptions::cache`].
+    #[must_use]
     pub fn with_cache(mut self, cache: impl Into<PathBuf>) -> Self {
         self.cache = cache.into();
         self
     }
     /// Sets [`ServerOptions::workers`].
+    #[must_use]
     pub fn with_workers(mut self, workers: usize) -> Self {
         self.workers = workers;
         self
     }
     /// Sets [`ServerOptions::max_queued`].
+    #[must_use]
     pub fn with_max_queued(mut self, max_queued: usize) -> Self {
         self.max_queued = max_queued;
         self
     }
     /// Sets [`ServerOptions::generation_timeout`].
+    #[must_use]
     pub fn with_generation_timeout(mut self, timeout: Duration) -> Self {
         self.generation_timeout = timeout;
         self
     }
     /// Sets [`ServerOptions::max_requests`].
+    #[must_use]
     pub fn with_max_requests(mut self, max_requests: usize) -> Self {
         self.max_requests = max_requests;
         self
     }
     /// Sets [`ServerOptions::worlds_in_memory`].
+    #[must_use]
     pub fn with_worlds_in_memory(mut self, worlds: usize) -> Self {
         self.worlds_in_memory = worlds;
         self
     }
     /// Sets [`ServerOptions::tree_bytes`].
+    #[must_use]
     pub fn with_tree_bytes(mut self, bytes: usize) -> Self {
         self.tree_bytes = bytes;
         self
     }
     /// Sets [`ServerOptions::web_modules`].
+    #[must_use]
     pub fn with_web_modules(mut self, folder: Option<PathBuf>) -> Self {
         self.web_modules = folder;
         self

@@ -63,42 +63,49 @@ impl DiamondSquare {
     }
 
     /// Sets [`DiamondSquare::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets [`DiamondSquare::roughness`].
+    #[must_use]
     pub fn with_roughness(mut self, h: f32) -> Self {
         self.roughness = h;
         self
     }
 
     /// Sets [`DiamondSquare::amplitude`].
+    #[must_use]
     pub fn with_amplitude(mut self, a: f32) -> Self {
         self.amplitude = a;
         self
     }
 
     /// Sets [`DiamondSquare::spacing`].
+    #[must_use]
     pub fn with_spacing(mut self, s: f32) -> Self {
         self.spacing = s;
         self
     }
 
     /// Sets [`DiamondSquare::corners`].
+    #[must_use]
     pub fn with_corners(mut self, corners: [f32; 4]) -> Self {
         self.corners = Some(corners);
         self
     }
 
     /// Sets [`DiamondSquare::wrap`].
+    #[must_use]
     pub fn with_wrap(mut self, wrap: bool) -> Self {
         self.wrap = wrap;
         self
     }
 
     /// Sets [`DiamondSquare::tile`].
+    #[must_use]
     pub fn with_tile(mut self, x: i64, z: i64) -> Self {
         self.tile = [x, z];
         self

@@ -33,18 +33,21 @@ impl Default for ThermalErosion {
 
 impl ThermalErosion {
     /// Sets [`ThermalErosion::talus`].
+    #[must_use]
     pub fn with_talus(mut self, talus: f32) -> Self {
         self.talus = talus;
         self
     }
 
     /// Sets [`ThermalErosion::rate`].
+    #[must_use]
     pub fn with_rate(mut self, rate: f32) -> Self {
         self.rate = rate;
         self
     }
 
     /// Sets [`ThermalErosion::iterations`].
+    #[must_use]
     pub fn with_iterations(mut self, iterations: u32) -> Self {
         self.iterations = iterations;
         self
@@ -171,60 +174,70 @@ impl Default for HydraulicErosion {
 
 impl HydraulicErosion {
     /// Sets [`HydraulicErosion::droplets`].
+    #[must_use]
     pub fn with_droplets(mut self, droplets: u32) -> Self {
         self.droplets = droplets;
         self
     }
 
     /// Sets [`HydraulicErosion::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets [`HydraulicErosion::inertia`].
+    #[must_use]
     pub fn with_inertia(mut self, inertia: f32) -> Self {
         self.inertia = inertia;
         self
     }
 
     /// Sets [`HydraulicErosion::capacity`].
+    #[must_use]
     pub fn with_capacity(mut self, capacity: f32) -> Self {
         self.capacity = capacity;
         self
     }
 
     /// Sets [`HydraulicErosion::min_slope`].
+    #[must_use]
     pub fn with_min_slope(mut self, min_slope: f32) -> Self {
         self.min_slope = min_slope;
         self
     }
 
     /// Sets [`HydraulicErosion::erosion`].
+    #[must_use]
     pub fn with_erosion(mut self, erosion: f32) -> Self {
         self.erosion = erosion;
         self
     }
 
     /// Sets [`HydraulicErosion::deposition`].
+    #[must_use]
     pub fn with_deposition(mut self, deposition: f32) -> Self {
         self.deposition = deposition;
         self
     }
 
     /// Sets [`HydraulicErosion::evaporation`].
+    #[must_use]
     pub fn with_evaporation(mut self, evaporation: f32) -> Self {
         self.evaporation = evaporation;
         self
     }
 
     /// Sets [`HydraulicErosion::gravity`].
+    #[must_use]
     pub fn with_gravity(mut self, gravity: f32) -> Self {
         self.gravity = gravity;
         self
     }
 
     /// Sets [`HydraulicErosion::lifetime`].
+    #[must_use]
     pub fn with_lifetime(mut self, lifetime: u32) -> Self {
         self.lifetime = lifetime;
         self

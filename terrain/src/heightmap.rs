@@ -81,6 +81,7 @@ impl Heightmap {
     }
 
     /// Moves the map so that sample (0, 0) sits at `origin` (x, z).
+    #[must_use]
     pub fn with_origin(mut self, origin: Vec2) -> Self {
         self.origin = origin;
         self

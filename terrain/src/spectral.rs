@@ -55,32 +55,38 @@ impl SpectralSynthesis {
         }
     }
     /// Sets [`SpectralSynthesis::spacing`].
+    #[must_use]
     pub fn with_spacing(mut self, spacing: f32) -> Self {
         self.spacing = spacing;
         self
     }
     /// Sets [`SpectralSynthesis::hurst`].
+    #[must_use]
     pub fn with_hurst(mut self, hurst: f32) -> Self {
         self.hurst = hurst;
         self
     }
     /// Sets [`SpectralSynthesis::amplitude`].
+    #[must_use]
     pub fn with_amplitude(mut self, amplitude: f32) -> Self {
         self.amplitude = amplitude;
         self
     }
     /// Sets [`SpectralSynthesis::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
     /// Sets [`SpectralSynthesis::longest_wavelength`].
+    #[must_use]
     pub fn with_longest_wavelength(mut self, metres: f32) -> Self {
         self.longest_wavelength = metres;
         self
     }
 
     /// Sets [`SpectralSynthesis::shortest_wavelength`].
+    #[must_use]
     pub fn with_shortest_wavelength(mut self, metres: f32) -> Self {
         self.shortest_wavelength = metres;
         self

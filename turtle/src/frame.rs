@@ -78,6 +78,7 @@ impl Frame {
     /// assert!((flat.heading() - f.heading()).length() < 1e-5);
     /// assert!(flat.left().y.abs() < 1e-5); // the left vector is level: the card faces up
     /// ```
+    #[must_use]
     pub fn facing_sky(&self, amount: f32) -> Frame {
         let amount = amount.clamp(0.0, 1.0);
         let h = self.heading();

@@ -141,66 +141,77 @@ impl Default for TurtleOptions {
 
 impl TurtleOptions {
     /// Sets [`TurtleOptions::root_flare`].
+    #[must_use]
     pub fn with_root_flare(mut self, root_flare: f32) -> Self {
         self.root_flare = root_flare;
         self
     }
 
     /// Sets [`TurtleOptions::branch_collar`].
+    #[must_use]
     pub fn with_branch_collar(mut self, branch_collar: f32) -> Self {
         self.branch_collar = branch_collar;
         self
     }
 
     /// Sets [`TurtleOptions::curve_steps`].
+    #[must_use]
     pub fn with_curve_steps(mut self, curve_steps: u32) -> Self {
         self.curve_steps = curve_steps;
         self
     }
 
     /// Sets [`TurtleOptions::width_factor`].
+    #[must_use]
     pub fn with_width_factor(mut self, width_factor: f32) -> Self {
         self.width_factor = width_factor;
         self
     }
 
     /// Sets [`TurtleOptions::length_factor`].
+    #[must_use]
     pub fn with_length_factor(mut self, length_factor: f32) -> Self {
         self.length_factor = length_factor;
         self
     }
 
     /// Sets [`TurtleOptions::angle_factor`].
+    #[must_use]
     pub fn with_angle_factor(mut self, angle_factor: f32) -> Self {
         self.angle_factor = angle_factor;
         self
     }
 
     /// Sets [`TurtleOptions::leaf_size`].
+    #[must_use]
     pub fn with_leaf_size(mut self, leaf_size: [f32; 2]) -> Self {
         self.leaf_size = leaf_size;
         self
     }
 
     /// Sets [`TurtleOptions::leaf_facing`].
+    #[must_use]
     pub fn with_leaf_facing(mut self, leaf_facing: f32) -> Self {
         self.leaf_facing = leaf_facing;
         self
     }
 
     /// Sets [`TurtleOptions::stem_break`].
+    #[must_use]
     pub fn with_stem_break(mut self, stem_break: Option<StemBreak>) -> Self {
         self.stem_break = stem_break;
         self
     }
 
     /// Sets [`TurtleOptions::leaf_keep`].
+    #[must_use]
     pub fn with_leaf_keep(mut self, share: f32) -> Self {
         self.leaf_keep = share;
         self
     }
 
     /// Sets [`TurtleOptions::max_depth`].
+    #[must_use]
     pub fn with_max_depth(mut self, max_depth: usize) -> Self {
         self.max_depth = max_depth;
         self
@@ -209,36 +220,42 @@ impl TurtleOptions {
 
 impl TurtleOptions {
     /// Sets [`TurtleOptions::angle`] (degrees).
+    #[must_use]
     pub fn with_angle(mut self, degrees: f32) -> Self {
         self.angle = degrees;
         self
     }
 
     /// Sets [`TurtleOptions::step`].
+    #[must_use]
     pub fn with_step(mut self, step: f32) -> Self {
         self.step = step;
         self
     }
 
     /// Sets [`TurtleOptions::width`].
+    #[must_use]
     pub fn with_width(mut self, width: f32) -> Self {
         self.width = width;
         self
     }
 
     /// Sets [`TurtleOptions::length_unit`].
+    #[must_use]
     pub fn with_length_unit(mut self, unit: f32) -> Self {
         self.length_unit = unit;
         self
     }
 
     /// Sets [`TurtleOptions::width_unit`].
+    #[must_use]
     pub fn with_width_unit(mut self, unit: f32) -> Self {
         self.width_unit = unit;
         self
     }
 
     /// Sets [`TurtleOptions::tropism`].
+    #[must_use]
     pub fn with_tropism(mut self, direction: Vec3, susceptibility: f32) -> Self {
         self.tropism = Some(Tropism {
             direction,
@@ -248,30 +265,35 @@ impl TurtleOptions {
     }
 
     /// Sets [`TurtleOptions::shape`].
+    #[must_use]
     pub fn with_shape(mut self, shape: BranchShape) -> Self {
         self.shape = shape;
         self
     }
 
     /// Sets [`TurtleOptions::radial_segments`].
+    #[must_use]
     pub fn with_radial_segments(mut self, n: u32) -> Self {
         self.radial_segments = n;
         self
     }
 
     /// Sets [`TurtleOptions::caps`].
+    #[must_use]
     pub fn with_caps(mut self, caps: bool) -> Self {
         self.caps = caps;
         self
     }
 
     /// Sets [`TurtleOptions::min_radius`].
+    #[must_use]
     pub fn with_min_radius(mut self, r: f32) -> Self {
         self.min_radius = r;
         self
     }
 
     /// Sets [`TurtleOptions::symbols`].
+    #[must_use]
     pub fn with_symbols(mut self, symbols: SymbolTable) -> Self {
         self.symbols = symbols;
         self
@@ -300,6 +322,7 @@ impl TurtleOptions {
     /// # std::fs::remove_dir_all(&dir)?;
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
+    #[must_use]
     pub fn with_model_files(mut self, files: &sylva_lsys::ModelFiles) -> Self {
         let shapes = ModelShapes::new(files);
         for (k, (name, _)) in shapes.surfaces.iter().enumerate() {

@@ -1,6 +1,6 @@
 //! The turtle as the environment of a derivation: it answers cpfg's query modules.
 
-use sylva_lsys::{Environment, Word};
+use sylva_lsys::{Environment, EnvironmentError, Word};
 
 use crate::error::TurtleError;
 use crate::frame::Frame;
@@ -76,12 +76,12 @@ pub fn query_frames(
 }
 
 impl Environment for Queries {
-    fn respond(&mut self, word: &mut Word, _generation: u32) -> Result<(), String> {
+    fn respond(&mut self, word: &mut Word, _generation: u32) -> Result<(), EnvironmentError> {
         if !word.iter().any(|m| m.name.starts_with('?')) {
             return Ok(());
         }
         let frames = query_frames(word, &self.options, &["?P", "?H", "?L", "?U"])
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| EnvironmentError::Interpretation(e.to_string()))?;
         for (index, frame) in frames {
             let value = match word.get(index).map(|m| m.name) {
                 Some("?P") => frame.position,

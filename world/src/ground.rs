@@ -213,9 +213,10 @@ impl Ground {
             },
         };
         let model = match window {
-            Some(w) => model
-                .crop(w)
-                .map_err(|e| bad(format!("the crop {}: {e}", window_text(w))))?,
+            // A window the user named that does not fit is their setting's mistake.
+            Some(w) => model.crop(w).map_err(|e| {
+                WorldError::Invalid(format!("{name}: the crop {}: {e}", window_text(w)))
+            })?,
             None => model,
         };
         let [x, z] = model.extent();

@@ -94,30 +94,35 @@ impl Default for GltfOptions {
 
 impl GltfOptions {
     /// Sets [`GltfOptions::terrain_colour`].
+    #[must_use]
     pub fn with_terrain_colour(mut self, terrain_colour: [f32; 3]) -> Self {
         self.terrain_colour = terrain_colour;
         self
     }
 
     /// Sets [`GltfOptions::roughness`].
+    #[must_use]
     pub fn with_roughness(mut self, roughness: f32) -> Self {
         self.roughness = roughness;
         self
     }
 
     /// Sets [`GltfOptions::chunk_bytes`].
+    #[must_use]
     pub fn with_chunk_bytes(mut self, chunk_bytes: usize) -> Self {
         self.chunk_bytes = chunk_bytes;
         self
     }
 
     /// Sets [`GltfOptions::shared_geometry`].
+    #[must_use]
     pub fn with_shared_geometry(mut self, shared_geometry: Option<String>) -> Self {
         self.shared_geometry = shared_geometry;
         self
     }
 
     /// Sets [`GltfOptions::one_node_per_placement`].
+    #[must_use]
     pub fn with_one_node_per_placement(mut self, one_node_per_placement: bool) -> Self {
         self.one_node_per_placement = one_node_per_placement;
         self

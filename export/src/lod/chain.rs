@@ -65,12 +65,14 @@ impl Default for LodChain {
 impl LodChain {
     /// Sets [`LodChain::pixels_per_radian`]: a picture `height` pixels high with a vertical
     /// field of view of `fov` radians.
+    #[must_use]
     pub fn with_screen(mut self, height: u32, fov: f32) -> Self {
         self.pixels_per_radian = height as f32 / fov.max(1e-3);
         self
     }
 
     /// Sets [`LodChain::pixel_error`].
+    #[must_use]
     pub fn with_pixel_error(mut self, pixels: f32) -> Self {
         self.pixel_error = pixels;
         self

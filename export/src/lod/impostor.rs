@@ -44,12 +44,14 @@ impl Default for ImpostorOptions {
 
 impl ImpostorOptions {
     /// Sets [`ImpostorOptions::grid`].
+    #[must_use]
     pub fn with_grid(mut self, grid: u32) -> Self {
         self.grid = grid;
         self
     }
 
     /// Sets [`ImpostorOptions::view_size`].
+    #[must_use]
     pub fn with_view_size(mut self, view_size: u32) -> Self {
         self.view_size = view_size;
         self

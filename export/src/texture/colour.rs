@@ -50,6 +50,7 @@ impl Texture {
     /// assert!(g[1] > g[0] && g[1] > g[2] && g[1] <= w[1]); // greener, never brighter
     /// assert_eq!(g[3], w[3]); // the same cut-out
     /// ```
+    #[must_use]
     pub fn tinted(&self, colour: [f32; 3]) -> Texture {
         let mut rgba = self.rgba.clone();
         for px in rgba.chunks_exact_mut(4) {

@@ -381,6 +381,7 @@ impl Default for TilesetOptions {
 
 impl TilesetOptions {
     /// Sets [`TilesetOptions::origin`].
+    #[must_use]
     pub fn with_origin(mut self, origin: (f64, f64)) -> Self {
         self.origin = origin;
         self

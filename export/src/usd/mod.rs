@@ -55,12 +55,14 @@ impl Default for UsdOptions {
 
 impl UsdOptions {
     /// Sets [`UsdOptions::terrain_colour`].
+    #[must_use]
     pub fn with_terrain_colour(mut self, terrain_colour: [f32; 3]) -> Self {
         self.terrain_colour = terrain_colour;
         self
     }
 
     /// Sets [`UsdOptions::roughness`].
+    #[must_use]
     pub fn with_roughness(mut self, roughness: f32) -> Self {
         self.roughness = roughness;
         self

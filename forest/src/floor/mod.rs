@@ -53,18 +53,21 @@ impl Default for FloorOptions {
 
 impl FloorOptions {
     /// Sets [`FloorOptions::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets [`FloorOptions::cell`].
+    #[must_use]
     pub fn with_cell(mut self, cell: f32) -> Self {
         self.cell = cell;
         self
     }
 
     /// Sets [`FloorOptions::scale_variation`].
+    #[must_use]
     pub fn with_scale_variation(mut self, scale_variation: f32) -> Self {
         self.scale_variation = scale_variation;
         self

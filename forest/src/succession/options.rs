@@ -43,42 +43,49 @@ impl Default for SuccessionOptions {
 
 impl SuccessionOptions {
     /// Sets [`SuccessionOptions::seed`].
+    #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
     }
 
     /// Sets [`SuccessionOptions::halo`].
+    #[must_use]
     pub fn with_halo(mut self, metres: f32) -> Self {
         self.halo = metres;
         self
     }
 
     /// Sets [`SuccessionOptions::seed_rain`].
+    #[must_use]
     pub fn with_seed_rain(mut self, per_hectare: f32) -> Self {
         self.seed_rain = per_hectare;
         self
     }
 
     /// Sets [`SuccessionOptions::storm_rate`].
+    #[must_use]
     pub fn with_storm_rate(mut self, per_year: f32) -> Self {
         self.storm_rate = per_year;
         self
     }
 
     /// Sets [`SuccessionOptions::lightning_rate`].
+    #[must_use]
     pub fn with_lightning_rate(mut self, per_hectare: f32) -> Self {
         self.lightning_rate = per_hectare;
         self
     }
 
     /// Sets [`SuccessionOptions::disease_rate`].
+    #[must_use]
     pub fn with_disease_rate(mut self, per_year: f32) -> Self {
         self.disease_rate = per_year;
         self
     }
 
     /// Sets [`SuccessionOptions::max_stems`].
+    #[must_use]
     pub fn with_max_stems(mut self, max_stems: usize) -> Self {
         self.max_stems = max_stems;
         self

@@ -284,6 +284,7 @@ impl LSystem {
     }
 
     /// This system with the places of its productions in its text.
+    #[must_use]
     pub(crate) fn with_locations(mut self, locations: Vec<Location>) -> LSystem {
         self.locations = locations;
         self
@@ -292,6 +293,7 @@ impl LSystem {
     /// This system with the data files its expressions read (`func`, `curveX`, ...) and
     /// its turtle draws (surfaces, contours); a model folder's are read by
     /// [`LSystem::from_model_dir`].
+    #[must_use]
     pub fn with_files(mut self, files: ModelFiles) -> LSystem {
         self.files = Arc::new(files);
         self
@@ -317,6 +319,7 @@ impl LSystem {
     /// assert_eq!(line.derive(1, 0)?.to_string(), "BBB");
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
+    #[must_use]
     pub fn with_ring(mut self, ring: bool) -> LSystem {
         self.ring = ring;
         self
@@ -328,6 +331,7 @@ impl LSystem {
     }
 
     /// This system marked as read from `dialect`.
+    #[must_use]
     pub fn with_dialect(mut self, dialect: Dialect) -> LSystem {
         self.dialect = dialect;
         self
@@ -344,6 +348,7 @@ impl LSystem {
     }
 
     /// This system stating how many steps it is meant to be derived.
+    #[must_use]
     pub fn with_derivation_length(mut self, steps: Option<u32>) -> LSystem {
         self.derivation_length = steps;
         self

@@ -107,16 +107,19 @@ pub struct ReadOptions {
 
 impl ReadOptions {
     /// Sets [`ReadOptions::spacing`].
+    #[must_use]
     pub fn with_spacing(mut self, metres: f32) -> Self {
         self.spacing = Some(metres);
         self
     }
     /// Sets [`ReadOptions::height_range`].
+    #[must_use]
     pub fn with_height_range(mut self, low: f32, high: f32) -> Self {
         self.height_range = Some([low, high]);
         self
     }
     /// Sets [`ReadOptions::raw_size`].
+    #[must_use]
     pub fn with_raw_size(mut self, width: usize, height: usize) -> Self {
         self.raw_size = Some([width, height]);
         self

@@ -88,10 +88,7 @@ impl LSystem {
         let mut d = Deriver::new(self, seed, *limits);
         let ask = |word: &mut Word, generation: u32, env: &mut dyn Environment| {
             env.respond(word, generation)
-                .map_err(|message| DeriveError::Environment {
-                    generation,
-                    message,
-                })
+                .map_err(|error| DeriveError::Environment { generation, error })
         };
         d.run_derivation_block(0, 0)?;
         let mut word = d.decompose(self.axiom_word(), 0)?;

@@ -25,24 +25,28 @@ impl Limits {
     };
 
     /// Sets [`Limits::max_modules`].
+    #[must_use]
     pub fn with_max_modules(mut self, n: usize) -> Self {
         self.max_modules = n;
         self
     }
 
     /// Sets [`Limits::max_params`].
+    #[must_use]
     pub fn with_max_params(mut self, n: usize) -> Self {
         self.max_params = n;
         self
     }
 
     /// Sets [`Limits::max_statements`].
+    #[must_use]
     pub fn with_max_statements(mut self, n: u64) -> Self {
         self.max_statements = n;
         self
     }
 
     /// Sets [`Limits::max_generations`].
+    #[must_use]
     pub fn with_max_generations(mut self, n: u32) -> Self {
         self.max_generations = n;
         self
