@@ -14,8 +14,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "example_masks".into());
-    let mut config = ForestConfig::new(sylva::presets::species()?);
-    config.budget = 32 << 20;
+    let config = ForestConfig::new(sylva::presets::species()?).with_budget(32 << 20);
     let builder = ForestBuilder::new(config)?;
     let terrain = sylva::presets::terrain(1, 300.0)?;
     let (lo, hi) = terrain.bounds();

@@ -34,8 +34,8 @@ impl ForestBuilder {
     /// use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
     /// use sylva_terrain::{FlatPlane, glam::Vec2};
     ///
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let side = builder.side_for_canopy_trees(2000);
     /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(side) };
@@ -75,8 +75,8 @@ impl ForestBuilder {
     /// use sylva_forest::{ForestBuilder, ForestConfig, PlacementBlock, Rect, Species};
     /// use sylva_terrain::{FlatPlane, glam::Vec2};
     ///
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(100.0) };
     /// let region = Rect::new(Vec2::ZERO, Vec2::splat(100.0));

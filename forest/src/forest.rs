@@ -363,8 +363,8 @@ impl ForestBuilder {
     /// ```
     /// use sylva_forest::{ForestBuilder, ForestConfig, Species, TreeForm};
     ///
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("kenwood-leafy", 4)?]);
-    /// config.budget = 4 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("kenwood-leafy", 4)?])
+    ///     .with_budget(4 << 20);
     /// let builder = ForestBuilder::new(config.with_all_ages(true))?;
     /// let (young, _) = builder.live_form(0, 0.5).unwrap();
     /// let (old, scale) = builder.live_form(0, 500.0).unwrap();

@@ -71,9 +71,9 @@ impl ForestBuilder {
     /// use sylva_forest::{Constraints, ForestBuilder, ForestConfig, Rect, Species};
     /// use sylva_terrain::{FlatPlane, glam::Vec2};
     ///
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
-    /// config.constraints = Constraints::default().with_height_range(0.0, 500.0);
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20)
+    ///     .with_constraints(Constraints::default().with_height_range(0.0, 500.0));
     /// let builder = ForestBuilder::new(config)?;
     /// let region = Rect::new(Vec2::ZERO, Vec2::splat(100.0));
     /// let high = FlatPlane { height: 900.0, min: Vec2::ZERO, max: Vec2::splat(100.0) };

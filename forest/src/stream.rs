@@ -192,8 +192,7 @@ impl ForestBuilder {
     ///
     /// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
     /// leafy.turtle.step = 0.5;
-    /// let mut config = ForestConfig::new(vec![leafy]);
-    /// config.budget = 4 << 20;
+    /// let config = ForestConfig::new(vec![leafy]).with_budget(4 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(500.0) };
     /// let mut trees = 0;
@@ -241,8 +240,8 @@ impl ForestBuilder {
     ///     fn from(e: ForestError) -> Self { MyError::Forest(e) }
     /// }
     ///
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(400.0) };
     /// let mut kept = 0;
@@ -291,8 +290,8 @@ impl ForestBuilder {
     /// use sylva_forest::{ForestBuilder, ForestConfig, ForestError, PlacementBlock, Rect, Species};
     /// use sylva_terrain::{FlatPlane, glam::Vec2};
     ///
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
     /// let region = Rect::new(Vec2::ZERO, Vec2::splat(200.0));

@@ -14,8 +14,7 @@
 //!
 //! let mut leafy = Species::from_preset("kenwood-leafy", 3)?;
 //! leafy.turtle.step = 0.5;
-//! let mut config = ForestConfig::new(vec![leafy]);
-//! config.budget = 1 << 20;
+//! let config = ForestConfig::new(vec![leafy]).with_budget(1 << 20);
 //! let builder = ForestBuilder::new(config)?;
 //! let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(100.0) };
 //! let area = Rect::new(Vec2::ZERO, Vec2::splat(100.0));

@@ -51,8 +51,7 @@ pub struct StrokeReport {
 ///
 /// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
 /// leafy.turtle.step = 0.5;
-/// let mut config = ForestConfig::new(vec![leafy]);
-/// config.budget = 2 << 20;
+/// let config = ForestConfig::new(vec![leafy]).with_budget(2 << 20);
 /// let builder = ForestBuilder::new(config)?;
 /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
 /// let bounds = Rect::new(Vec2::ZERO, Vec2::splat(200.0));

@@ -177,8 +177,7 @@ const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12 + 16;
 ///
 /// let mut leafy = Species::from_preset("kenwood-leafy", 4)?;
 /// leafy.turtle.step = 0.5;
-/// let mut config = ForestConfig::new(vec![leafy]);
-/// config.budget = 4 << 20;
+/// let config = ForestConfig::new(vec![leafy]).with_budget(4 << 20);
 /// let builder = ForestBuilder::new(config)?;
 /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(200.0) };
 /// let path = std::env::temp_dir().join("sylva-doctest-forest.glb");

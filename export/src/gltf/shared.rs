@@ -168,8 +168,8 @@ fn images(shapes: &[LeafShape], patterns: &[BarkPattern]) -> Arc<Vec<Vec<u8>>> {
 /// ```
 /// use sylva_export::write_shared_geometry;
 /// use sylva_forest::{ForestBuilder, ForestConfig, Species};
-/// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-/// config.budget = 1 << 20;
+/// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+///     .with_budget(1 << 20);
 /// let builder = ForestBuilder::new(config)?;
 /// let path = std::env::temp_dir().join("sylva-doctest-shared.bin");
 /// let bytes = write_shared_geometry(&builder, &path)?;

@@ -11,8 +11,8 @@ use sylva_turtle::{Mesh, Vertex};
 /// ```
 /// use sylva_export::lod::variant_tree;
 /// use sylva_forest::{ForestBuilder, ForestConfig, Species};
-/// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-/// config.budget = 1 << 20;
+/// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+///     .with_budget(1 << 20);
 /// let builder = ForestBuilder::new(config)?;
 /// let tree = variant_tree(&builder.variants()[0], 1)?;
 /// assert!(tree.triangle_count() > 100);

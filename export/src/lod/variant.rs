@@ -37,8 +37,8 @@ impl VariantLods {
     /// ```
     /// use sylva_export::lod::{LodChain, VariantLods};
     /// use sylva_forest::{ForestBuilder, ForestConfig, Species};
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let species = &builder.config().species[0];
     /// let lods = VariantLods::build(&builder.variants()[0], species, &LodChain::default())?;

@@ -124,8 +124,8 @@ fn image_folder(path: &Path) -> Result<(PathBuf, String), ExportError> {
 /// use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
 /// use sylva_terrain::{FlatPlane, glam::Vec2};
 ///
-/// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-/// config.budget = 1 << 20;
+/// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+///     .with_budget(1 << 20);
 /// let builder = ForestBuilder::new(config)?;
 /// let ground = FlatPlane { height: 0.0, min: Vec2::ZERO, max: Vec2::splat(40.0) };
 /// let folder = std::env::temp_dir().join(format!("sylva-usd-doc-{}", std::process::id()));

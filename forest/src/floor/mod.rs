@@ -122,8 +122,8 @@ impl ForestFloor {
     /// ```
     /// use sylva_forest::{FloorOptions, ForestBuilder, ForestConfig, ForestFloor, GroundKind, Rect, Species};
     /// use sylva_terrain::{FlatPlane, glam::Vec2};
-    /// let mut config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?]);
-    /// config.budget = 1 << 20;
+    /// let config = ForestConfig::new(vec![Species::from_preset("sylva-hazel", 3)?])
+    ///     .with_budget(1 << 20);
     /// let builder = ForestBuilder::new(config)?;
     /// let floor = ForestFloor::of(&builder, FloorOptions::default());
     /// let ground = FlatPlane { height: 0.0, min: Vec2::splat(-40.0), max: Vec2::splat(40.0) };
