@@ -26,7 +26,7 @@
 //! ```
 //! use sylva::world::{Quiet, WorldDescription};
 //!
-//! let description = WorldDescription::parse(br#"{"area": 120, "species": ["oak", "hazel"], "budget_mb": 4}"#)?;
+//! let description = WorldDescription::parse(br#"{"area": 120, "species": ["birch", "hazel"], "budget_mb": 8}"#)?;
 //! let ground = description.ground(|_| unreachable!("generated ground reads no model"))?;
 //! let world = description.world_builder()?.build(ground, &Quiet)?;
 //! assert!(world.forest.trees(&world.ground.map, world.region()).len() > 20);

@@ -24,13 +24,13 @@ use crate::variants::Variant;
 #[derive(Clone)]
 #[non_exhaustive]
 pub struct Constraints {
-    /// Lowest terrain height with trees.
+    /// Lowest terrain height with trees. Default: no bound (negative infinity).
     pub min_height: f32,
-    /// Highest terrain height with trees.
+    /// Highest terrain height with trees. Default: no bound (infinity).
     pub max_height: f32,
-    /// Steepest slope with trees, in degrees (no trees on cliffs).
+    /// Steepest slope with trees, in degrees (no trees on cliffs). Default: 35.
     pub max_slope_degrees: f32,
-    /// Optional density mask over (x, z), 0 (none) to 1 (full density).
+    /// Optional density mask over (x, z), 0 (none) to 1 (full density). Default: none.
     pub mask: Option<Arc<dyn Fn(f32, f32) -> f32 + Send + Sync>>,
 }
 
@@ -61,27 +61,28 @@ impl Default for Constraints {
 #[non_exhaustive]
 pub struct ForestConfig {
     /// The species, at least one with positive weight.
+    /// No default: the species given to [`ForestConfig::new`].
     pub species: Vec<Species>,
-    /// Terrain constraints.
+    /// Terrain constraints. Default: [`Constraints::default`].
     pub constraints: Constraints,
-    /// World seed.
+    /// World seed. Default: 1.
     pub seed: u64,
     /// Total instance-cache budget in bytes, shared among species by weight (seedlings get a
-    /// quarter of each species' share).
+    /// quarter of each species' share). Default: 64 MiB.
     pub budget: usize,
-    /// Random scale variation: scales are uniform in `1 +- scale_variation`.
+    /// Random scale variation: scales are uniform in `1 +- scale_variation`. Default: 0.1.
     pub scale_variation: f32,
-    /// Minimum canopy spacing as a multiple of the canopy radius.
+    /// Minimum canopy spacing as a multiple of the canopy radius. Default: 1.
     pub spacing_factor: f32,
-    /// Seedlings proposed per patch.
+    /// Seedlings proposed per patch. Default: 8.
     pub seedlings_per_patch: u32,
     /// Which species stands at each spot (a paint layer of `sylva-paint`, or your own
-    /// [`Composition`]); `None` grows every species everywhere by weight.
+    /// [`Composition`]); `None` grows every species everywhere by weight. Default: none.
     pub composition: Option<Arc<dyn Composition>>,
     /// Build a form for every generation of each species and its damaged forms (broken top,
     /// dieback, dead, snag, fallen), for forests of trees of every age: what a
     /// [`Succession`](crate::Succession)'s years are drawn with. Off, each species has its
-    /// canopy and its young form.
+    /// canopy and its young form. Default: false.
     pub all_ages: bool,
 }
 

@@ -23,30 +23,31 @@ use sylva_growth::Response;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct Life {
-    /// The height a tree approaches with age, metres (Chapman-Richards' asymptote).
+    /// The height a tree approaches with age, metres (Chapman-Richards' asymptote). Default: 22.
     pub max_height: f32,
-    /// How fast it gets there, per year (Chapman-Richards' k).
+    /// How fast it gets there, per year (Chapman-Richards' k). Default: 0.035.
     pub growth_rate: f32,
     /// The curve's shape (Chapman-Richards' p): above 1, slow first years, then the sigmoid.
+    /// Default: 1.3.
     pub growth_shape: f32,
     /// The age few trees outlive, years: the yearly chance of dying of age rises with age,
     /// [`Life::age_mortality`], so about one tree in seven reaches it and none half as old
-    /// again.
+    /// again. Default: 200.
     pub max_age: f32,
-    /// The age at which a tree first bears seed, years.
+    /// The age at which a tree first bears seed, years. Default: 25.
     pub maturity_age: f32,
     /// 0 a pioneer that needs the open sky, 1 a tree that grows on under a closed canopy:
     /// sets the light response (between the growth crate's [`Response::pioneer`] and
-    /// [`Response::shade_tolerant`]) and how long a suppressed tree lasts.
+    /// [`Response::shade_tolerant`]) and how long a suppressed tree lasts. Default: 0.5.
     pub shade_tolerance: f32,
     /// Mean distance its seeds travel, metres (an exponential kernel: wind-borne birch and
-    /// pine far, jay-carried acorns and hazelnuts near).
+    /// pine far, jay-carried acorns and hazelnuts near). Default: 30.
     pub dispersal: f32,
     /// Seedlings a mature tree in full light sends out a year (before the ground's light
-    /// and room decide which take).
+    /// and room decide which take). Default: 3.
     pub seeds_per_year: f32,
     /// Leaf area per unit of crown projection: how deep a shade the crown casts (Beer's
-    /// law with extinction 0.5).
+    /// law with extinction 0.5). Default: 4.
     pub leaf_area_index: f32,
 }
 

@@ -65,17 +65,18 @@ pub trait Composition: fmt::Debug + Send + Sync {
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct PatchDensity {
-    /// Patch side length.
+    /// Patch side length. Default: the largest canopy diameter among the species.
     pub patch: f32,
     /// Canopy radius and weight of each species, indexed by species. One list, so that a
     /// species can never have a radius without a weight or the other way round.
+    /// No default: the species given to [`PatchDensity::new`].
     pub species: Vec<PatchSpecies>,
     /// Minimum trunk spacing as a multiple of the larger canopy radius (at most 2, so that
-    /// conflicts stay between neighbouring patches).
+    /// conflicts stay between neighbouring patches). Default: 1.
     pub spacing_factor: f32,
-    /// Seedlings proposed per patch.
+    /// Seedlings proposed per patch. Default: 3.
     pub seedlings_per_patch: u32,
-    /// `r0` of the elimination probability, as a multiple of the canopy radius.
+    /// `r0` of the elimination probability, as a multiple of the canopy radius. Default: 0.6.
     pub seedling_clearance: f32,
 }
 

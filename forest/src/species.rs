@@ -18,30 +18,33 @@ pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct Species {
-    /// Name, for reports and exported node names.
+    /// Name, for reports and exported node names. No default: the name given to [`Species::new`].
     pub name: String,
-    /// The grammar.
+    /// The grammar. No default: the grammar given to [`Species::new`].
     pub grammar: LSystem,
-    /// Generations of a canopy tree.
+    /// Generations of a canopy tree. No default: the generations given to [`Species::new`].
     pub generations: u32,
     /// Generations of a seedling (fewer than `generations`).
+    /// Default: two fewer than `generations`, at least 1.
     pub seedling_generations: u32,
     /// Turtle and meshing settings, tropism included.
+    /// Default: the grammar's ([`TurtleOptions::for_grammar`]) with a `min_radius` of 0.005.
     pub turtle: TurtleOptions,
-    /// Bark colour, linear RGB.
+    /// Bark colour, linear RGB. Default: [0.30, 0.20, 0.12].
     pub bark: [f32; 3],
-    /// Leaf colour, linear RGB (multiplied with the leaf texture).
+    /// Leaf colour, linear RGB (multiplied with the leaf texture). Default: [0.18, 0.42, 0.12].
     pub leaf: [f32; 3],
-    /// What its leaf cards show.
+    /// What its leaf cards show. Default: [`LeafShape::Broadleaf`].
     pub leaf_shape: LeafShape,
-    /// What its bark texture shows.
+    /// What its bark texture shows. Default: [`BarkPattern::Furrowed`].
     pub bark_pattern: BarkPattern,
-    /// Relative frequency among the forest's species.
+    /// Relative frequency among the forest's species. Default: 1.
     pub weight: f32,
     /// The ground cover near its canopy trees (empty: the forest floor's default mix).
+    /// Default: empty.
     pub ground_cover: Vec<GroundCover>,
     /// How it grows with the years, ages, competes for light and seeds: what a forest over
-    /// time ([`Succession`](crate::Succession)) runs on.
+    /// time ([`Succession`](crate::Succession)) runs on. Default: [`Life::default`].
     pub life: Life,
 }
 

@@ -33,15 +33,15 @@ pub struct Planting {
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct StandOptions {
-    /// Side of a voxel, metres.
+    /// Side of a voxel, metres. Default: 0.1.
     pub voxel: f32,
-    /// Room around the plantings for crowns, metres (horizontally).
+    /// Room around the plantings for crowns, metres (horizontally). Default: 6.
     pub margin: f32,
-    /// Height of the space above the highest ground, metres.
+    /// Height of the space above the highest ground, metres. Default: 16.
     pub height: f32,
-    /// Obstacles (rocks, buildings): triangle meshes as positions and indices.
+    /// Obstacles (rocks, buildings): triangle meshes as positions and indices. Default: none.
     pub obstacles: Vec<(Vec<Vec3>, Vec<u32>)>,
-    /// Light, collision and query settings.
+    /// Light, collision and query settings. Default: [`GrowthOptions::default`].
     pub growth: GrowthOptions,
 }
 

@@ -17,24 +17,24 @@ use crate::forest::ForestBuilder;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct WalkOptions {
-    /// Metres per step.
+    /// Metres per step. Default: 0.1.
     pub step: f32,
-    /// Trunks farther than this (metres) do not push.
+    /// Trunks farther than this (metres) do not push. Default: 5.
     pub influence: f32,
     /// Strength of a trunk's push against the target's pull of 1, at one metre beyond the
-    /// trunk's clearance (it grows as the inverse square of that distance).
+    /// trunk's clearance (it grows as the inverse square of that distance). Default: 0.6.
     pub repulsion: f32,
-    /// The walker's own radius, added to every trunk's.
+    /// The walker's own radius, added to every trunk's. Default: 0.35.
     pub body: f32,
-    /// Within this distance (metres) of the target it counts as reached.
+    /// Within this distance (metres) of the target it counts as reached. Default: 3.
     pub arrival: f32,
-    /// Targets and the walk keep this far (metres) inside the terrain's edge.
+    /// Targets and the walk keep this far (metres) inside the terrain's edge. Default: 10.
     pub margin: f32,
-    /// Most the heading turns in one step, radians.
+    /// Most the heading turns in one step, radians. Default: 0.08.
     pub turn: f32,
-    /// Most the walker's own steering can bend the heading, radians.
+    /// Most the walker's own steering can bend the heading, radians. Default: 0.35.
     pub deviation: f32,
-    /// Steps without coming 1 m closer to the target before another target is drawn.
+    /// Steps without coming 1 m closer to the target before another target is drawn. Default: 300.
     pub patience: u32,
 }
 

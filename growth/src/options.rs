@@ -13,15 +13,17 @@ use crate::light::SunPath;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Response {
     /// Weight of direct light against ambient light, 0 to 1: near 1 a pioneer that needs
-    /// the sun, near 0 a shade-tolerant species content with the sky's light.
+    /// the sun, near 0 a shade-tolerant species content with the sky's light. Default: 0.5.
     pub direct_weight: f32,
-    /// Combined light below which a branch stops growing.
+    /// Combined light below which a branch stops growing. Default: 0.08.
     pub threshold: f32,
     /// Whether a branch that stops for want of light is shed (left out of the result).
+    /// Default: false.
     pub shed: bool,
-    /// Largest turn towards the light per segment, degrees.
+    /// Largest turn towards the light per segment, degrees. Default: 12.
     pub max_turn_degrees: f32,
     /// Shortest segment, as a fraction of its full length, that a barely lit branch grows.
+    /// Default: 0.3.
     pub min_growth: f32,
 }
 
@@ -80,24 +82,24 @@ pub struct TreeSpec {
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct GrowthOptions {
-    /// Where the sun goes.
+    /// Where the sun goes. Default: an arc of 9 positions tilted 30 degrees ([`SunPath::Arc`]).
     pub sun: SunPath,
-    /// Sky rays per light sample.
+    /// Sky rays per light sample. Default: 32.
     pub sky_rays: u32,
-    /// Seed of the sky rays and of the order branches grow in.
+    /// Seed of the sky rays and of the order branches grow in. Default: 1.
     pub seed: u64,
-    /// Alternative directions tried when a segment would collide.
+    /// Alternative directions tried when a segment would collide. Default: 8.
     pub retries: u32,
-    /// Half-angle of the cone the alternatives are drawn from, degrees.
+    /// Half-angle of the cone the alternatives are drawn from, degrees. Default: 35.
     pub cone_degrees: f32,
     /// The environmental query symbol: a module with this symbol is filled with the light
     /// (combined, 0 to 1) and the free space (0 to 1) where a branch reaches it, and the
     /// grammar may test them in a production's condition (open L-systems). With queries in
-    /// a grammar the stand is grown once per generation, as the environment answers.
+    /// a grammar the stand is grown once per generation, as the environment answers. Default: `E`.
     pub query: Option<char>,
-    /// Radius, metres, of the neighbourhood whose free voxels a query counts.
+    /// Radius, metres, of the neighbourhood whose free voxels a query counts. Default: 0.5.
     pub query_radius: f32,
-    /// Most growth iterations (a bound on runaway words).
+    /// Most growth iterations (a bound on runaway words). Default: 100,000.
     pub max_iterations: u32,
 }
 

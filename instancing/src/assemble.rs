@@ -57,9 +57,9 @@ impl CompactTree {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct AssemblyLimits {
-    /// Deepest chain of exits followed.
+    /// Deepest chain of exits followed. Default: 256.
     pub max_depth: u32,
-    /// Most instances one tree may place.
+    /// Most instances one tree may place. Default: 4,194,304 (2^22).
     pub max_instances: usize,
     /// Candidates drawn at random for an exit whose key has no complete candidate; the one
     /// with the fewest exits of its own is used. Default 2.
@@ -189,7 +189,7 @@ pub struct Assembler {
     used: Vec<u32>,
     /// Most whole branches pending at once ([`PENDING`]; 1 places each as it is chosen).
     batch: usize,
-    /// Limits applied to every tree.
+    /// Limits applied to every tree. Default: [`AssemblyLimits::default`].
     pub limits: AssemblyLimits,
 }
 

@@ -30,33 +30,37 @@ use crate::rewrite::Markers;
 #[non_exhaustive]
 pub struct HeroOptions {
     /// Bytes the cache may use: geometry, instance metadata, exits and the lookup table.
+    /// Default: 32 MiB.
     pub budget: usize,
-    /// Generations of every tree of the species.
+    /// Generations of every tree of the species. Default: 6.
     pub generations: u32,
-    /// Seed of the hero trees.
+    /// Seed of the hero trees. Default: 0.
     pub seed: u64,
-    /// Instancing probability when the cache is empty.
+    /// Instancing probability when the cache is empty. Default: 0.3.
     pub p_min: f64,
-    /// Instancing probability when the cache is full.
+    /// Instancing probability when the cache is full. Default: 0.95.
     pub p_max: f64,
-    /// Most instances registered per (id, age) (Carey's cap). At least 1.
+    /// Most instances registered per (id, age) (Carey's cap). At least 1. Default: 4096.
     pub cap_per_key: usize,
-    /// Most hero trees derived.
+    /// Most hero trees derived. Default: 100,000.
     pub max_heroes: u32,
-    /// Consecutive heroes that did not fit before hero creation stops.
+    /// Consecutive heroes that did not fit before hero creation stops. Default: 4.
     pub max_rejections: u32,
     /// Turtle settings for meshing heroes (the marker symbols are added automatically).
+    /// Default: [`TurtleOptions::default`].
     pub turtle: TurtleOptions,
-    /// Marker symbols.
+    /// Marker symbols. Default: [`Markers::default`].
     pub markers: Markers,
-    /// Derivation limits per hero.
+    /// Derivation limits per hero. Default: [`Limits::DEFAULT`].
     pub limits: Limits,
     /// Keep each instance's word (for validation and debugging; counted in the budget).
+    /// Default: false.
     pub keep_words: bool,
     /// Share of the budget filled first with whole heroes (probability 0), in `[0, 1]`.
+    /// Default: 0.5.
     pub complete_share: f64,
     /// Most branches a hero of the second phase may leave as exits: bounds the placements
-    /// per assembled tree to `1 + max_tree_exits`. At least 1.
+    /// per assembled tree to `1 + max_tree_exits`. At least 1. Default: 12.
     pub max_tree_exits: u32,
 }
 

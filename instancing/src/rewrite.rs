@@ -14,11 +14,11 @@ use crate::error::InstancingError;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Markers {
-    /// Start of a recorded instance (Kenwood's startInstance).
+    /// Start of a recorded instance (Kenwood's startInstance). Default: `⟦`.
     pub start: char,
-    /// End of a recorded instance (stopInstance).
+    /// End of a recorded instance (stopInstance). Default: `⟧`.
     pub stop: char,
-    /// An exit to be filled with a cached instance (getInstance).
+    /// An exit to be filled with a cached instance (getInstance). Default: `◆`.
     pub get: char,
 }
 

@@ -119,15 +119,15 @@ pub fn words(grammar: &LSystem, max_modules: usize) -> impl Strategy<Value = Wor
 /// The size of the grammars [`grammars`] makes; start from `GrammarSize::default()`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct GrammarSize {
-    /// Non-turtle symbols (`A`, `B`, ...), 1 to 26.
+    /// Non-turtle symbols (`A`, `B`, ...), 1 to 26. Default: 3.
     pub symbols: usize,
-    /// Most productions per symbol.
+    /// Most productions per symbol. Default: 2.
     pub productions: usize,
-    /// Most modules in a successor (turtle symbols and brackets included).
+    /// Most modules in a successor (turtle symbols and brackets included). Default: 8.
     pub successor: usize,
-    /// Whether modules carry a parameter, with conditions and arithmetic on it.
+    /// Whether modules carry a parameter, with conditions and arithmetic on it. Default: true.
     pub parametric: bool,
-    /// Whether a symbol's productions are weighted (stochastic).
+    /// Whether a symbol's productions are weighted (stochastic). Default: true.
     pub stochastic: bool,
 }
 

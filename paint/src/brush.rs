@@ -33,14 +33,15 @@ pub enum BrushAction {
 /// spot twice in one stroke does not paint it twice.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Brush {
-    /// What it does.
+    /// What it does. No default: the action given to [`Brush::new`].
     pub action: BrushAction,
-    /// Radius, metres (0 to [`MAX_BRUSH_RADIUS`]).
+    /// Radius, metres (0 to [`MAX_BRUSH_RADIUS`]). No default: the radius given to [`Brush::new`].
     pub radius: f32,
     /// How far one stroke goes toward the action's end (0 to 1): 1 paints full density or
-    /// erases everything at the centre.
+    /// erases everything at the centre. Default: 1.
     pub strength: f32,
     /// The share of the radius painted at full strength (0 to 1); 1 is a hard-edged disc.
+    /// Default: 0.5.
     pub hardness: f32,
 }
 
@@ -69,7 +70,7 @@ impl Brush {
             "brush radius",
             self.radius.into(),
             self.radius > 0.0 && self.radius <= MAX_BRUSH_RADIUS,
-            "above 0 and at most MAX_BRUSH_RADIUS (500 m)",
+            "above 0 and at most MAX_BRUSH_RADIUS (1000 m)",
         )?;
         check(
             "brush strength",

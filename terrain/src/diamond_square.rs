@@ -27,22 +27,24 @@ const ROWS_PER_TASK: usize = 8;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct DiamondSquare {
-    /// Samples per side, 2^n + 1.
+    /// Samples per side, 2^n + 1. No default: the `size` given to [`DiamondSquare::new`].
     pub size: usize,
-    /// Horizontal distance between samples.
+    /// Horizontal distance between samples. Default: 1.
     pub spacing: f32,
     /// Roughness H in [0, 1]: displacements shrink by 2^-H per level, so the mean squared
-    /// height difference at lag d grows as d^(2H). Low H is rough, high H smooth.
+    /// height difference at lag d grows as d^(2H). Low H is rough, high H smooth. Default: 0.8.
     pub roughness: f32,
-    /// Displacement scale of the first level (and of random corners).
+    /// Displacement scale of the first level (and of random corners). Default: `size / 4`.
     pub amplitude: f32,
-    /// Seed of the displacements.
+    /// Seed of the displacements. Default: 0.
     pub seed: u64,
     /// Fixed corner heights (x0z0, x1z0, x0z1, x1z1), or `None` for random corners.
+    /// Default: none (random corners).
     pub corners: Option<[f32; 4]>,
     /// Periodic mode: opposite edges are equal, so the map tiles with copies of itself.
+    /// Default: false.
     pub wrap: bool,
-    /// Which tile of the world this map is (in units of `size - 1` samples).
+    /// Which tile of the world this map is (in units of `size - 1` samples). Default: [0, 0].
     pub tile: [i64; 2],
 }
 

@@ -13,11 +13,12 @@ use crate::heightmap::Heightmap;
 #[non_exhaustive]
 pub struct ThermalErosion {
     /// Steepest stable slope (rise over run); 0.7 is about 35 degrees, the angle of repose of
-    /// loose rock.
+    /// loose rock. Default: 0.7.
     pub talus: f32,
-    /// Fraction of the excess moved per iteration, in (0, 0.5].
+    /// Fraction of the excess moved per iteration, in (0, 0.5]. Default: 0.25.
     pub rate: f32,
     /// Number of iterations; each is one pass over the map. 50 is a light touch, 500 heavy.
+    /// Default: 50.
     pub iterations: u32,
 }
 
@@ -133,25 +134,26 @@ impl ThermalErosion {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct HydraulicErosion {
-    /// Number of droplets. About one per 4 samples gives visible gullies.
+    /// Number of droplets. About one per 4 samples gives visible gullies. Default: 50,000.
     pub droplets: u32,
-    /// Seed of the droplets' starting points.
+    /// Seed of the droplets' starting points. Default: 0.
     pub seed: u64,
     /// How much a droplet keeps its direction (0: follows the slope, 1: never turns).
+    /// Default: 0.05.
     pub inertia: f32,
-    /// Sediment capacity per unit of slope, speed and water.
+    /// Sediment capacity per unit of slope, speed and water. Default: 4.
     pub capacity: f32,
-    /// Slope assumed on flat ground when computing capacity.
+    /// Slope assumed on flat ground when computing capacity. Default: 0.01.
     pub min_slope: f32,
-    /// Fraction of free capacity taken from the ground per step.
+    /// Fraction of free capacity taken from the ground per step. Default: 0.3.
     pub erosion: f32,
-    /// Fraction of excess sediment dropped per step.
+    /// Fraction of excess sediment dropped per step. Default: 0.3.
     pub deposition: f32,
-    /// Fraction of water that evaporates per step.
+    /// Fraction of water that evaporates per step. Default: 0.02.
     pub evaporation: f32,
-    /// Acceleration down slopes.
+    /// Acceleration down slopes. Default: 4.
     pub gravity: f32,
-    /// Most steps a droplet lives.
+    /// Most steps a droplet lives. Default: 30.
     pub lifetime: u32,
 }
 

@@ -23,21 +23,23 @@ use crate::heightmap::{Heightmap, checked_len, levels_of};
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpectralSynthesis {
-    /// Samples per side, 2^n + 1.
+    /// Samples per side, 2^n + 1. No default: the `size` given to [`SpectralSynthesis::new`].
     pub size: usize,
-    /// Metres between samples.
+    /// Metres between samples. Default: 1.
     pub spacing: f32,
-    /// The Hurst exponent H, 0 to 1: the variogram grows as lag^(2H).
+    /// The Hurst exponent H, 0 to 1: the variogram grows as lag^(2H). Default: 0.8.
     pub hurst: f32,
-    /// Standard deviation of the heights, metres.
+    /// Standard deviation of the heights, metres. Default: `size / 16`.
     pub amplitude: f32,
-    /// Seed.
+    /// Seed. Default: 0.
     pub seed: u64,
     /// Wavelengths longer than this many metres are left out (0: none), so the surface's
     /// largest hills can be set, as a measured scale range ends.
+    /// Default: 0 (every wavelength kept).
     pub longest_wavelength: f32,
     /// Wavelengths shorter than about this many metres fade out (0: none), as real models
     /// are smoother than fractal below the scale range their fit starts at.
+    /// Default: 0 (no fading).
     pub shortest_wavelength: f32,
 }
 

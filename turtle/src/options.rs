@@ -44,68 +44,70 @@ pub struct StemBreak {
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct TurtleOptions {
-    /// Which symbol means what.
+    /// Which symbol means what. Default: ABOP's, [`SymbolTable::abop`].
     pub symbols: SymbolTable,
-    /// Step length for `F` and `f` without a parameter.
+    /// Step length for `F` and `f` without a parameter. Default: 1.
     pub step: f32,
-    /// Turning angle in degrees for rotations without a parameter.
+    /// Turning angle in degrees for rotations without a parameter. Default: 22.5.
     pub angle: f32,
-    /// Initial width (diameter) in world units.
+    /// Initial width (diameter) in world units. Default: 0.1.
     pub width: f32,
     /// Multiplies every length given as a parameter to `F(l)` and `f(l)`: scales grammars
-    /// written in other units (the ternary tree's trunk is `F(200)`) to metres.
+    /// written in other units (the ternary tree's trunk is `F(200)`) to metres. Default: 1.
     pub length_unit: f32,
     /// Multiplies every width given as a parameter to `!(w)`: grammars written in pixels
-    /// (ABOP's Honda tree uses widths near 10 with unit steps) set it below 1.
+    /// (ABOP's Honda tree uses widths near 10 with unit steps) set it below 1. Default: 1.
     pub width_unit: f32,
-    /// Factor for `!` without a parameter.
+    /// Factor for `!` without a parameter. Default: 0.7.
     pub width_factor: f32,
-    /// Factor for `"` without a parameter.
+    /// Factor for `"` without a parameter. Default: 0.9.
     pub length_factor: f32,
-    /// Factor for `;` without a parameter.
+    /// Factor for `;` without a parameter. Default: 0.9.
     pub angle_factor: f32,
-    /// Optional tropism applied after every move.
+    /// Optional tropism applied after every move. Default: none.
     pub tropism: Option<Tropism>,
-    /// Leaf quad length (along the heading) and width.
+    /// Leaf quad length (along the heading) and width. Default: [0.3, 0.15].
     pub leaf_size: [f32; 2],
     /// How far each leaf card turns about its heading towards facing the sky (+Y), from 0
     /// (the card lies in the turtle's heading-left plane) to 1 (its blade faces up as far as
     /// the heading allows). Leaves turn their blades to the light; from above, cards that
-    /// face up cover the ground where edge-on cards would not.
+    /// face up cover the ground where edge-on cards would not. Default: 0.
     pub leaf_facing: f32,
-    /// Cylinders or frustums.
+    /// Cylinders or frustums. Default: frustums, [`BranchShape::Frustum`].
     pub shape: BranchShape,
-    /// Vertices around each ring (at least 3).
+    /// Vertices around each ring (at least 3). Default: 8.
     pub radial_segments: u32,
-    /// Close tube ends with discs.
+    /// Close tube ends with discs. Default: false.
     pub caps: bool,
-    /// Radii below this are raised to it, so thin twigs stay visible.
+    /// Radii below this are raised to it, so thin twigs stay visible. Default: 0.
     pub min_radius: f32,
     /// How much wider than the trunk its base flares where roots buttress it: 0 none, 0.6
     /// a base 1.6 times the trunk's radius. The flare fades over about three base radii up
     /// the first segment of the tree's first axis ([`MeshBuilder`](crate::MeshBuilder)).
+    /// Default: 0.
     pub root_flare: f32,
     /// How much a branch swells where it leaves its parent, blending into it: 0 none, 0.5 a
     /// base 1.5 times the branch's radius at the parent's surface (never wider than the
     /// parent), fading over a few radii. Drawn on branches long enough to hold it (two rings
-    /// each, [`MeshBuilder`](crate::MeshBuilder)).
+    /// each, [`MeshBuilder`](crate::MeshBuilder)). Default: 0.
     pub branch_collar: f32,
     /// How many straight pieces a stem is drawn in so that the tropism bends it along its
     /// length rather than at its end (Bloomenthal's curved stems): 1 draws every `F` as one
     /// segment; from 2 (at most 8) stems at least 15% of the first segment's radius thick
     /// that the tropism turns by more than a degree are drawn curved. Thin twigs, and trunks
-    /// along the tropism, stay one piece.
+    /// along the tropism, stay one piece. Default: 1.
     pub curve_steps: u32,
-    /// Deepest `[` / `{` nesting accepted.
+    /// Deepest `[` / `{` nesting accepted. Default: 1,048,576 (2^20).
     pub max_depth: usize,
     /// A stem broken by a storm or lightning ([`StemBreak`]); `None` draws the whole tree.
-    /// A forest's damaged trees are drawn with it (`sylva-forest`'s forms).
+    /// A forest's damaged trees are drawn with it (`sylva-forest`'s forms). Default: none.
     pub stem_break: Option<StemBreak>,
     /// Share of leaf cards drawn, 0 to 1: 1 draws every leaf, 0 none (a dead tree), 0.3 a
     /// crown thinned by dieback. Which leaves go is a pure function of their order in the
-    /// word, so a tree thins the same way every time.
+    /// word, so a tree thins the same way every time. Default: 1.
     pub leaf_keep: f32,
     /// A cpfg model's surfaces and contours ([`TurtleOptions::with_model_files`]).
+    /// Default: empty (no surfaces or contours).
     pub shapes: Arc<ModelShapes>,
 }
 

@@ -57,8 +57,9 @@ use file::{write_file, write_geometry, write_placements};
 pub struct GltfOptions {
     /// Terrain tint, linear RGB, multiplied with the ground colours by slope and altitude
     /// ([`sylva_terrain::ground`]) that the terrain's vertices carry.
+    /// Default: [1, 1, 1] (no tint).
     pub terrain_colour: [f32; 3],
-    /// Roughness of every material (all are dielectric: metallic 0).
+    /// Roughness of every material (all are dielectric: metallic 0). Default: 0.9.
     pub roughness: f32,
     /// Most bytes of placements buffered in memory while writing, shared among the instances
     /// (at least one placement each): a buffer is written at its place in the file when it
@@ -68,11 +69,12 @@ pub struct GltfOptions {
     /// The URI (relative to the GLB) of a file written by [`write_shared_geometry`] for the
     /// same builder: when set, the GLB refers to that file's cache buffers and textures as an
     /// external buffer instead of embedding them, as the tiles of one world do.
+    /// Default: none (embedded).
     pub shared_geometry: Option<String>,
     /// Write each placement as a node of its own that shares its instance's mesh, instead
     /// of EXT_mesh_gpu_instancing: for importers that ignore the extension (Blender before
     /// 3.6, some Unity and Godot importers). Forests over [`MAX_NODE_PLACEMENTS`] placements
-    /// are refused in this mode.
+    /// are refused in this mode. Default: false.
     pub one_node_per_placement: bool,
 }
 

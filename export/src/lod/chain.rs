@@ -26,14 +26,16 @@ pub const PIXELS_PER_RADIAN_1080P: f32 = 1080.0 / (std::f32::consts::PI / 3.0);
 #[non_exhaustive]
 pub struct LodChain {
     /// The coarser levels, finest first.
+    /// Default: two, bark within 3 cm with 60% of the cards, then within 8 cm with 35%.
     pub levels: Vec<LodLevel>,
-    /// How the impostor, the last level, is drawn.
+    /// How the impostor, the last level, is drawn. Default: [`ImpostorOptions::default`].
     pub impostor: ImpostorOptions,
-    /// The screen-space error allowed, in pixels.
+    /// The screen-space error allowed, in pixels. Default: 2.
     pub pixel_error: f32,
     /// The screen's vertical pixels per radian of view.
+    /// Default: [`PIXELS_PER_RADIAN_1080P`], about 1031.
     pub pixels_per_radian: f32,
-    /// Share of a switch distance over which a level fades into the next (dithered).
+    /// Share of a switch distance over which a level fades into the next (dithered). Default: 0.1.
     pub fade: f32,
 }
 

@@ -25,9 +25,10 @@ pub const MAX_ATLAS_SIDE: u32 = 8192;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct ImpostorOptions {
-    /// Views along each side of the hemi-octahedral grid (2 to 32).
+    /// Views along each side of the hemi-octahedral grid (2 to 32). Default: 8.
     pub grid: u32,
     /// Pixels across each view (8 to 1024, and at most [`MAX_ATLAS_SIDE`] over `grid`).
+    /// Default: 128.
     pub view_size: u32,
 }
 

@@ -368,6 +368,7 @@ fn write_atlases(builder: &ForestBuilder, dir: &Path) -> Result<usize, ExportErr
 #[non_exhaustive]
 pub struct TilesetOptions {
     /// Longitude and latitude (degrees) of the world's origin (its low x, low z corner).
+    /// Default: (8.54, 47.37).
     pub origin: (f64, f64),
 }
 

@@ -39,8 +39,9 @@ use text::{identifier, tuple};
 pub struct UsdOptions {
     /// Terrain tint, linear RGB, multiplied into the ground colours by slope and altitude
     /// ([`sylva_terrain::ground`]) that the terrain's vertices carry as `displayColor`.
+    /// Default: [1, 1, 1] (no tint).
     pub terrain_colour: [f32; 3],
-    /// Roughness of every material (all are dielectric: metallic 0).
+    /// Roughness of every material (all are dielectric: metallic 0). Default: 0.9.
     pub roughness: f32,
 }
 

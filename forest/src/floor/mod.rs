@@ -34,10 +34,11 @@ const MAX_ITEMS_PER_CELL: u32 = 64;
 #[non_exhaustive]
 pub struct FloorOptions {
     /// The floor's seed (items differ from the trees' even under one world seed).
+    /// Default: 0x0f1e_2d3c.
     pub seed: u64,
-    /// Side of the cells items are drawn in, metres (0.5 to 50).
+    /// Side of the cells items are drawn in, metres (0.5 to 50). Default: 2.
     pub cell: f32,
-    /// Items' scales are uniform in `1 +- scale_variation`.
+    /// Items' scales are uniform in `1 +- scale_variation`. Default: 0.3.
     pub scale_variation: f32,
 }
 

@@ -8,22 +8,24 @@ use sylva_base::range::{OutOfRange, check};
 #[non_exhaustive]
 pub struct SuccessionOptions {
     /// World seed: every draw of the simulation derives from it, the place and the year.
+    /// Default: 1.
     pub seed: u64,
     /// Metres simulated beyond the region on every side, so trees near its edges have
     /// neighbours, parents and shade as in a larger run; tiles simulated apart with a halo
-    /// agree near their borders (see the crate's README for how closely, by halo).
+    /// agree near their borders (see the crate's README for how closely, by halo). Default: 60.
     pub halo: f32,
     /// Seedlings arriving from beyond the forest, per hectare and year, shared among the
-    /// species by weight: how bare ground is first colonised.
+    /// species by weight: how bare ground is first colonised. Default: 4.
     pub seed_rain: f32,
-    /// Storms per year.
+    /// Storms per year. Default: 0.04.
     pub storm_rate: f32,
-    /// Lightning strikes per hectare and year.
+    /// Lightning strikes per hectare and year. Default: 0.002.
     pub lightning_rate: f32,
-    /// Disease outbreaks per year (each in one species, for several years).
+    /// Disease outbreaks per year (each in one species, for several years). Default: 0.015.
     pub disease_rate: f32,
     /// Most trees (living, dead standing and fallen) the simulation holds: a year that would
     /// hold more is refused with [`ForestError::TooManyStems`](crate::ForestError::TooManyStems).
+    /// Default: 8,000,000.
     pub max_stems: usize,
 }
 

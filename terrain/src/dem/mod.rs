@@ -97,11 +97,13 @@ impl DemFormat {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ReadOptions {
     /// Metres between samples, overriding the file's georeferencing (or standing in where it
-    /// has none).
+    /// has none). Default: none (the file's, else 1 m).
     pub spacing: Option<f32>,
     /// Heights of 16-bit samples 0 and 65535 (PNG without sylva's chunk, RAW).
+    /// Default: none (the file's; a file that needs one is refused without it).
     pub height_range: Option<[f32; 2]>,
     /// Width and height of a RAW file (a square RAW's side follows from its length).
+    /// Default: none (square, its side from the file's length).
     pub raw_size: Option<[usize; 2]>,
 }
 
