@@ -213,9 +213,10 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
     if args.quiet {
         return Ok(());
     }
+    let size = world.region.max - world.region.min;
     println!(
-        "sylva forest: {side:.0} m x {side:.0} m, seed {}",
-        world.seed
+        "sylva forest: {:.0} m x {:.0} m, seed {}",
+        size.x, size.y, world.seed
     );
     for (s, c) in builder.config().species.iter().zip(builder.canopies()) {
         println!(

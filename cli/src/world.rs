@@ -206,7 +206,7 @@ impl WorldArgs {
                 let project = Project::read(dir).map_err(failure)?;
                 // The ground first: a missing model is reported before seconds of hero trees.
                 let ground = project.ground().map_err(failure)?;
-                self.tell(&ground, &project.folder.display().to_string(), quiet);
+                self.tell(&ground, &project.folder.display().to_string(), quiet, false);
                 let recipe = project
                     .description
                     .world_builder()
@@ -308,18 +308,20 @@ impl WorldArgs {
             Ground::read(file, &options, self.crop, fit, "--spacing M")
         });
         let ground = ground.map_err(failure)?;
-        self.tell(&ground, &file.display().to_string(), quiet);
+        // A single file's region can grow to the whole model as tiles; a tileset is whole.
+        let whole = fit != Fit::WHOLE;
+        self.tell(&ground, &file.display().to_string(), quiet, whole);
         Ok(ground)
     }
 
     /// Prints what was made of a model, unless `quiet`: cells filled, the window chosen, and
-    /// for a forest the flag that writes the whole model.
-    fn tell(&self, ground: &Ground, name: &str, quiet: bool) {
+    /// with `whole` the flag that writes the whole model.
+    fn tell(&self, ground: &Ground, name: &str, quiet: bool, whole: bool) {
         if quiet {
             return;
         }
         for note in ground.notes(name) {
-            let whole = if ground.chosen.is_some() && note.contains("--crop") {
+            let whole = if whole && ground.chosen.is_some() && note.contains("--crop") {
                 ", --whole writes the whole model as 3D Tiles"
             } else {
                 ""

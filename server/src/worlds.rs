@@ -40,7 +40,25 @@ pub(crate) async fn create(
             TerrainDescription::Heightmap { id, .. } => {
                 let ground =
                     description.ground(|id| crate::world::uploaded_model(&keeper.cache, id))?;
-                ground.notes(&format!("heightmap {id}"))
+                let mut notes = Vec::new();
+                if ground.filled > 0 {
+                    notes.push(format!(
+                        "heightmap {id}: {} cells had no data and were filled from their neighbours",
+                        ground.filled
+                    ));
+                }
+                if let Some(chosen) = ground.chosen {
+                    let w = chosen.window;
+                    notes.push(format!(
+                        "heightmap {id}: {}; \"crop\": [{}, {}, {}, {}] in the terrain names this window",
+                        chosen.summary(),
+                        w.column,
+                        w.row,
+                        w.width,
+                        w.height
+                    ));
+                }
+                notes
             }
             TerrainDescription::Generated { .. } => Vec::new(),
         };

@@ -497,3 +497,47 @@ async fn a_saved_project_is_taken_as_posted() {
     server.stop().await;
     let _ = std::fs::remove_dir_all(&folder);
 }
+
+/// An elevation model larger than a world makes one on the first try: the world takes its
+/// middle 20 km, and the answer's notes say which window and how to name another; a crop
+/// outside the model is the description's mistake. (An uploaded `.hgt` has no name to say
+/// where it lies, so its spacing is given.)
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_model_larger_than_a_world_gives_its_middle() {
+    let server = start(options(scratch("large-model"))).await;
+    let mut c = Client::connect(server.address).await;
+    let hgt = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../terrain/tests/data/dems/N44W072.hgt"
+    ))
+    .unwrap();
+    let upload = c.post("/heightmaps", &hgt).await;
+    assert_eq!(upload.status, StatusCode::CREATED);
+    let id = upload.json()["id"].as_str().unwrap().to_owned();
+    let answer = c
+        .post(
+            "/worlds",
+            format!(r#"{{"terrain": {{"heightmap": {{"id": "{id}", "spacing": 30}}}}, "budget_mb": 4, "species": ["pine"]}}"#).as_bytes(),
+        )
+        .await;
+    assert_eq!(
+        answer.status,
+        StatusCode::CREATED,
+        "{}",
+        String::from_utf8_lossy(&answer.body)
+    );
+    let notes = answer.json()["notes"].to_string();
+    assert!(
+        notes.contains("took the middle") && notes.contains(r#"\"crop\": [267, 267, 667, 667]"#),
+        "{notes}"
+    );
+    let outside = c
+        .post(
+            "/worlds",
+            format!(r#"{{"terrain": {{"heightmap": {{"id": "{id}", "spacing": 30, "crop": [1190, 0, 30, 30]}}}}}}"#).as_bytes(),
+        )
+        .await;
+    assert_eq!(outside.status, StatusCode::BAD_REQUEST);
+    assert_eq!(outside.json()["error"], "bad_description");
+    server.stop().await;
+}

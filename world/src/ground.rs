@@ -65,6 +65,20 @@ impl Chosen {
     /// assert!(chosen.note().starts_with("the model covers 3058 x 2035 m (129 x 67 samples); took the middle 979 x 987 m"));
     /// ```
     pub fn note(&self) -> String {
+        let Window {
+            column,
+            row,
+            width,
+            height,
+        } = self.window;
+        format!(
+            "{}; --crop {column},{row},{width},{height} names this window",
+            self.summary()
+        )
+    }
+
+    /// What was taken, without the flag that names it: the model's size and the window.
+    pub fn summary(&self) -> String {
         let [mx, mz] = self.model_extent;
         let [w, h] = self.model_size;
         let Window {
@@ -75,7 +89,7 @@ impl Chosen {
         } = self.window;
         let [x, z] = self.extent;
         format!(
-            "the model covers {mx:.0} x {mz:.0} m ({w} x {h} samples); took the middle {x:.0} x {z:.0} m (columns {column}..{}, rows {row}..{}); --crop {column},{row},{width},{height} names this window",
+            "the model covers {mx:.0} x {mz:.0} m ({w} x {h} samples); took the middle {x:.0} x {z:.0} m (columns {column}..{}, rows {row}..{})",
             column + width - 1,
             row + height - 1
         )
@@ -158,10 +172,8 @@ impl Ground {
         spacing_hint: &str,
     ) -> Result<Ground, WorldError> {
         let name = path.display().to_string();
-        let model = ElevationModel::read(path, options).map_err(|e| WorldError::Model {
-            name: name.clone(),
-            message: e.to_string(),
-        })?;
+        let model =
+            ElevationModel::read(path, options).map_err(|e| model_error(&name)(e.to_string()))?;
         Self::of_model(model, &name, options, crop, fit, spacing_hint)
     }
 
@@ -175,10 +187,7 @@ impl Ground {
         fit: Fit,
         spacing_hint: &str,
     ) -> Result<Ground, WorldError> {
-        let bad = |message: String| WorldError::Model {
-            name: name.to_owned(),
-            message,
-        };
+        let bad = model_error(name);
         let format = model_format(bytes).ok_or_else(|| bad("not an elevation model".into()))?;
         let model =
             ElevationModel::parse(bytes, format, options).map_err(|e| bad(e.to_string()))?;
@@ -194,10 +203,7 @@ impl Ground {
         fit: Fit,
         spacing_hint: &str,
     ) -> Result<Ground, WorldError> {
-        let bad = |message: String| WorldError::Model {
-            name: name.to_owned(),
-            message,
-        };
+        let bad = model_error(name);
         if !model.spacing_from_file && options.spacing.is_none() {
             return Err(WorldError::NoSpacing {
                 name: name.to_owned(),
@@ -292,6 +298,14 @@ fn middle(model: &ElevationModel, fit: Fit) -> Option<Chosen> {
         window,
         extent: [(width - 1) as f32 * sx, (height - 1) as f32 * sz],
     })
+}
+
+/// The error for the model `name`, saying `message`.
+fn model_error(name: &str) -> impl Fn(String) -> WorldError + '_ {
+    move |message| WorldError::Model {
+        name: name.to_owned(),
+        message,
+    }
 }
 
 /// A window as `--crop` takes it.
@@ -424,5 +438,46 @@ mod tests {
             e.to_string().contains("h.png") && e.to_string().contains("\"spacing\""),
             "{e}"
         );
+    }
+
+    proptest::proptest! {
+        /// The middle window of any model lies inside it, spans at most the side asked for
+        /// (or the two samples a window needs), is centred within a sample, and is `None`
+        /// exactly when the whole model fits.
+        #[test]
+        fn the_middle_window_is_inside_centred_and_no_larger_than_asked(
+            width in 2usize..400,
+            height in 2usize..400,
+            sx in 0.5f32..120.0,
+            sz in 0.5f32..120.0,
+            side in 10.0f32..30_000.0,
+            square in proptest::bool::ANY,
+        ) {
+            let model = ElevationModel {
+                width,
+                height,
+                heights: vec![0.0; width * height],
+                spacing: [sx, sz],
+                nodata: 0,
+                georeference: None,
+                spacing_from_file: true,
+            };
+            let fit = if square { Fit::MiddleSquare { side } } else { Fit::Middle { side } };
+            match middle(&model, fit) {
+                None => {
+                    let [ex, ez] = model.extent();
+                    proptest::prop_assert!(square || (ex <= side + sx && ez <= side + sz));
+                }
+                Some(chosen) => {
+                    let w = chosen.window;
+                    proptest::prop_assert!(w.width >= 2 && w.height >= 2);
+                    proptest::prop_assert!(w.column + w.width <= width && w.row + w.height <= height);
+                    proptest::prop_assert!(chosen.extent[0] <= side.max(sx) + 1e-3);
+                    proptest::prop_assert!(chosen.extent[1] <= side.max(sz) + 1e-3);
+                    proptest::prop_assert!((width - w.width) / 2 == w.column);
+                    proptest::prop_assert!((height - w.height) / 2 == w.row);
+                }
+            }
+        }
     }
 }
