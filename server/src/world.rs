@@ -31,8 +31,10 @@ pub(crate) fn build(description: &WorldDescription, cache: &Cache) -> Result<Bui
     // The ground first: a missing model is reported before seconds of hero trees.
     let ground = description.ground(|id| uploaded_model(cache, id))?;
     let world = description.world_builder()?.build(ground, &Quiet)?;
-    let (scheme, options) =
-        world.tiling(description.tile_size, description.group, description.origin)?;
+    let scheme = TileScheme::new(world.region(), description.tile_size, description.group)
+        .map_err(|e| ApiError::bad_request("bad_description", e.to_string()))?;
+    let [lon, lat] = description.origin;
+    let options = TilesetOptions::default().with_origin((lon, lat));
     Ok(BuiltWorld {
         builder: world.forest,
         map: world.ground.map,

@@ -1,11 +1,11 @@
 //! The builder that turns species, settings and ground into a [`World`]: a forest ready for
-//! any writer (glTF, USD, 3D Tiles, an engine's own instancing). The CLI, the viewer and the
+//! any writer (glTF, USD, 3D Tiles, an engine's own instancing). The world layer does not
+//! depend on the writers, so it builds beside them. The CLI, the viewer and the
 //! server each build their worlds here, so one description makes one forest everywhere.
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use sylva_export::{TileScheme, TilesetOptions};
 use sylva_forest::succession::Succession;
 use sylva_forest::{
     Composition, Constraints, ForestBuilder, ForestConfig, Rect, SitingReport, Species,
@@ -246,19 +246,5 @@ impl World {
     /// What the terrain makes of the candidate tree spots (slopes, heights, masks).
     pub fn siting(&self) -> Result<SitingReport, WorldError> {
         Ok(self.forest.siting(&self.ground.map, self.region())?)
-    }
-
-    /// The world cut into 3D Tiles: fine tiles of `tile_size` metres grouped `group` x
-    /// `group` into coarse ones, standing at `origin` (longitude, latitude in degrees).
-    pub fn tiling(
-        &self,
-        tile_size: f32,
-        group: u32,
-        origin: [f64; 2],
-    ) -> Result<(TileScheme, TilesetOptions), WorldError> {
-        let scheme = TileScheme::new(self.region(), tile_size, group)
-            .map_err(|e| WorldError::Invalid(e.to_string()))?;
-        let options = TilesetOptions::default().with_origin((origin[0], origin[1]));
-        Ok((scheme, options))
     }
 }
