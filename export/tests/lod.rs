@@ -22,7 +22,7 @@ fn default_species() -> Vec<sylva_forest::Species> {
         .iter()
         .map(|name| {
             let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join(format!("../examples/species/{name}.species"));
+                .join(format!("../world/species/{name}/{name}.species"));
             let text = std::fs::read_to_string(&path).expect("species file");
             sylva_forest::Species::parse_file(&text, &path).expect("species parses")
         })
