@@ -320,13 +320,16 @@ impl WorldArgs {
         if quiet {
             return;
         }
-        for note in ground.notes(name) {
-            let whole = if whole && ground.chosen.is_some() && note.contains("--crop") {
-                ", --whole writes the whole model as 3D Tiles"
+        let naming = |window| {
+            let crop = sylva::world::crop_flag(window);
+            if whole {
+                format!("{crop}, --whole writes the whole model as 3D Tiles")
             } else {
-                ""
-            };
-            eprintln!("{note}{whole}");
+                crop
+            }
+        };
+        for note in ground.notes_naming(name, naming) {
+            eprintln!("{note}");
         }
     }
 }

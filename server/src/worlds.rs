@@ -40,25 +40,13 @@ pub(crate) async fn create(
             TerrainDescription::Heightmap { id, .. } => {
                 let ground =
                     description.ground(|id| crate::world::uploaded_model(&keeper.cache, id))?;
-                let mut notes = Vec::new();
-                if ground.filled > 0 {
-                    notes.push(format!(
-                        "heightmap {id}: {} cells had no data and were filled from their neighbours",
-                        ground.filled
-                    ));
-                }
-                if let Some(chosen) = ground.chosen {
-                    let w = chosen.window;
-                    notes.push(format!(
-                        "heightmap {id}: {}; \"crop\": [{}, {}, {}, {}] in the terrain names this window",
-                        chosen.summary(),
-                        w.column,
-                        w.row,
-                        w.width,
-                        w.height
-                    ));
-                }
-                notes
+                // A served world names its window by the terrain's "crop", not a flag.
+                ground.notes_naming(&format!("heightmap {id}"), |w| {
+                    format!(
+                        "\"crop\": [{}, {}, {}, {}] in the terrain names this window",
+                        w.column, w.row, w.width, w.height
+                    )
+                })
             }
             TerrainDescription::Generated { .. } => Vec::new(),
         };

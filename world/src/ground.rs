@@ -65,19 +65,17 @@ impl Chosen {
     /// assert!(chosen.note().starts_with("the model covers 3058 x 2035 m (129 x 67 samples); took the middle 979 x 987 m"));
     /// ```
     pub fn note(&self) -> String {
-        let Window {
-            column,
-            row,
-            width,
-            height,
-        } = self.window;
-        format!(
-            "{}; --crop {column},{row},{width},{height} names this window",
-            self.summary()
-        )
+        self.note_naming(crop_flag)
     }
 
-    /// What was taken, without the flag that names it: the model's size and the window.
+    /// What was taken, then how to name that window again, in the caller's words: `naming`
+    /// says it for the window (`--crop C,R,W,H names this window` on the command line, the
+    /// terrain's `"crop"` in a served world).
+    pub fn note_naming(&self, naming: impl Fn(Window) -> String) -> String {
+        format!("{}; {}", self.summary(), naming(self.window))
+    }
+
+    /// What was taken, without how to name it: the model's size and the window.
     pub fn summary(&self) -> String {
         let [mx, mz] = self.model_extent;
         let [w, h] = self.model_size;
@@ -254,6 +252,12 @@ impl Ground {
     /// What a person should hear about this ground made from `name`: the cells filled,
     /// the window chosen. Empty for ground that needs no word.
     pub fn notes(&self, name: &str) -> Vec<String> {
+        self.notes_naming(name, crop_flag)
+    }
+
+    /// [`Ground::notes`], the window named in the caller's words (see
+    /// [`Chosen::note_naming`]).
+    pub fn notes_naming(&self, name: &str, naming: impl Fn(Window) -> String) -> Vec<String> {
         let mut notes = Vec::new();
         if self.filled > 0 {
             notes.push(format!(
@@ -262,7 +266,7 @@ impl Ground {
             ));
         }
         if let Some(chosen) = &self.chosen {
-            notes.push(format!("{name}: {}", chosen.note()));
+            notes.push(format!("{name}: {}", chosen.note_naming(naming)));
         }
         notes
     }
@@ -306,6 +310,11 @@ fn model_error(name: &str) -> impl Fn(String) -> WorldError + '_ {
         name: name.to_owned(),
         message,
     }
+}
+
+/// How the command line names a window: `--crop C,R,W,H names this window`.
+pub fn crop_flag(window: Window) -> String {
+    format!("--crop {} names this window", window_text(window))
 }
 
 /// A window as `--crop` takes it.

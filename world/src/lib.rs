@@ -45,7 +45,7 @@ mod recipe;
 pub use builder::{World, WorldBuilder, density_patch};
 pub use description::{SpeciesEntry, TerrainDescription, WorldDescription};
 pub use error::WorldError;
-pub use ground::{Chosen, Fit, Ground};
+pub use ground::{Chosen, Fit, Ground, crop_flag};
 pub use id::{WorldId, model_id};
 pub use model::{check_model, model_format};
 pub use progress::{Progress, Quiet, Stage};
