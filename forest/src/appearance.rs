@@ -14,8 +14,15 @@ pub enum LeafShape {
     Lobed,
     /// A cluster of toothed leaves: ovate blades with serrated edges, as on birch and hazel.
     Serrated,
-    /// A tuft of long needles fanning out from a shoot's tip, as on pines.
+    /// A pine's shoot end: needles in pairs slanting forward along the shoot and brushing out
+    /// from its tip.
     NeedleTuft,
+    /// A cluster of round-ovate, doubly toothed leaves, as on hazel, aspen and alder.
+    Rounded,
+    /// A cluster of small triangular-ovate, finely toothed leaves, as on birch.
+    Deltoid,
+    /// A cluster of five-lobed leaves as broad as long, as on sycamore and other maples.
+    Palmate,
 }
 
 impl LeafShape {
@@ -27,16 +34,22 @@ impl LeafShape {
             LeafShape::Lobed => "lobed",
             LeafShape::Serrated => "serrated",
             LeafShape::NeedleTuft => "needle-tuft",
+            LeafShape::Rounded => "rounded",
+            LeafShape::Deltoid => "deltoid",
+            LeafShape::Palmate => "palmate",
         }
     }
 
     /// Every shape, in the order renderers lay out their textures.
-    pub const ALL: [LeafShape; 5] = [
+    pub const ALL: [LeafShape; 8] = [
         LeafShape::Broadleaf,
         LeafShape::Needles,
         LeafShape::Lobed,
         LeafShape::Serrated,
         LeafShape::NeedleTuft,
+        LeafShape::Rounded,
+        LeafShape::Deltoid,
+        LeafShape::Palmate,
     ];
 
     /// The shape called `name` in species files.

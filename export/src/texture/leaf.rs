@@ -13,8 +13,16 @@ pub(super) enum Blade {
     /// Obovate (widest at 65 per cent) with four or five rounded lobes a side and a short
     /// stalk: an oak's.
     Lobed,
-    /// Ovate with a toothed edge: a birch's or a hazel's.
+    /// Ovate with a toothed edge.
     Serrated,
+    /// Round-ovate with a short tip and a doubly toothed edge (large teeth carrying small
+    /// ones): a hazel's, an aspen's, an alder's.
+    Rounded,
+    /// Triangular-ovate, widest near a broad straight base and drawn to a long point, finely
+    /// doubly toothed: a birch's.
+    Deltoid,
+    /// Five-lobed like a hand, as broad as long, the lobes coarsely toothed: a sycamore's.
+    Palmate,
 }
 
 impl Blade {
@@ -35,8 +43,49 @@ impl Blade {
                 // Small teeth pointing towards the tip.
                 outline * (1.0 - 0.12 * (t * 18.0).fract())
             }
+            Blade::Rounded => {
+                // Near a circle widest at 45 per cent, with a short drawn-out tip.
+                let round = (1.0 - ((t - 0.45) / 0.55).powi(2)).max(0.0).sqrt();
+                let tip = ((1.0 - t) / 0.12).min(1.0).powf(0.7);
+                let base = (t / 0.04).min(1.0);
+                round * tip * base * double_teeth(t, 8.0, 0.09)
+            }
+            Blade::Deltoid => {
+                let outline = (t / 0.22).min(1.0).powf(0.35) * ((1.0 - t) / 0.78).min(1.0);
+                outline * double_teeth(t, 11.0, 0.07)
+            }
+            Blade::Palmate => {
+                // Three bulges a side: the basal lobes pointing sideways, the side lobes
+                // forwards and out, the terminal lobe; deep sinuses between them.
+                let lobe = |centre: f32, reach: f32, height: f32| {
+                    height * (1.0 - ((t - centre) / reach).powi(2)).max(0.0).sqrt()
+                };
+                let core = if (0.04..0.9).contains(&t) { 0.2 } else { 0.0 };
+                let outline = lobe(0.2, 0.17, 0.8)
+                    .max(lobe(0.52, 0.2, 1.0))
+                    .max(lobe(0.8, 0.2, 0.42))
+                    .max(core);
+                outline * (1.0 - 0.1 * (t * 14.0).fract())
+            }
         }
     }
+
+    /// How much wider than an ovate blade of the same length this blade is drawn: round and
+    /// palmate leaves are nearly as broad as long.
+    fn breadth(self) -> f32 {
+        match self {
+            Blade::Ovate | Blade::Lobed | Blade::Serrated => 1.0,
+            Blade::Rounded => 1.45,
+            Blade::Deltoid => 1.25,
+            Blade::Palmate => 1.9,
+        }
+    }
+}
+
+/// A doubly toothed margin: `teeth` large teeth along the blade, each with two small ones,
+/// cutting in `depth` of the half width; the teeth point towards the tip.
+fn double_teeth(t: f32, teeth: f32, depth: f32) -> f32 {
+    1.0 - depth * (t * teeth).fract() - 0.5 * depth * (t * teeth * 3.0).fract()
 }
 
 /// A cluster of three leafy sprays fanning out from the base of the card, as a real-time leaf
@@ -85,7 +134,7 @@ fn spray(u: f32, v: f32, x: u32, y: u32, blade: Blade) -> Option<f32> {
         let (dx, dy) = (u - 0.5, v - base);
         // Leaf coordinates: t along the midrib (0 base, 1 tip), w across it.
         let t = (dx * s + dy * c) / length;
-        let w = (dx * c - dy * s) / half;
+        let w = (dx * c - dy * s) / (half * blade.breadth());
         if !(0.0..=1.0).contains(&t) {
             continue;
         }
@@ -144,31 +193,45 @@ pub(super) fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
     None
 }
 
-/// A tuft of needles: 40 thin, slightly curved needles of different lengths fanning out
-/// from a shoot's tip at the bottom middle of the card, up to 75 degrees either side.
+/// A pine's shoot end: a short shoot up the middle of the card, clothed along its last two
+/// thirds in paired needles (72 of them) slanting forward at 20 to 50 degrees and a brush of
+/// longer ones from its tip, so the card reads as a tufted branch end, not a fan.
 pub(super) fn needle_tuft(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
-    const COUNT: usize = 40;
-    const SPREAD: f32 = 75.0;
-    let (dx, dy) = (u - 0.5, v - 0.04);
-    let r = (dx * dx + dy * dy).sqrt();
-    if r < 0.02 {
-        return Some(0.45);
+    const COUNT: usize = 72;
+    const SHOOT: f32 = 0.62;
+    let p = glam::Vec2::new(u, v);
+    // The shoot: a stroke up the middle from the card's base.
+    if (u - 0.5).abs() < 0.012 && v < SHOOT {
+        return Some(0.42);
     }
-    // Angle from the card's axis, bent a little so the needles curve outwards.
-    let angle = dx.atan2(dy).to_degrees() - 12.0 * r * dx.signum();
-    let step = 2.0 * SPREAD / (COUNT - 1) as f32;
-    let nearest = ((angle + SPREAD) / step).round();
-    for k in [nearest - 1.0, nearest, nearest + 1.0] {
-        if !(0.0..COUNT as f32).contains(&k) {
+    for k in 0..COUNT {
+        let h = hash_cell(0x7af7, k as i64, 0, 0);
+        // Where the needle leaves the shoot: spread along its upper part, the last eighth of
+        // them from its tip.
+        let along = if k < COUNT * 7 / 8 {
+            0.2 + (SHOOT - 0.2) * (k as f32 + unit_f32(h)) / (COUNT * 7 / 8) as f32
+        } else {
+            SHOOT
+        };
+        let side = if k % 2 == 0 { -1.0 } else { 1.0 };
+        // Needles near the tip slant forward more; those from the tip itself fan a little.
+        let slant = if along >= SHOOT {
+            (unit_f32(mix(h)) - 0.5) * 60.0
+        } else {
+            side * (50.0 - 30.0 * (along - 0.2) / (SHOOT - 0.2) + 8.0 * unit_f32(mix(h)))
+        };
+        let (s, c) = slant.to_radians().sin_cos();
+        let dir = glam::Vec2::new(s, c);
+        let length = 0.2 + 0.14 * unit_f32(mix(mix(h)));
+        let d = p - glam::Vec2::new(0.5, along);
+        let t = d.dot(dir);
+        if !(0.0..=length).contains(&t) {
             continue;
         }
-        let h = hash_cell(0x7af7, k as i64, 0, 0);
-        let centre = -SPREAD + k * step + (unit_f32(h) - 0.5) * step * 0.8;
-        let length = 0.55 + 0.4 * unit_f32(mix(h));
-        // Needles taper: 2.5 texels wide at the base, a point at the tip.
-        let half = 0.006 * (1.0 - r / length).max(0.0) + 0.002;
-        if r <= length && (angle - centre).to_radians().abs() * r < half {
-            return Some(0.75 + 0.2 * unit_f32(mix(mix(h))) + 0.05 * grain(x, y));
+        // Needles taper: two texels wide at the base, a point at the tip.
+        let half = 0.005 * (1.0 - t / length) + 0.0015;
+        if (d - dir * t).length() < half {
+            return Some(0.72 + 0.22 * unit_f32(mix(mix(mix(h)))) + 0.05 * grain(x, y));
         }
     }
     None

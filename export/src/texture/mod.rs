@@ -56,6 +56,9 @@ impl Texture {
                     LeafShape::Serrated => leaf_cluster(u, v, x, y, Blade::Serrated),
                     LeafShape::Needles => needles(u, v, x, y),
                     LeafShape::NeedleTuft => needle_tuft(u, v, x, y),
+                    LeafShape::Rounded => leaf_cluster(u, v, x, y, Blade::Rounded),
+                    LeafShape::Deltoid => leaf_cluster(u, v, x, y, Blade::Deltoid),
+                    LeafShape::Palmate => leaf_cluster(u, v, x, y, Blade::Palmate),
                 };
                 if let Some(shade) = texel {
                     let i = ((y * n + x) * 4) as usize;
