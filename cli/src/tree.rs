@@ -38,7 +38,8 @@ pub(crate) struct TreeArgs {
     #[arg(long)]
     caps: bool,
     /// A species instead of a grammar: a species file, or a bundled species by name (oak,
-    /// birch, spruce, pine, hazel), drawn with its own turtle settings, colours and textures.
+    /// birch, spruce, pine, hazel, fir, larch), drawn with its own turtle settings, colours
+    /// and textures.
     #[arg(long, value_name = "FILE|NAME", conflicts_with_all = ["file", "preset", "angle", "shape", "sides", "caps"])]
     species: Option<String>,
     /// The file to write: Wavefront OBJ, or binary glTF with textures when it ends in .glb.
@@ -108,11 +109,8 @@ fn write_tree(out: &Path, species: &Species, mesh: &Mesh) -> Result<(), Failure>
 /// One tree of a species file or bundled species, at the species' generations (or
 /// `--generations`) from `--seed`.
 fn species_tree(args: &TreeArgs, name: &str) -> Result<(), Failure> {
-    let species = match sylva::presets::species()?
-        .into_iter()
-        .find(|s| s.name == name)
-    {
-        Some(bundled) => bundled,
+    let species = match sylva::presets::bundled(name) {
+        Some(bundled) => bundled.species()?,
         None => Species::from_file(name)?,
     };
     let generations = args.grammar.generations.unwrap_or(species.generations);

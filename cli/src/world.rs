@@ -59,7 +59,8 @@ pub(crate) struct WorldArgs {
     /// Canopy trees per hectare (sets the patch size).
     #[arg(long, value_name = "TREES_PER_HA")]
     density: Option<f32>,
-    /// A species file; repeat for several (default: the five bundled species).
+    /// A species file or a bundled species by name (oak, birch, spruce, pine, hazel, fir,
+    /// larch); repeat for several (default: the five bundled species).
     #[arg(long, value_name = "FILE")]
     species: Vec<PathBuf>,
     /// Instance-cache budget in MiB, shared among the species.
@@ -218,9 +219,15 @@ impl WorldArgs {
                 let species = if self.species.is_empty() {
                     sylva::presets::species()?
                 } else {
+                    // A bundled species by name, else a species file.
                     self.species
                         .iter()
-                        .map(Species::from_file)
+                        .map(
+                            |name| match sylva::presets::bundled(&name.to_string_lossy()) {
+                                Some(bundled) => bundled.species(),
+                                None => Species::from_file(name),
+                            },
+                        )
                         .collect::<Result<Vec<_>, _>>()?
                 };
                 let ground = match &self.terrain {

@@ -12,10 +12,9 @@ pub enum LeafShape {
     Needles,
     /// A cluster of oak leaves: obovate blades with four or five rounded lobes a side.
     Lobed,
-    /// A cluster of toothed leaves: ovate blades with serrated edges, as on birch and hazel.
+    /// A cluster of toothed leaves: ovate blades with serrated edges.
     Serrated,
-    /// A pine's shoot end: needles in pairs slanting forward along the shoot and brushing out
-    /// from its tip.
+    /// A tuft of long needles fanning out from a shoot's tip.
     NeedleTuft,
     /// A cluster of round-ovate, doubly toothed leaves, as on hazel, aspen and alder.
     Rounded,
@@ -23,6 +22,9 @@ pub enum LeafShape {
     Deltoid,
     /// A cluster of five-lobed leaves as broad as long, as on sycamore and other maples.
     Palmate,
+    /// A pine's shoot end: needles in pairs slanting forward along the shoot and brushing out
+    /// from its tip, so many small cards read as tufted branch ends rather than fans.
+    PineShoot,
 }
 
 impl LeafShape {
@@ -37,11 +39,12 @@ impl LeafShape {
             LeafShape::Rounded => "rounded",
             LeafShape::Deltoid => "deltoid",
             LeafShape::Palmate => "palmate",
+            LeafShape::PineShoot => "pine-shoot",
         }
     }
 
     /// Every shape, in the order renderers lay out their textures.
-    pub const ALL: [LeafShape; 8] = [
+    pub const ALL: [LeafShape; 9] = [
         LeafShape::Broadleaf,
         LeafShape::Needles,
         LeafShape::Lobed,
@@ -50,6 +53,7 @@ impl LeafShape {
         LeafShape::Rounded,
         LeafShape::Deltoid,
         LeafShape::Palmate,
+        LeafShape::PineShoot,
     ];
 
     /// The shape called `name` in species files.

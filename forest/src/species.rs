@@ -187,7 +187,7 @@ impl Species {
     /// `bark` and `leaf` (three numbers, linear RGB), `weight`, `leaves` (symbols the turtle
     /// draws as leaf cards, such as the apices left at the last generation), `leaf_size`
     /// (length and width), `leaf_facing` (0 to 1: how far cards turn to face the sky, see
-    /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf`, `lobed`, `serrated`, `needles`, `needle-tuft`, `rounded`, `deltoid` or `palmate`: the card's texture, [`LeafShape`]),
+    /// [`TurtleOptions::leaf_facing`]), `leaf_shape` (`broadleaf`, `lobed`, `serrated`, `needles`, `needle-tuft`, `rounded`, `deltoid`, `palmate` or `pine-shoot`: the card's texture, [`LeafShape`]),
     /// `bark_texture` (`furrowed`, `smooth` or `scaly`), `ground_cover` (what grows on the
     /// floor near its canopy trees: kinds and items per square metre in full light, such as
     /// `grass 1.5, fern 0.4, rock 0.02`; see [`GroundKind`]), `root_flare` (0 to 3: how much wider
@@ -445,7 +445,7 @@ impl Species {
                     *l,
                     *c,
                     format!(
-                    "leaf_shape must be 'broadleaf', 'lobed', 'serrated', 'needles', 'needle-tuft', 'rounded', 'deltoid' or 'palmate', not '{v}'"
+                    "leaf_shape must be 'broadleaf', 'lobed', 'serrated', 'needles', 'needle-tuft', 'rounded', 'deltoid', 'palmate' or 'pine-shoot', not '{v}'"
                 ),
                 )
             })?;

@@ -250,7 +250,7 @@ fn species_files_report_file_line_and_column() {
         (
             2,
             13,
-            "leaf_shape must be 'broadleaf', 'lobed', 'serrated', 'needles', 'needle-tuft', 'rounded', 'deltoid' or 'palmate', not 'fern'"
+            "leaf_shape must be 'broadleaf', 'lobed', 'serrated', 'needles', 'needle-tuft', 'rounded', 'deltoid', 'palmate' or 'pine-shoot', not 'fern'"
                 .into()
         )
     );

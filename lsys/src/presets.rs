@@ -137,14 +137,14 @@ pub const PRESETS: &[Preset] = &[
     ),
     preset!(
         "sylva-spruce",
-        "A Norway spruce: straight leader, whorls of drooping needled branches, narrow cone (metres)",
-        16,
+        "A Norway spruce: whorled monopodial trunk, conical crown (metres)",
+        14,
         40.0,
-        Some(([0.0, -1.0, 0.0], 0.05))
+        Some(([0.0, -1.0, 0.0], 0.12))
     ),
     preset!(
         "sylva-pine",
-        "A Scots pine: tall clear bole, irregular crown of limbs ending in needle tufts (metres)",
+        "A Scots pine: tall clear trunk, rounded crown of upturned limbs (metres)",
         13,
         40.0,
         Some(([0.0, -1.0, 0.0], 0.04))

@@ -196,7 +196,7 @@ pub(super) fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
 /// A pine's shoot end: a short shoot up the middle of the card, clothed along its last two
 /// thirds in paired needles (72 of them) slanting forward at 20 to 50 degrees and a brush of
 /// longer ones from its tip, so the card reads as a tufted branch end, not a fan.
-pub(super) fn needle_tuft(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+pub(super) fn pine_shoot(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
     const COUNT: usize = 72;
     const SHOOT: f32 = 0.62;
     let p = glam::Vec2::new(u, v);
@@ -232,6 +232,36 @@ pub(super) fn needle_tuft(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
         let half = 0.005 * (1.0 - t / length) + 0.0015;
         if (d - dir * t).length() < half {
             return Some(0.72 + 0.22 * unit_f32(mix(mix(mix(h)))) + 0.05 * grain(x, y));
+        }
+    }
+    None
+}
+
+/// A tuft of needles: 40 thin, slightly curved needles of different lengths fanning out
+/// from a shoot's tip at the bottom middle of the card, up to 75 degrees either side.
+pub(super) fn needle_tuft(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
+    const COUNT: usize = 40;
+    const SPREAD: f32 = 75.0;
+    let (dx, dy) = (u - 0.5, v - 0.04);
+    let r = (dx * dx + dy * dy).sqrt();
+    if r < 0.02 {
+        return Some(0.45);
+    }
+    // Angle from the card's axis, bent a little so the needles curve outwards.
+    let angle = dx.atan2(dy).to_degrees() - 12.0 * r * dx.signum();
+    let step = 2.0 * SPREAD / (COUNT - 1) as f32;
+    let nearest = ((angle + SPREAD) / step).round();
+    for k in [nearest - 1.0, nearest, nearest + 1.0] {
+        if !(0.0..COUNT as f32).contains(&k) {
+            continue;
+        }
+        let h = hash_cell(0x7af7, k as i64, 0, 0);
+        let centre = -SPREAD + k * step + (unit_f32(h) - 0.5) * step * 0.8;
+        let length = 0.55 + 0.4 * unit_f32(mix(h));
+        // Needles taper: 2.5 texels wide at the base, a point at the tip.
+        let half = 0.006 * (1.0 - r / length).max(0.0) + 0.002;
+        if r <= length && (angle - centre).to_radians().abs() * r < half {
+            return Some(0.75 + 0.2 * unit_f32(mix(mix(h))) + 0.05 * grain(x, y));
         }
     }
     None

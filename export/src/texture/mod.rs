@@ -17,7 +17,7 @@ use bark::{bark_relief, periodic_noise};
 pub use colour::{linear_to_srgb, srgb_to_linear};
 pub use cutoff::CUTOFF_MIP_LEVEL;
 pub(crate) use cutoff::card_alpha_cutoff;
-use leaf::{Blade, leaf_cluster, needle_tuft, needles};
+use leaf::{Blade, leaf_cluster, needle_tuft, needles, pine_shoot};
 
 /// An RGBA8 image, rows from the top (v = 0 is the first row).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -59,6 +59,7 @@ impl Texture {
                     LeafShape::Rounded => leaf_cluster(u, v, x, y, Blade::Rounded),
                     LeafShape::Deltoid => leaf_cluster(u, v, x, y, Blade::Deltoid),
                     LeafShape::Palmate => leaf_cluster(u, v, x, y, Blade::Palmate),
+                    LeafShape::PineShoot => pine_shoot(u, v, x, y),
                 };
                 if let Some(shade) = texel {
                     let i = ((y * n + x) * 4) as usize;
