@@ -109,10 +109,7 @@ fn write_tree(out: &Path, species: &Species, mesh: &Mesh) -> Result<(), Failure>
 /// One tree of a species file or bundled species, at the species' generations (or
 /// `--generations`) from `--seed`.
 fn species_tree(args: &TreeArgs, name: &str) -> Result<(), Failure> {
-    let species = match sylva::presets::bundled(name) {
-        Some(bundled) => bundled.species()?,
-        None => Species::from_file(name)?,
-    };
+    let species = sylva::presets::named_or_file(name)?;
     let generations = args.grammar.generations.unwrap_or(species.generations);
     let mesh = species.mesh(generations, args.grammar.seed)?;
     write_tree(&args.out, &species, &mesh)?;

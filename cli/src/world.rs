@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use clap::Args;
 use indicatif::ProgressBar;
-use sylva::forest::{Constraints, ForestBuilder, Rect, SitingReport, Species};
+use sylva::forest::{Constraints, ForestBuilder, Rect, SitingReport};
 use sylva::terrain::Heightmap;
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::world::limits::{DEFAULT_SIDE, MAX_DENSITY, MAX_SIDE, MAX_TREES};
@@ -219,15 +219,9 @@ impl WorldArgs {
                 let species = if self.species.is_empty() {
                     sylva::presets::species()?
                 } else {
-                    // A bundled species by name, else a species file.
                     self.species
                         .iter()
-                        .map(
-                            |name| match sylva::presets::bundled(&name.to_string_lossy()) {
-                                Some(bundled) => bundled.species(),
-                                None => Species::from_file(name),
-                            },
-                        )
+                        .map(sylva::presets::named_or_file)
                         .collect::<Result<Vec<_>, _>>()?
                 };
                 let ground = match &self.terrain {

@@ -80,6 +80,23 @@ pub fn bundled(name: &str) -> Option<&'static BundledSpecies> {
     BUNDLED.iter().find(|b| b.name == name)
 }
 
+/// The bundled species called `name` (any folder of `world/species/`, not only the default
+/// five), else the species file at the path `name`: how the command line takes `--species`.
+///
+/// ```
+/// let fir = sylva_world::presets::named_or_file("fir")?;
+/// assert_eq!(fir.name, "fir");
+/// assert!(sylva_world::presets::named_or_file("no/such.species").is_err());
+/// # Ok::<(), sylva_forest::ForestError>(())
+/// ```
+pub fn named_or_file(name: impl AsRef<Path>) -> Result<Species, ForestError> {
+    let name = name.as_ref();
+    match bundled(&name.to_string_lossy()) {
+        Some(b) => b.species(),
+        None => Species::from_file(name),
+    }
+}
+
 /// The default forest's species: the first [`DEFAULT_SPECIES`] of [`BUNDLED`], parsed.
 ///
 /// ```
