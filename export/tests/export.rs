@@ -167,10 +167,11 @@ fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
     // parent's texture height; the leaves' COLOR_0 (4 more bytes a vertex); smaller density
     // patches (more trees). Issue 23: only the instances placed are embedded (this region
     // leaves some out), instancing is a required extension and each leaf material's alpha
-    // cutoff is its texture's.
+    // cutoff is its texture's. Issue 50: patches sized by the crowns' cover seen from above
+    // (more trees), denser needle cards.
     assert_eq!(
         (reference.len(), fnv1a(&reference)),
-        (3_361_432, 4_237_886_259_407_970_693),
+        (3_739_088, 15_426_919_991_801_930_556),
         "the pinned file changed"
     );
     // A tiny buffer writes each instance's placements in many small pieces, still in two
@@ -232,6 +233,21 @@ fn leaf_textures_are_deterministic_alpha_masks() {
     }
 }
 
+/// The forest sizes its patches by how much ground a crown's cards hide
+/// (`LeafShape::opacity`); that number is the share of each drawn texture that is leaf.
+#[test]
+fn every_leaf_shape_states_the_share_of_its_card_it_fills() {
+    for shape in LeafShape::ALL {
+        let t = Texture::leaf(shape);
+        let filled = t.rgba.chunks_exact(4).filter(|p| p[3] >= 128).count() as f32
+            / (t.width * t.height) as f32;
+        assert!(
+            (filled - shape.opacity()).abs() < 0.005,
+            "{shape:?}: the texture fills {filled:.3} of its card, opacity() says {}",
+            shape.opacity()
+        );
+    }
+}
 /// Bark textures are pure functions of their pattern; smooth (birch) bark is paler, with dark
 /// lenticels.
 #[test]

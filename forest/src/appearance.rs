@@ -43,6 +43,23 @@ impl LeafShape {
         }
     }
 
+    /// The share of its card the shape's texture fills (alpha at least a half, as renderers
+    /// cut cards): what of the ground a card hides seen through it. Measured on the textures
+    /// `sylva_export` draws, which a test there holds to these numbers.
+    pub fn opacity(self) -> f32 {
+        match self {
+            LeafShape::Broadleaf => 0.465,
+            LeafShape::Needles => 0.277,
+            LeafShape::Lobed => 0.484,
+            LeafShape::Serrated => 0.431,
+            LeafShape::NeedleTuft => 0.236,
+            LeafShape::Rounded => 0.605,
+            LeafShape::Deltoid => 0.469,
+            LeafShape::Palmate => 0.602,
+            LeafShape::PineShoot => 0.259,
+        }
+    }
+
     /// Every shape, in the order renderers lay out their textures.
     pub const ALL: [LeafShape; 9] = [
         LeafShape::Broadleaf,

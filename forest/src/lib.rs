@@ -39,6 +39,7 @@
 mod appearance;
 mod census;
 mod composition;
+mod crown_cover;
 mod density;
 mod error;
 mod extent;

@@ -7,6 +7,7 @@ use sylva_lsys::{GrammarFileError, LSystem};
 use sylva_turtle::{Mesh, MeshBuilder, Skeleton, Tropism, TurtleOptions, interpret};
 
 use crate::appearance::{BarkPattern, LeafShape};
+use crate::crown_cover::CrownCover;
 use crate::error::ForestError;
 use crate::ground::{GroundCover, GroundKind};
 use crate::life::Life;
@@ -57,6 +58,11 @@ pub struct Canopy {
     pub bound: f32,
     /// Twice the widest horizontal reach of the skeletons of a few sample trees.
     pub measured: f32,
+    /// The mean area (m²) of ground the sample trees' leaves hide, seen straight down, each
+    /// card as opaque as its texture ([`LeafShape::opacity`]): 0 for a species without
+    /// leaves. A narrow or open crown hides less of the disc its reach spans than a broad
+    /// dense one.
+    pub cover: f32,
 }
 
 impl Canopy {
@@ -68,6 +74,26 @@ impl Canopy {
     /// Half of [`Canopy::diameter`].
     pub fn radius(&self) -> f32 {
         0.5 * self.diameter()
+    }
+
+    /// The diameter of a disc of the crown's cover ([`Canopy::cover`]), no wider than
+    /// [`Canopy::diameter`]; the diameter itself for a species without leaves.
+    ///
+    /// ```
+    /// use sylva_forest::Canopy;
+    ///
+    /// let open = Canopy { bound: 12.0, measured: 10.0, cover: 25.0 * std::f32::consts::PI };
+    /// assert!((open.cover_diameter() - 10.0).abs() < 1e-4);
+    /// let leafless = Canopy { cover: 0.0, ..open };
+    /// assert_eq!(leafless.cover_diameter(), 10.0);
+    /// ```
+    pub fn cover_diameter(&self) -> f32 {
+        let disc = 2.0 * (self.cover / std::f32::consts::PI).sqrt();
+        if disc > 0.0 {
+            disc.min(self.diameter())
+        } else {
+            self.diameter()
+        }
     }
 }
 
@@ -142,11 +168,15 @@ impl Species {
         Ok(())
     }
 
-    /// Measures the canopy on the skeletons of three sample trees (seeds 0 to 2).
+    /// Measures the canopy on three sample trees (seeds 0 to 2): their skeletons, and the
+    /// ground their leaves hide.
     pub fn canopy(&self) -> Result<Canopy, ForestError> {
-        let (mut longest, mut widest, mut reach) = (0.0f32, 0.0f32, 0.0f32);
+        let (mut longest, mut widest, mut reach, mut cover) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
         for seed in 0..3 {
-            let skeleton = self.sample_skeleton(self.generations, seed)?;
+            let mut crown = CrownCover::new(self.leaf_shape.opacity());
+            self.draw_into(self.generations, seed, &mut crown)?;
+            cover += crown.area() / 3.0;
+            let skeleton = crown.skeleton;
             reach = reach.max(skeleton.horizontal_extent());
             // A branch runs from one branch point to the next: chains of bones whose parent
             // has no other child. L is the longest such chain.
@@ -178,6 +208,7 @@ impl Species {
         Ok(Canopy {
             bound: if bound > 0.0 { bound } else { 2.0 * reach },
             measured: (2.0 * reach).max(1e-3),
+            cover,
         })
     }
 

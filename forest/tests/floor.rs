@@ -71,7 +71,9 @@ fn grass_fills_the_gaps_and_branches_fall_under_the_crowns() {
         .map(|c| c.radius())
         .fold(f32::INFINITY, f32::min);
     let under = |p: Vec2| canopy.iter().any(|c| c.distance(p) < 0.4 * radius);
-    let open = |p: Vec2| canopy.iter().all(|c| c.distance(p) > 1.6 * radius);
+    // In a gap: beyond 1.2 canopy radii of every trunk (since issue 50 sizes patches to close
+    // the canopy, few spots are farther from one).
+    let open = |p: Vec2| canopy.iter().all(|c| c.distance(p) > 1.2 * radius);
     let mut counts = [[0usize; 2]; 2];
     for i in &items {
         let p = Vec2::new(i.position[0], i.position[2]);

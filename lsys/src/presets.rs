@@ -137,17 +137,17 @@ pub const PRESETS: &[Preset] = &[
     ),
     preset!(
         "sylva-spruce",
-        "A Norway spruce: whorled monopodial trunk, conical crown (metres)",
-        14,
+        "A Norway spruce: straight leader, whorls of drooping needled branches, a narrow cone (metres)",
+        16,
         40.0,
-        Some(([0.0, -1.0, 0.0], 0.12))
+        Some(([0.0, -1.0, 0.0], 0.05))
     ),
     preset!(
         "sylva-pine",
-        "A Scots pine: tall clear trunk, rounded crown of upturned limbs (metres)",
+        "A Scots pine: tall clear orange bole, a flattened crown of needle tufts (metres)",
         13,
         40.0,
-        Some(([0.0, -1.0, 0.0], 0.04))
+        None
     ),
     preset!(
         "sylva-hazel",

@@ -153,24 +153,27 @@ fn spray(u: f32, v: f32, x: u32, y: u32, blade: Blade) -> Option<f32> {
     None
 }
 
-/// A spruce's spray: a shoot with eight side shoots in two ranks, alternating, angled towards
-/// the tip, of uneven lengths and shorter towards it; every shoot a bottle brush of short needles (a thirtieth of the card) slanting forward, so the
-/// card reads as a branchlet, not a frond.
+/// A spruce's spray: a shoot with twelve side shoots in two ranks, alternating, angled towards
+/// the tip, of uneven lengths and shorter towards it; every shoot a bottle brush of needles
+/// (a twentieth of the card) slanting forward, close enough that the spray is a dense mat
+/// with a ragged needled edge (about a third of the card opaque): the card reads as a
+/// branchlet, not a frond, and a crown of them is dark and closed as a spruce's is, even in
+/// clients that draw cards without mipmaps.
 pub(super) fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
-    const SIDE_SHOOTS: usize = 8;
-    const NEEDLE: f32 = 0.035;
+    const SIDE_SHOOTS: usize = 12;
+    const NEEDLE: f32 = 0.05;
     let p = glam::Vec2::new(u, v);
     // Every shoot: origin, direction, length. The leading shoot first.
     let mut shoots = vec![(glam::Vec2::new(0.5, 0.02), glam::Vec2::Y, 0.93)];
     for k in 0..SIDE_SHOOTS {
-        let at = 0.08 + 0.11 * k as f32;
+        let at = 0.06 + 0.072 * k as f32;
         let side = if k % 2 == 0 { -1.0 } else { 1.0 };
-        let angle = (52.0f32 + 4.0 * (k % 3) as f32).to_radians();
+        let angle = (50.0f32 + 5.0 * (k % 3) as f32).to_radians();
         let dir = glam::Vec2::new(side * angle.sin(), angle.cos());
         // Lengths differ shoot to shoot, so the spray's outline is ragged, not a smooth
-        // triangle (mipmapped alpha fills the gaps between needles, not between shoots).
-        let vigour = 0.4 + 0.9 * unit_f32(hash_cell(0x5b7a, k as i64, 0, 0));
-        let length = 0.45 * (1.0 - 0.7 * at) * vigour + 0.04;
+        // triangle.
+        let vigour = 0.6 + 0.6 * unit_f32(hash_cell(0x5b7a, k as i64, 0, 0));
+        let length = 0.5 * (1.0 - 0.7 * at) * vigour + 0.05;
         let origin = glam::Vec2::new(0.5, at);
         shoots.push((origin, dir, length));
     }
@@ -181,12 +184,12 @@ pub(super) fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
             continue;
         }
         let across = (d - dir * along).length();
-        if across < 0.006 {
+        if across < 0.007 {
             return Some(0.5);
         }
         // Needles shorten towards the shoot's tip; each is a stroke slanting forward.
-        let reach = NEEDLE * (1.0 - 0.45 * along / length);
-        if across < reach && ((along - across * 0.7) / 0.011).fract() < 0.62 {
+        let reach = NEEDLE * (1.0 - 0.4 * along / length);
+        if across < reach && ((along - across * 0.7) / 0.01).fract() < 0.7 {
             return Some(0.78 + 0.12 * grain(x, y));
         }
     }
@@ -194,10 +197,11 @@ pub(super) fn needles(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
 }
 
 /// A pine's shoot end: a short shoot up the middle of the card, clothed along its last two
-/// thirds in paired needles (72 of them) slanting forward at 20 to 50 degrees and a brush of
-/// longer ones from its tip, so the card reads as a tufted branch end, not a fan.
+/// thirds in paired needles (150 of them, long and stiff, about a third of the card opaque)
+/// slanting forward at 20 to 55 degrees and a brush of longer ones from its tip, so the card
+/// reads as a tufted branch end, not a fan, and a crown of them closes as a pine's does.
 pub(super) fn pine_shoot(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
-    const COUNT: usize = 72;
+    const COUNT: usize = 150;
     const SHOOT: f32 = 0.62;
     let p = glam::Vec2::new(u, v);
     // The shoot: a stroke up the middle from the card's base.
@@ -218,18 +222,18 @@ pub(super) fn pine_shoot(u: f32, v: f32, x: u32, y: u32) -> Option<f32> {
         let slant = if along >= SHOOT {
             (unit_f32(mix(h)) - 0.5) * 60.0
         } else {
-            side * (50.0 - 30.0 * (along - 0.2) / (SHOOT - 0.2) + 8.0 * unit_f32(mix(h)))
+            side * (55.0 - 30.0 * (along - 0.2) / (SHOOT - 0.2) + 8.0 * unit_f32(mix(h)))
         };
         let (s, c) = slant.to_radians().sin_cos();
         let dir = glam::Vec2::new(s, c);
-        let length = 0.2 + 0.14 * unit_f32(mix(mix(h)));
+        let length = 0.26 + 0.16 * unit_f32(mix(mix(h)));
         let d = p - glam::Vec2::new(0.5, along);
         let t = d.dot(dir);
         if !(0.0..=length).contains(&t) {
             continue;
         }
-        // Needles taper: two texels wide at the base, a point at the tip.
-        let half = 0.005 * (1.0 - t / length) + 0.0015;
+        // Needles taper: three texels wide at the base, a point at the tip.
+        let half = 0.007 * (1.0 - t / length) + 0.002;
         if (d - dir * t).length() < half {
             return Some(0.72 + 0.22 * unit_f32(mix(mix(mix(h)))) + 0.05 * grain(x, y));
         }
