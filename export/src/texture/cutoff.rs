@@ -34,7 +34,8 @@ impl Texture {
     /// builds its mipmaps, still covers as much of the card as at full size. The texture's
     /// own alpha is 0 or 255, so any cutoff draws it the same up close; a client's mipmaps
     /// average thin leaves and needles below one half at a distance, and alpha cut there
-    /// opens crowns up. Between 0.1 and 0.5.
+    /// opens crowns up. At most nine tenths of the texture's mean alpha, so even its
+    /// one-texel mip draws; between 0.1 and 0.5.
     ///
     /// ```
     /// use sylva_export::Texture;
@@ -50,6 +51,9 @@ impl Texture {
             .map(|p| f32::from(p[3]) / 255.0)
             .collect();
         let covered = alpha.iter().filter(|&&a| a > 0.5).count() as f32 / alpha.len() as f32;
+        // The last mip is one texel of the mean alpha: a cutoff below it keeps a card a pixel
+        // or two across (a small needle card 250 m away) drawn instead of dropped.
+        let mean = alpha.iter().sum::<f32>() / alpha.len() as f32;
         let (mut w, mut h) = (self.width as usize, self.height as usize);
         for _ in 0..level {
             if w < 2 || h < 2 {
@@ -72,6 +76,11 @@ impl Texture {
         // The cutoff that keeps the same share of the small image's texels.
         alpha.sort_by(|a, b| b.total_cmp(a));
         let keep = ((covered * alpha.len() as f32).round() as usize).min(alpha.len() - 1);
-        alpha.get(keep).copied().unwrap_or(0.5).clamp(0.1, 0.5)
+        alpha
+            .get(keep)
+            .copied()
+            .unwrap_or(0.5)
+            .min(0.9 * mean)
+            .clamp(0.1, 0.5)
     }
 }
