@@ -42,6 +42,10 @@ pub(crate) struct TreeArgs {
     /// and textures.
     #[arg(long, value_name = "FILE|NAME", conflicts_with_all = ["file", "preset", "angle", "shape", "sides", "caps"])]
     species: Option<String>,
+    /// With --species: the day of the year to draw the tree on, 1 to 365, or spring,
+    /// summer, autumn or winter (its leaves, autumn colour or bare crown, and snow).
+    #[arg(long, value_name = "DAY", requires = "species", value_parser = crate::world::season_day)]
+    season: Option<f32>,
     /// The file to write: Wavefront OBJ, or binary glTF with textures when it ends in .glb.
     #[arg(long, value_name = "FILE", default_value = "tree.obj")]
     out: PathBuf,
@@ -109,7 +113,10 @@ fn write_tree(out: &Path, species: &Species, mesh: &Mesh) -> Result<(), Failure>
 /// One tree of a species file or bundled species, at the species' generations (or
 /// `--generations`) from `--seed`.
 fn species_tree(args: &TreeArgs, name: &str) -> Result<(), Failure> {
-    let species = sylva::presets::named_or_file(name)?;
+    let mut species = sylva::presets::named_or_file(name)?;
+    if let Some(day) = args.season {
+        species = species.in_season(day);
+    }
     let generations = args.grammar.generations.unwrap_or(species.generations);
     let mesh = species.mesh(generations, args.grammar.seed)?;
     write_tree(&args.out, &species, &mesh)?;

@@ -78,6 +78,12 @@ pub(crate) struct WorldArgs {
     /// standing trees, broken tops and fallen trees, instead of placed at two ages.
     #[arg(long, value_name = "N", conflicts_with = "paint")]
     year: Option<u32>,
+    /// The day of the year to draw the forest on, 1 to 365, or spring (day 135), summer
+    /// (200), autumn (290) or winter (20): each species' leaves as that day has them (spring
+    /// flush, autumn colour, bare deciduous crowns) and snow in winter. The trees stand in
+    /// the same places every day. Summer by default.
+    #[arg(long, value_name = "DAY", value_parser = season_day)]
+    season: Option<f32>,
     /// A project folder as the viewer's editor saves it: its world.json (species, terrain,
     /// area, seed, density: the description `sylva serve` takes), the elevation model it
     /// names, and its painted masks if it has them.
@@ -236,7 +242,10 @@ impl WorldArgs {
                 (recipe, ground)
             }
         };
-        let recipe = recipe.with_constraints(constraints).with_year(self.year);
+        let recipe = recipe
+            .with_constraints(constraints)
+            .with_year(self.year)
+            .with_season(self.season);
         recipe.check().map_err(failure)?;
         let forest = recipe.forest(&bars).map_err(failure)?;
         let ground = match ground {
@@ -401,4 +410,20 @@ pub(crate) fn read_model(
         );
     }
     Ok(model)
+}
+
+/// `--season`: a day of the year (1 to 365) or a season's name.
+pub(crate) fn season_day(text: &str) -> Result<f32, String> {
+    match text {
+        "spring" => Ok(135.0),
+        "summer" => Ok(200.0),
+        "autumn" | "fall" => Ok(290.0),
+        "winter" => Ok(20.0),
+        _ => match text.parse::<f32>() {
+            Ok(day) if (1.0..=365.0).contains(&day) => Ok(day),
+            _ => Err(format!(
+                "'{text}' is not a day of the year (1 to 365) or spring, summer, autumn or winter"
+            )),
+        },
+    }
 }

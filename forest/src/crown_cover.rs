@@ -109,7 +109,7 @@ impl GeometrySink for CrownCover {
         self.skeleton.segment(segment);
     }
 
-    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2], _order: f32) {
         // The card as the mesher draws it: from the frame along the heading, centred across.
         let (h, l) = (frame.heading() * size[0], frame.left() * (size[1] * 0.5));
         let p = frame.position;
@@ -145,7 +145,7 @@ mod tests {
             position: Vec3::new(0.1, 3.0, 0.1),
             rotation: flat(),
         };
-        cover.leaf(&frame, [2.0, 1.0]);
+        cover.leaf(&frame, [2.0, 1.0], 0.5);
         let area = cover.area();
         // Cells on the outline count whole, so the count runs a little over 2 m².
         assert!((2.0..2.9).contains(&area), "{area}");
@@ -155,7 +155,7 @@ mod tests {
     fn an_upright_card_hides_almost_nothing() {
         let mut cover = CrownCover::new(1.0);
         // The identity frame heads up +Y with its face towards +Z: seen from above, a line.
-        cover.leaf(&Frame::IDENTITY, [2.0, 1.0]);
+        cover.leaf(&Frame::IDENTITY, [2.0, 1.0], 0.5);
         assert!(cover.area() <= 5.0 * CELL * CELL, "{}", cover.area());
     }
 
@@ -166,14 +166,14 @@ mod tests {
             position: Vec3::ZERO,
             rotation: flat(),
         };
-        cover.leaf(&frame, [2.0, 1.0]);
+        cover.leaf(&frame, [2.0, 1.0], 0.5);
         let once = cover.area();
-        cover.leaf(&frame, [2.0, 1.0]);
+        cover.leaf(&frame, [2.0, 1.0], 0.5);
         // One card stops 0.4 of the light, two stop 1 - 0.6 * 0.6 = 0.64 of it.
         assert!((cover.area() / once - 0.64 / 0.4).abs() < 1e-4);
         let mut opaque = CrownCover::new(1.0);
-        opaque.leaf(&frame, [2.0, 1.0]);
-        opaque.leaf(&frame, [2.0, 1.0]);
+        opaque.leaf(&frame, [2.0, 1.0], 0.5);
+        opaque.leaf(&frame, [2.0, 1.0], 0.5);
         assert!((opaque.area() * 0.4 - once).abs() < 1e-4);
     }
 

@@ -84,6 +84,12 @@ pub struct ForestConfig {
     /// [`Succession`](crate::Succession)'s years are drawn with. Off, each species has its
     /// canopy and its young form. Default: false.
     pub all_ages: bool,
+    /// The day of the year (1 to 365) the forest is drawn on: each species'
+    /// [`Species::in_season`] that day (spring flush, autumn colour, bare winter crowns,
+    /// snow). Canopies are measured on the species as given, so the trees stand in the
+    /// same places whatever the day. `None` draws the species as given (summer). Default:
+    /// none.
+    pub season: Option<f32>,
 }
 
 impl ForestConfig {
@@ -129,6 +135,13 @@ impl ForestConfig {
         self
     }
 
+    /// Sets [`ForestConfig::season`].
+    #[must_use]
+    pub fn with_season(mut self, day: Option<f32>) -> Self {
+        self.season = day;
+        self
+    }
+
     /// Sets [`ForestConfig::seedlings_per_patch`].
     #[must_use]
     pub fn with_seedlings_per_patch(mut self, seedlings_per_patch: u32) -> Self {
@@ -150,6 +163,7 @@ impl ForestConfig {
             seedlings_per_patch: 8,
             composition: None,
             all_ages: false,
+            season: None,
         }
     }
 }
@@ -245,7 +259,7 @@ pub struct ForestBuilder {
 
 impl ForestBuilder {
     /// Measures canopies and fills one cache per species and maturity.
-    pub fn new(config: ForestConfig) -> Result<Self, ForestError> {
+    pub fn new(mut config: ForestConfig) -> Result<Self, ForestError> {
         if config.species.is_empty() || !config.species.iter().any(|s| s.weight > 0.0) {
             return Err(ForestError::NoSpecies);
         }
@@ -278,6 +292,18 @@ impl ForestBuilder {
             return Err(ForestError::EmptySpecies {
                 species: s.name.clone(),
             });
+        }
+        if let Some(day) = config.season {
+            check(
+                "season",
+                f64::from(day),
+                (1.0..=365.0).contains(&day),
+                "a day of the year from 1 to 365",
+            )?;
+            // After the canopies are measured: leaves come and go, the trees stay put.
+            for s in &mut config.species {
+                *s = s.in_season(day);
+            }
         }
         let start = Instant::now();
         let built = crate::variants::build(crate::variants::Plan {

@@ -49,6 +49,7 @@ mod form;
 mod ground;
 mod life;
 mod patch;
+mod phenology;
 mod siting;
 mod siting_report;
 mod species;
@@ -74,6 +75,9 @@ pub use form::TreeForm;
 pub use ground::{GroundCover, GroundKind, GroundLook};
 pub use life::{BREAST_HEIGHT, Life, SEEDLING_HEIGHT};
 pub use patch::{Composition, PatchDensity, PatchSpecies};
+pub use phenology::{
+    FALL_DAYS, FLUSH_DAYS, GREEN_DAYS, LeafSeason, Phenology, TREE_DAYS, TURN_DAYS, snow, tree_day,
+};
 pub use siting_report::{Refusal, SitingReport};
 pub use species::{Canopy, Species};
 pub use stand::{GrownStand, Planting, StandOptions, grow_stand};

@@ -11,6 +11,7 @@ use crate::crown_cover::CrownCover;
 use crate::error::ForestError;
 use crate::ground::{GroundCover, GroundKind};
 use crate::life::Life;
+use crate::phenology::Phenology;
 
 /// Largest species file read, in bytes: real ones are a few hundred.
 pub const MAX_SPECIES_FILE_BYTES: u64 = 1 << 20;
@@ -47,6 +48,9 @@ pub struct Species {
     /// How it grows with the years, ages, competes for light and seeds: what a forest over
     /// time ([`Succession`](crate::Succession)) runs on. Default: [`Life::default`].
     pub life: Life,
+    /// When its leaves come and go and their colours through the year
+    /// ([`Species::in_season`]). Default: [`Phenology::default`] (evergreen).
+    pub phenology: Phenology,
 }
 
 /// Canopy size of a species, as the thesis bounds it and as measured.
@@ -115,7 +119,41 @@ impl Species {
             weight: 1.0,
             ground_cover: Vec::new(),
             life: Life::default(),
+            phenology: Phenology::default(),
         }
+    }
+
+    /// The species as it looks on `day` of the year: its leaves' colour that day, its
+    /// cards as many ([`TurtleOptions::leaf_keep`]) and as large as the day has, and snow
+    /// on its bark (and on an evergreen's needles) in winter ([`crate::snow`]). Its shape,
+    /// canopy and life are the same, so a forest stands in the same places all year.
+    ///
+    /// ```
+    /// let mut oak = sylva_forest::Species::from_preset("sylva-oak", 4)?;
+    /// oak.phenology.evergreen = false;
+    /// let winter = oak.in_season(20.0);
+    /// assert_eq!(winter.turtle.leaf_keep, 0.0);
+    /// assert!(winter.bark[0] > oak.bark[0]); // snow on the branches
+    /// assert_eq!(oak.in_season(200.0).leaf, oak.leaf);
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    #[must_use]
+    pub fn in_season(&self, day: f32) -> Species {
+        let mut s = self.clone();
+        let leaves = self.phenology.leaves(day, self.leaf);
+        // Snow whitens the wood and an evergreen's needles; a shader that knows which way a
+        // surface faces puts it on the upper sides only (the exports' `_PHENOLOGY`).
+        let white = crate::snow(day);
+        let snowy = |c: [f32; 3], amount: f32| c.map(|x| x + (0.85 - x) * amount * white);
+        s.leaf = if self.phenology.evergreen {
+            snowy(leaves.colour, 0.35)
+        } else {
+            leaves.colour
+        };
+        s.bark = snowy(self.bark, 0.5);
+        s.turtle.leaf_keep = self.turtle.leaf_keep.min(leaves.share);
+        s.turtle.leaf_size = self.turtle.leaf_size.map(|x| x * leaves.size);
+        s
     }
 
     /// A species from a bundled preset, with its published angle and tropism. Tropism bends
@@ -442,6 +480,34 @@ impl Species {
         s.bark = colour("bark", s.bark)?;
         s.leaf = colour("leaf", s.leaf)?;
         s.weight = number("weight", 1.0, 0.0, 1e6)?;
+        if let Some((l, c, _, v)) = find("evergreen") {
+            s.phenology.evergreen = match v.as_str() {
+                "yes" | "true" => true,
+                "no" | "false" => false,
+                _ => {
+                    return Err(err(
+                        *l,
+                        *c,
+                        format!("evergreen must be 'yes' or 'no', not '{v}'"),
+                    ));
+                }
+            };
+        }
+        s.phenology.leaf_out = number("leaf_out", s.phenology.leaf_out, 1.0, 365.0)?;
+        s.phenology.leaf_fall = number("leaf_fall", s.phenology.leaf_fall, 1.0, 365.0)?;
+        if s.phenology.leaf_fall < s.phenology.leaf_out + 60.0 {
+            // One of the two was set (the defaults are 190 days apart).
+            let (l, c) = find("leaf_fall")
+                .or_else(|| find("leaf_out"))
+                .map_or((1, 1), |f| (f.0, f.1));
+            return Err(err(
+                l,
+                c,
+                "leaf_fall must be at least 60 days after leaf_out".into(),
+            ));
+        }
+        s.phenology.spring = colour("spring_leaf", s.phenology.spring)?;
+        s.phenology.autumn = colour("autumn_leaf", s.phenology.autumn)?;
         if let Some((l, c, _, v)) = find("leaves") {
             for ch in v.chars().filter(|c| !c.is_whitespace()) {
                 if matches!(ch, '[' | ']') {
@@ -542,6 +608,11 @@ impl Species {
                 "dispersal",
                 "seeds_per_year",
                 "leaf_area_index",
+                "evergreen",
+                "leaf_out",
+                "leaf_fall",
+                "spring_leaf",
+                "autumn_leaf",
             ];
             if !KNOWN.contains(&k.as_str()) {
                 return Err(err(

@@ -90,9 +90,16 @@ impl GrownTree {
                 sink.axis_end(id as u32);
             }
         }
-        for (frame, size) in &self.leaves {
-            sink.leaf(frame, *size);
+        // A grown tree's cards take their season's order from their place in the list, as
+        // the turtle's take it from their place in the word.
+        for (k, (frame, size)) in self.leaves.iter().enumerate() {
+            let order =
+                sylva_base::hash::unit_f32(sylva_base::hash::mix(k as u64 ^ LEAF_ORDER_SALT));
+            sink.leaf(frame, *size, order);
         }
         sink.end();
     }
 }
+
+/// Separates the leaf-order draws of grown trees from other uses of a leaf's index.
+const LEAF_ORDER_SALT: u64 = 0x9e0f_1eaf_5ea5_0a11;

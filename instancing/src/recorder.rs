@@ -92,8 +92,8 @@ impl GeometrySink for HeroRecorder {
         self.builder.polygon(vertices);
     }
 
-    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
-        self.builder.leaf(frame, size);
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2], order: f32) {
+        self.builder.leaf(frame, size, order);
     }
 
     fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {

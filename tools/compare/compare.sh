@@ -5,6 +5,7 @@
 #   <species>.png        side by side with the ez-tree preset, eye level
 #   <species>-stand.png  seven copies in a loose stand, from 1.7 m eye height
 #   <species>-10m.png    the tree alone at its own size from 10 m at eye level
+#   <species>-seasons.png the tree in spring, summer, autumn and winter, left to right
 #   measures.json        both trees' measures and, per reference range, whether ours is inside
 #   shapes.md            a table of the crown-shape measures against the ranges, and the sources
 # and prints a table and "N of M species inside every range". A range missed is evidence, not a
@@ -62,6 +63,13 @@ for pair in "${pairs[@]}"; do
   shot "$query&view=side" "$out/$species.png"
   shot "sylva=tree_$species.glb&view=stand" "$out/$species-stand.png"
   shot "sylva=tree_$species.glb&view=near" "$out/$species-10m.png"
+  # The season strip: spring, summer, autumn and winter, left to right.
+  strip=()
+  for season in spring summer autumn winter; do
+    "$sylva" tree --species "$source" --season "$season" --seed 1 --out "$here/tree_${species}_$season.glb" --quiet
+    strip+=("tree_${species}_$season.glb")
+  done
+  shot "view=seasons&seasons=$(IFS=,; echo "${strip[*]}")" "$out/$species-seasons.png"
   ours=$(title "$query&view=silhouette-sylva")
   theirs=$(title "$query&view=silhouette-ez")
   if [ -z "$ours" ] || [ -z "$theirs" ]; then

@@ -54,8 +54,14 @@ pub trait GeometrySink {
         let _ = vertices;
     }
     /// A leaf at `frame`, `size` = (length along the heading, width along the left vector).
-    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
-        let _ = (frame, size);
+    /// `order`, in `[0, 1)`, is the card's place in its tree's leaf season, a pure function
+    /// of its place in the word: [`TurtleOptions::leaf_keep`] draws the cards whose order is
+    /// below it, so a tree in leaf fall or flush keeps the same cards whoever draws it, and
+    /// the meshes carry it (as the card's wind phase) for shaders that play a year.
+    ///
+    /// [`TurtleOptions::leaf_keep`]: crate::TurtleOptions::leaf_keep
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2], order: f32) {
+        let _ = (frame, size, order);
     }
     /// A symbol the table marks as a marker, with its parameters and the current frame.
     fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {
@@ -95,8 +101,8 @@ impl<S: GeometrySink + ?Sized> GeometrySink for &mut S {
     fn polygon(&mut self, vertices: &[Vec3]) {
         (**self).polygon(vertices);
     }
-    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
-        (**self).leaf(frame, size);
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2], order: f32) {
+        (**self).leaf(frame, size, order);
     }
     fn marker(&mut self, symbol: char, params: &[f64], frame: &Frame) {
         (**self).marker(symbol, params, frame);

@@ -392,13 +392,18 @@ impl GeometrySink for MeshBuilder {
         }
     }
 
-    fn leaf(&mut self, frame: &Frame, size: [f32; 2]) {
+    fn leaf(&mut self, frame: &Frame, size: [f32; 2], order: f32) {
         let (h, l) = (frame.heading() * size[0], frame.left() * (size[1] * 0.5));
         let p = frame.position;
         // A card flutters about its base, one level deeper than the branch carrying it; its
-        // phase comes from its first vertex's index, distinct per card.
-        let first = self.mesh.vertices.len() as u32;
-        let wind = Wind::branch(p, self.depth + 1, first).packed();
+        // phase is its order in the leaf season, distinct per card, so a shader reads both
+        // from the one attribute.
+        let wind = Wind {
+            pivot: p.to_array(),
+            depth: self.depth + 1,
+            phase: order.clamp(0.0, 0.999_999),
+        }
+        .packed();
         // Counter-clockwise seen from the up vector, which is the leaf's normal.
         self.quad([p + l, p - l, p - l + h, p + l + h], frame.up(), wind);
     }

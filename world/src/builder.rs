@@ -53,6 +53,9 @@ pub struct WorldBuilder {
     pub masks: Option<PathBuf>,
     /// Whether seedlings grow under the canopy. Default: `true`.
     pub seedlings: bool,
+    /// The day of the year the forest is drawn on ([`ForestConfig::season`]): leaves,
+    /// autumn colour, bare crowns and snow as that day has them. Default: `None` (summer).
+    pub season: Option<f32>,
 }
 
 impl WorldBuilder {
@@ -67,6 +70,7 @@ impl WorldBuilder {
             year: None,
             masks: None,
             seedlings: true,
+            season: None,
         }
     }
 
@@ -91,6 +95,12 @@ impl WorldBuilder {
     /// Sets [`WorldBuilder::constraints`].
     pub fn with_constraints(mut self, constraints: Constraints) -> Self {
         self.constraints = constraints;
+        self
+    }
+
+    /// Sets [`WorldBuilder::season`].
+    pub fn with_season(mut self, day: Option<f32>) -> Self {
+        self.season = day;
         self
     }
 
@@ -145,6 +155,7 @@ impl WorldBuilder {
             .with_seed(self.seed)
             .with_budget(self.budget)
             .with_all_ages(self.year.is_some())
+            .with_season(self.season)
             .with_constraints(self.constraints.clone());
         if !self.seedlings {
             config.seedlings_per_patch = 0;

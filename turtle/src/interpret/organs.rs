@@ -19,16 +19,15 @@ impl<S: GeometrySink + ?Sized> Turtle<'_, '_, S> {
         }
         if command == Command::Leaf {
             self.leaves_seen = self.leaves_seen.wrapping_add(1);
-            if options.leaf_keep < 1.0
-                && unit_f32(mix(u64::from(self.leaves_seen) ^ LEAF_KEEP_SALT))
-                    >= options.leaf_keep.max(0.0)
-            {
+            let order = unit_f32(mix(u64::from(self.leaves_seen) ^ LEAF_KEEP_SALT));
+            if options.leaf_keep < 1.0 && order >= options.leaf_keep.max(0.0) {
                 return Ok(());
             }
             let scale = args.get(0)?.unwrap_or(1.0).abs();
             self.sink.leaf(
                 &frame.facing_sky(options.leaf_facing),
                 [options.leaf_size[0] * scale, options.leaf_size[1] * scale],
+                order,
             );
             self.stats.leaves += 1;
             return Ok(());
