@@ -168,10 +168,11 @@ fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
     // patches (more trees). Issue 23: only the instances placed are embedded (this region
     // leaves some out), instancing is a required extension and each leaf material's alpha
     // cutoff is its texture's. Issue 50: patches sized by the crowns' cover seen from above
-    // (more trees), denser needle cards, cutoffs below each card's mean alpha.
+    // (more trees), denser needle cards, cutoffs below each card's mean alpha; the seasons'
+    // `_PHENOLOGY` vertex attribute and leaf materials' `sylva_phenology` extras.
     assert_eq!(
         (reference.len(), fnv1a(&reference)),
-        (3_739_092, 9_481_339_859_488_796_768),
+        (3_861_380, 8_270_504_673_378_321_897),
         "the pinned file changed"
     );
     // A tiny buffer writes each instance's placements in many small pieces, still in two

@@ -138,6 +138,31 @@ pub fn tree_day(day: f32, phase: f32) -> f32 {
     day + (2.0 * phase.clamp(0.0, 1.0) - 1.0) * TREE_DAYS
 }
 
+/// What a vertex carries for the seasons, as the exports write it (`_PHENOLOGY` in glTF,
+/// `primvars:sylva:phenology` in USD): the order of the leaf card it belongs to (its wind
+/// phase, [`sylva_turtle::Wind`]; 0 on bark), below which a species' day share keeps a
+/// card ([`LeafSeason::share`]); and how much snow its surface catches, how far it faces
+/// up (a card, drawn from both sides, either way).
+///
+/// ```
+/// use sylva_forest::vertex_phenology;
+/// use sylva_turtle::Vertex;
+/// let top = Vertex { normal: [0.0, 1.0, 0.0], ..Default::default() };
+/// assert_eq!(vertex_phenology(&top, false), [0.0, 1.0]);
+/// let under = Vertex { normal: [0.0, -1.0, 0.0], wind: [0.0, 0.0, 0.0, 3.25], ..Default::default() };
+/// assert_eq!(vertex_phenology(&under, false), [0.0, 0.0]);
+/// assert_eq!(vertex_phenology(&under, true), [0.25, 1.0]);
+/// ```
+pub fn vertex_phenology(vertex: &sylva_turtle::Vertex, card: bool) -> [f32; 2] {
+    let up = vertex.normal[1];
+    let up = if up.is_finite() { up } else { 0.0 };
+    if card {
+        [sylva_turtle::Wind::of(vertex).phase, up.abs().min(1.0)]
+    } else {
+        [0.0, up.clamp(0.0, 1.0)]
+    }
+}
+
 /// `day` taken into `[1, 366)`, for days before or after the year.
 fn year_day(day: f32) -> f32 {
     if day.is_finite() {

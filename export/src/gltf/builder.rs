@@ -10,7 +10,7 @@ use super::schema::{
 };
 use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
-use super::extras::COLOUR_OFFSET;
+use super::extras::{COLOUR_OFFSET, PHENOLOGY_OFFSET};
 use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, position_bounds};
 use crate::error::{ExportError, Invalid};
 
@@ -147,7 +147,8 @@ impl DocumentBuilder {
 
     /// The attributes of tree vertices (48 bytes): the surface's three, then `_WIND`
     /// ([`sylva_turtle::Vertex::wind`], after the uv); and from the extras view the
-    /// `TANGENT`s and the leaf clusters' shades as normalized byte `COLOR_0`s.
+    /// `TANGENT`s, the leaf clusters' shades as normalized byte `COLOR_0`s and the seasons'
+    /// data as normalized byte `_PHENOLOGY`s ([`sylva_forest::vertex_phenology`]).
     pub(super) fn tree_attributes(
         &mut self,
         views: TreeViews,
@@ -160,6 +161,9 @@ impl DocumentBuilder {
         let colour = self.accessor(views.extras, COLOUR_OFFSET, UNSIGNED_BYTE, count, "VEC4");
         self.root.accessors[colour].normalized = true;
         attributes.colour = Some(colour);
+        let phenology = self.accessor(views.extras, PHENOLOGY_OFFSET, UNSIGNED_BYTE, count, "VEC2");
+        self.root.accessors[phenology].normalized = true;
+        attributes.phenology = Some(phenology);
         attributes
     }
 
@@ -213,6 +217,7 @@ impl DocumentBuilder {
             alpha_mode: leaf_card.then_some("MASK"),
             alpha_cutoff: cutoff,
             double_sided: leaf_card,
+            extras: None,
         });
         self.root.materials.len() - 1
     }
@@ -243,16 +248,18 @@ impl DocumentBuilder {
     ) -> (usize, usize) {
         let bark_name = format!("{} bark", species.name);
         let leaf_name = format!("{} leaves", species.name);
-        (
-            self.material(bark_name, species.bark, roughness, (bark, normal), None),
-            self.material(
-                leaf_name,
-                unshaded(species.leaf),
-                roughness,
-                (leaf, None),
-                Some(crate::texture::card_alpha_cutoff(species.leaf_shape)),
-            ),
-        )
+        let bark = self.material(bark_name, species.bark, roughness, (bark, normal), None);
+        let leaves = self.material(
+            leaf_name,
+            unshaded(species.leaf),
+            roughness,
+            (leaf, None),
+            Some(crate::texture::card_alpha_cutoff(species.leaf_shape)),
+        );
+        if let Some(m) = self.root.materials.get_mut(leaves) {
+            m.extras = Some(super::season::phenology_extras(species));
+        }
+        (bark, leaves)
     }
 
     /// A mesh; returns its index.

@@ -19,6 +19,7 @@ mod file;
 mod in_memory;
 mod lod;
 mod schema;
+mod season;
 mod shared;
 mod stand;
 mod subset;

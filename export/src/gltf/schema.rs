@@ -163,6 +163,9 @@ pub(super) struct Attributes {
     /// Ground colours by slope and altitude.
     #[serde(rename = "COLOR_0", skip_serializing_if = "Option::is_none")]
     pub(super) colour: Option<usize>,
+    /// A tree vertex's card order and snow catch ([`sylva_forest::vertex_phenology`]).
+    #[serde(rename = "_PHENOLOGY", skip_serializing_if = "Option::is_none")]
+    pub(super) phenology: Option<usize>,
 }
 
 /// A metallic-roughness material.
@@ -179,6 +182,9 @@ pub(super) struct Material {
     pub(super) alpha_cutoff: Option<f32>,
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub(super) double_sided: bool,
+    /// Application data: a leaf material's `sylva_phenology` ([`super::season`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) extras: Option<Value>,
 }
 
 /// The metallic-roughness factors and textures.

@@ -73,6 +73,7 @@ impl SpeciesMaterials {
                 normal: Some(normal),
                 cutoff: None,
                 roughness,
+                phenology: None,
             },
         );
         write_material(
@@ -83,6 +84,7 @@ impl SpeciesMaterials {
                 normal: None,
                 cutoff: Some(card_alpha_cutoff(species.leaf_shape)),
                 roughness,
+                phenology: Some(species),
             },
         );
     }
@@ -107,6 +109,8 @@ struct Surface<'a> {
     /// Opacity below which the surface is cut away (leaf cards).
     cutoff: Option<f32>,
     roughness: f32,
+    /// The species whose year a leaf material names in its `customData`.
+    phenology: Option<&'a Species>,
 }
 
 /// The terrain's material at `path`: its vertices' colours (a preview surface has no colour
@@ -120,6 +124,7 @@ pub(super) fn write_terrain_material(out: &mut String, path: &str, roughness: f3
             normal: None,
             cutoff: None,
             roughness,
+            phenology: None,
         },
     );
 }
@@ -161,8 +166,12 @@ fn write_texture(out: &mut String, name: &str, file: &str, (wrap, raw): (&str, b
 /// shaders feeding it.
 fn write_material(out: &mut String, path: &str, surface: Surface) {
     let name = path.rsplit('/').next().unwrap_or(path);
+    out.push_str(&format!("    def Material \"{name}\""));
+    if let Some(species) = surface.phenology {
+        write_phenology(out, species);
+    }
     out.push_str(&format!(
-        "    def Material \"{name}\"\n    {{\n        token outputs:surface.connect = <{path}/Surface.outputs:surface>\n"
+        "\n    {{\n        token outputs:surface.connect = <{path}/Surface.outputs:surface>\n"
     ));
     let mut inputs = String::new();
     match surface.colour {
@@ -204,6 +213,44 @@ fn write_material(out: &mut String, path: &str, surface: Surface) {
     out.push_str("            float inputs:metallic = 0\n            float inputs:roughness = ");
     float(out, surface.roughness);
     out.push_str("\n            token outputs:surface\n        }\n    }\n");
+}
+
+/// A leaf material's metadata naming its species' year, as glTF's `sylva_phenology`
+/// extras do (`crate::gltf` documents how a shader plays it; `primvars:sylva:phenology`
+/// holds each vertex's card order and snow catch).
+fn write_phenology(out: &mut String, species: &Species) {
+    let p = &species.phenology;
+    let colour = |out: &mut String, name: &str, c: [f32; 3]| {
+        out.push_str(&format!("                float3 {name} = ("));
+        for (k, v) in c.iter().enumerate() {
+            if k > 0 {
+                out.push_str(", ");
+            }
+            float(out, *v);
+        }
+        out.push_str(")\n");
+    };
+    let number = |out: &mut String, name: &str, v: f32| {
+        out.push_str(&format!("                float {name} = "));
+        float(out, v);
+        out.push('\n');
+    };
+    out.push_str(" (\n        customData = {\n            dictionary sylva_phenology = {\n");
+    out.push_str(&format!(
+        "                bool evergreen = {}\n",
+        u8::from(p.evergreen)
+    ));
+    number(out, "leaf_out", p.leaf_out);
+    number(out, "leaf_fall", p.leaf_fall);
+    colour(out, "spring", p.spring);
+    colour(out, "summer", species.leaf);
+    colour(out, "autumn", p.autumn);
+    number(out, "flush_days", sylva_forest::FLUSH_DAYS);
+    number(out, "fall_days", sylva_forest::FALL_DAYS);
+    number(out, "turn_days", sylva_forest::TURN_DAYS);
+    number(out, "green_days", sylva_forest::GREEN_DAYS);
+    number(out, "tree_days", sylva_forest::TREE_DAYS);
+    out.push_str("            }\n        }\n    )");
 }
 
 #[cfg(test)]

@@ -14,6 +14,8 @@ pub(super) struct MeshData {
     pub(super) normals: Vec<[f32; 3]>,
     pub(super) st: Vec<[f32; 2]>,
     pub(super) colours: Option<Vec<[f32; 3]>>,
+    /// A tree vertex's card order and snow catch ([`sylva_forest::vertex_phenology`]).
+    pub(super) phenology: Option<Vec<[f32; 2]>>,
     pub(super) triangles: Vec<u32>,
 }
 
@@ -25,14 +27,18 @@ fn st_of(uv: [f32; 2]) -> [f32; 2] {
 
 impl MeshData {
     /// The triangles `triangles` (indices into `vertices`) as a mesh of their own holding
-    /// only the vertices they use, in order of first use. `scratch` has an entry per vertex,
-    /// all `u32::MAX`, and is left so.
+    /// only the vertices they use, in order of first use, with their seasons' data (leaf
+    /// `cards` or bark). `scratch` has an entry per vertex, all `u32::MAX`, and is left so.
     pub(super) fn of_triangles(
         vertices: &[Vertex],
         triangles: &[u32],
+        cards: bool,
         scratch: &mut [u32],
     ) -> MeshData {
-        let mut mesh = MeshData::default();
+        let mut mesh = MeshData {
+            phenology: Some(Vec::new()),
+            ..MeshData::default()
+        };
         let mut used = Vec::new();
         for &i in triangles {
             let slot = &mut scratch[i as usize];
@@ -43,6 +49,9 @@ impl MeshData {
                 mesh.positions.push(v.position);
                 mesh.normals.push(v.normal);
                 mesh.st.push(st_of(v.uv));
+                if let Some(p) = &mut mesh.phenology {
+                    p.push(sylva_forest::vertex_phenology(v, cards));
+                }
             }
             mesh.triangles.push(*slot);
         }
@@ -59,6 +68,7 @@ impl MeshData {
             normals: terrain.vertices.iter().map(|v| v.normal).collect(),
             st: terrain.vertices.iter().map(|v| st_of(v.uv)).collect(),
             colours: Some(colours),
+            phenology: None,
             triangles: terrain.indices.clone(),
         }
     }
@@ -121,6 +131,19 @@ impl MeshData {
                 " (\n{i}        interpolation = \"vertex\"\n{i}    )\n"
             ));
         }
+        if let Some(phenology) = &self.phenology {
+            out.push_str(&format!("{i}    float2[] primvars:sylva:phenology = "));
+            array_of(out, phenology, |o, p| {
+                o.push('(');
+                float(o, p[0]);
+                o.push_str(", ");
+                float(o, p[1]);
+                o.push(')');
+            });
+            out.push_str(&format!(
+                " (\n{i}        interpolation = \"vertex\"\n{i}    )\n"
+            ));
+        }
         out.push_str(&format!("{i}    texCoord2f[] primvars:st = "));
         array_of(out, &self.st, |o, st| {
             o.push('(');
@@ -155,7 +178,7 @@ mod tests {
     fn a_span_keeps_only_its_vertices_in_order_of_first_use() {
         let vertices: Vec<Vertex> = (0..6).map(|k| vertex(k as f32, 0.0)).collect();
         let mut scratch = vec![u32::MAX; vertices.len()];
-        let mesh = MeshData::of_triangles(&vertices, &[4, 2, 5, 5, 2, 1], &mut scratch);
+        let mesh = MeshData::of_triangles(&vertices, &[4, 2, 5, 5, 2, 1], false, &mut scratch);
         assert_eq!(mesh.triangles, vec![0, 1, 2, 2, 1, 3]);
         let xs: Vec<f32> = mesh.positions.iter().map(|p| p[0]).collect();
         assert_eq!(xs, vec![4.0, 2.0, 5.0, 1.0]);
@@ -167,7 +190,7 @@ mod tests {
     fn t_runs_up_the_image() {
         let vertices = [vertex(0.0, 0.0), vertex(1.0, 0.25), vertex(2.0, 3.0)];
         let mut scratch = vec![u32::MAX; 3];
-        let mesh = MeshData::of_triangles(&vertices, &[0, 1, 2], &mut scratch);
+        let mesh = MeshData::of_triangles(&vertices, &[0, 1, 2], false, &mut scratch);
         assert_eq!(mesh.st, vec![[0.25, 1.0], [0.25, 0.75], [0.25, -2.0]]);
     }
 
@@ -175,7 +198,7 @@ mod tests {
     fn a_mesh_prim_names_its_material_and_counts_its_faces() {
         let vertices = [vertex(0.0, 0.0), vertex(1.0, 0.0), vertex(2.0, 1.0)];
         let mut scratch = vec![u32::MAX; 3];
-        let mesh = MeshData::of_triangles(&vertices, &[0, 1, 2], &mut scratch);
+        let mesh = MeshData::of_triangles(&vertices, &[0, 1, 2], false, &mut scratch);
         let mut out = String::new();
         mesh.write(
             &mut out,

@@ -357,13 +357,15 @@ fn write_prototypes(
             ("bark", &c.bark[inst.bark.range()], &m.bark, false),
             ("leaves", &c.leaves[inst.leaves.range()], &m.leaves, true),
         ];
-        for (part, triangles, material, double_sided) in parts {
+        // Leaf cards are drawn from both sides and carry their order in the year.
+        for (part, triangles, material, cards) in parts {
             if triangles.is_empty() {
                 continue;
             }
-            let mesh = MeshData::of_triangles(&c.vertices, triangles, &mut scratch[node.variant]);
+            let mesh =
+                MeshData::of_triangles(&c.vertices, triangles, cards, &mut scratch[node.variant]);
             let indent = "                ";
-            mesh.write(&mut text, (indent, part), material, double_sided);
+            mesh.write(&mut text, (indent, part), material, cards);
         }
         text.push_str("            }\n");
         file.put(text.as_bytes())?;
