@@ -414,16 +414,7 @@ pub(crate) fn read_model(
 
 /// `--season`: a day of the year (1 to 365) or a season's name.
 pub(crate) fn season_day(text: &str) -> Result<f32, String> {
-    match text {
-        "spring" => Ok(135.0),
-        "summer" => Ok(200.0),
-        "autumn" | "fall" => Ok(290.0),
-        "winter" => Ok(20.0),
-        _ => match text.parse::<f32>() {
-            Ok(day) if (1.0..=365.0).contains(&day) => Ok(day),
-            _ => Err(format!(
-                "'{text}' is not a day of the year (1 to 365) or spring, summer, autumn or winter"
-            )),
-        },
-    }
+    sylva::forest::parse_day(text).ok_or_else(|| {
+        format!("'{text}' is not a day of the year (1 to 365) or spring, summer, autumn or winter")
+    })
 }

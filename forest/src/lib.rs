@@ -76,8 +76,8 @@ pub use ground::{GroundCover, GroundKind, GroundLook};
 pub use life::{BREAST_HEIGHT, Life, SEEDLING_HEIGHT};
 pub use patch::{Composition, PatchDensity, PatchSpecies};
 pub use phenology::{
-    FALL_DAYS, FLUSH_DAYS, GREEN_DAYS, LeafSeason, Phenology, TREE_DAYS, TURN_DAYS, snow, tree_day,
-    vertex_phenology,
+    FALL_DAYS, FLUSH_DAYS, GREEN_DAYS, LeafSeason, Phenology, SEASON_DAYS, TREE_DAYS, TURN_DAYS,
+    parse_day, snow, tree_day, vertex_phenology,
 };
 pub use siting_report::{Refusal, SitingReport};
 pub use species::{Canopy, Species};

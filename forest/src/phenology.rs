@@ -138,6 +138,35 @@ pub fn tree_day(day: f32, phase: f32) -> f32 {
     day + (2.0 * phase.clamp(0.0, 1.0) - 1.0) * TREE_DAYS
 }
 
+/// The days that stand for the four seasons in pictures and on command lines: spring
+/// (the middle of May, most trees flushing), summer, autumn (the middle of October, in
+/// colour) and winter (January, bare and snowy).
+pub const SEASON_DAYS: [(&str, f32); 4] = [
+    ("spring", 135.0),
+    ("summer", 200.0),
+    ("autumn", 290.0),
+    ("winter", 20.0),
+];
+
+/// A day of the year from a command line: a number from 1 to 365, or a season's name
+/// ([`SEASON_DAYS`], `fall` for autumn). `None` for anything else.
+///
+/// ```
+/// use sylva_forest::parse_day;
+/// assert_eq!(parse_day("autumn"), Some(290.0));
+/// assert_eq!(parse_day("45"), Some(45.0));
+/// assert_eq!(parse_day("400"), None);
+/// ```
+pub fn parse_day(text: &str) -> Option<f32> {
+    let name = if text == "fall" { "autumn" } else { text };
+    if let Some((_, day)) = SEASON_DAYS.iter().find(|(n, _)| *n == name) {
+        return Some(*day);
+    }
+    text.parse::<f32>()
+        .ok()
+        .filter(|d| (1.0..=365.0).contains(d))
+}
+
 /// What a vertex carries for the seasons, as the exports write it (`_PHENOLOGY` in glTF,
 /// `primvars:sylva:phenology` in USD): the order of the leaf card it belongs to (its wind
 /// phase, [`sylva_turtle::Wind`]; 0 on bark), below which a species' day share keeps a

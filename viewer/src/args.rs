@@ -65,6 +65,10 @@ pub(crate) struct Args {
     pub(crate) wind: f32,
     /// Seconds into the wind's cycle (`--time`).
     pub(crate) time: f32,
+    /// The day of the year drawn (`--season`; `None`: the species as given).
+    pub(crate) season: Option<f32>,
+    /// A headless season strip: the four seasons' frames (`--seasons`).
+    pub(crate) seasons: bool,
     /// Frames of a headless guided walk (`--tour`; 0: none).
     pub(crate) tour: u32,
     /// Metres between the tour's frames (`--tour-spacing`).
@@ -93,7 +97,7 @@ pub(crate) struct Args {
 /// The flags, as `--help` and a command line that does not parse print them.
 pub(crate) const USAGE: &str = "usage: sylva-viewer [--grammar PRESET | --species FILE...] [--seed S] [--area METRES | --trees N] [--budget-mb MB] \
                      [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M] [--paint MASKS_DIR] [--no-floor] [--camera x,z,yaw,pitch[,height]] \
-                     [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T]] \
+                     [--screenshot PATH [--size WxH] [--ids] [--full-detail] [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N] [--wind S] [--time T] [--season DAY | --seasons]] \
                      [--year N | --years A..B [--every K] | --years Y1,Y2,...] \
                      [--editor | --editor-screenshot PATH [--editor-tab species|forest|tools]] [--project DIR] [--autosave-seconds S]";
 
@@ -116,6 +120,8 @@ pub(crate) fn parse() -> Result<Args, String> {
     let mut walk = 0.0f32;
     let mut wind = 1.0f32;
     let mut time = 0.0f32;
+    let mut season: Option<f32> = None;
+    let mut seasons = false;
     let mut tour = 0u32;
     let mut tour_spacing = 0.5f32;
     let mut turntable = 0u32;
@@ -165,6 +171,13 @@ pub(crate) fn parse() -> Result<Args, String> {
             "--walk" => walk = flags.value("--walk")?,
             "--wind" => wind = flags.value("--wind")?,
             "--time" => time = flags.value("--time")?,
+            "--season" => {
+                let text: String = flags.value("--season")?;
+                season = Some(sylva::forest::parse_day(&text).ok_or_else(|| {
+                    format!("--season {text}: expected a day of the year (1 to 365) or spring, summer, autumn or winter")
+                })?);
+            }
+            "--seasons" => seasons = true,
             "--tour" => tour = flags.value("--tour")?,
             "--tour-spacing" => tour_spacing = flags.value("--tour-spacing")?,
             "--turntable" => turntable = flags.value("--turntable")?,
@@ -259,6 +272,17 @@ pub(crate) fn parse() -> Result<Args, String> {
     if terrain.is_some() && turntable > 0 {
         return Err(format!(
             "--turntable stands one tree on flat ground: not with --terrain\n{USAGE}"
+        ));
+    }
+    if seasons
+        && (screenshot.is_none()
+            || tour > 0
+            || turntable > 0
+            || years.is_some()
+            || season.is_some())
+    {
+        return Err(format!(
+            "--seasons renders a headless season strip (spring, summer, autumn, winter): give --screenshot PATH, without --season, --tour, --turntable or --years\n{USAGE}"
         ));
     }
     if year.is_some() && years.is_some() {
@@ -356,6 +380,8 @@ pub(crate) fn parse() -> Result<Args, String> {
         walk,
         wind,
         time,
+        season,
+        seasons,
         tour,
         tour_spacing,
         turntable,

@@ -83,6 +83,7 @@ pub(crate) fn floor_parts(
             leaf_shape: look.leaf_shape,
             bark_pattern: look.bark_pattern,
             textured_leaves: look.cards,
+            phenology: None,
         });
         parts.proxies.push(Proxy::none());
     }

@@ -4,7 +4,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use sylva::export::lod::{Impostor, LodChain};
-use sylva::forest::{BarkPattern, LeafShape};
+use sylva::forest::{BarkPattern, LeafShape, Phenology};
 use sylva::instancing::Span;
 use sylva::terrain::glam::{Quat, Vec3};
 use sylva::turtle::Vertex;
@@ -41,6 +41,9 @@ pub(crate) struct VariantGeometry {
     pub(crate) bark_pattern: BarkPattern,
     /// Whether its leaves are textured cards (grass blades are plain triangles).
     pub(crate) textured_leaves: bool,
+    /// Its species' year, which the shader plays (`None`: the forest floor's plants, which
+    /// keep their look).
+    pub(crate) phenology: Option<Phenology>,
 }
 
 /// Levels of detail drawn from meshes: the full cache and its two coarser levels.

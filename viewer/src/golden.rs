@@ -84,6 +84,43 @@ fn canopy_closes_seen_from_above() {
     assert!(coverage.other < 0.01, "{coverage}");
 }
 
+/// Issue 50's seasons, seen straight down like the canopy measure: in winter the deciduous
+/// crowns are bare (the evergreens keep theirs), so far less of the picture is leaves and
+/// more is ground; in autumn every card is still on the trees; in midsummer the seasons
+/// played draw what the species as given draw.
+#[test]
+fn the_seasons_take_the_leaves_off_in_winter() {
+    let mut scene = default_scene();
+    let size = (256, 256);
+    let Some(mut offscreen) = offscreen(&scene, size) else {
+        return;
+    };
+    let above = Camera::parse("400,400,0,-89.9,200").expect("camera");
+    let mut leaves_on = |season: Option<f32>| {
+        offscreen.season = season;
+        let (ids, _) = offscreen
+            .frame(&mut scene, &above, Mode::Ids)
+            .expect("id render");
+        let coverage = Coverage::of_ids(&ids);
+        eprintln!("day {season:?}: {coverage}");
+        coverage
+    };
+    let (given, summer) = (leaves_on(None), leaves_on(Some(200.0)));
+    let (autumn, winter) = (leaves_on(Some(290.0)), leaves_on(Some(20.0)));
+    assert!(
+        (given.leaves - summer.leaves).abs() < 0.01,
+        "{given} / {summer}"
+    );
+    assert!(
+        (autumn.leaves - summer.leaves).abs() < 0.05,
+        "{autumn} / {summer}"
+    );
+    assert!(winter.leaves < 0.7 * summer.leaves, "{winter} / {summer}");
+    assert!(winter.terrain > summer.terrain + 0.1, "{winter} / {summer}");
+    // The evergreens (spruce and pine, two fifths of the trees) stay green.
+    assert!(winter.leaves > 0.15, "{winter}");
+}
+
 #[test]
 fn default_scene_renders_terrain_and_trees() {
     let mut scene = default_scene();

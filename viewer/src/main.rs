@@ -6,7 +6,7 @@
 //!     [--terrain HEIGHTS [--spacing M] [--crop COL,ROW,W,H]] [--max-slope DEG] [--max-height M]
 //!     [--camera x,z,yaw,pitch[,height]] [--screenshot PATH [--size WxH] [--ids] [--full-detail]
 //!     [--frames N [--walk M] | --tour N [--tour-spacing M] | --turntable N]
-//!     [--wind S] [--time T]] [--editor | --editor-screenshot PATH] [--project DIR]
+//!     [--wind S] [--time T] [--season DAY | --seasons]] [--editor | --editor-screenshot PATH] [--project DIR]
 //!     [--autosave-seconds S]
 //! ```
 //!
@@ -70,6 +70,14 @@
 //! `--editor-screenshot PATH [--editor-tab species|forest|tools]` renders the panel alone,
 //! headless.
 //!
+//! The seasons: `--season DAY` (1 to 365, or spring, summer, autumn, winter) draws the forest
+//! on that day of the year, the shader playing each species' year from the meshes as they
+//! are: deciduous crowns flush in spring, turn in autumn and stand bare in winter, each card
+//! going by its order in the year and each tree a few days early or late; snow lies on what
+//! faces up. In the window N plays the year (a year a minute) or stops it, Shift+N moves the
+//! day on ten days. Headless, `--seasons` with `--screenshot PATH` renders spring, summer,
+//! autumn and winter to `PATH_DDDD.png` (by day) and a strip of them at `PATH`.
+//!
 //! A forest over time: `--year N` draws year N of the forest grown from bare ground
 //! (`sylva succession`'s model with this seed: trees of every age, dead standing trees,
 //! broken tops and fallen trees), and in the window Y moves it on ten years (Shift+Y one).
@@ -104,6 +112,7 @@ mod pool;
 mod rebuild;
 mod render;
 mod scene;
+mod season;
 mod shadow;
 mod specimen;
 mod textures;
@@ -176,6 +185,11 @@ fn run() -> Result<(), ViewerError> {
             offscreen.wind = args.wind;
             offscreen.full_detail = args.full_detail;
             offscreen.time = args.time;
+            offscreen.season = args.season;
+            if args.seasons {
+                let strip = season::SeasonStrip { size: args.size };
+                return strip.run(&mut scene, &mut offscreen, &camera, &path, mode);
+            }
             if args.turntable > 0 {
                 let turntable = turntable::Turntable {
                     views: args.turntable,
@@ -282,6 +296,7 @@ fn run() -> Result<(), ViewerError> {
             args.frames,
             args.paint.unwrap_or_else(|| "paint_masks".into()),
             editor,
+            args.season,
         ),
     }
 }

@@ -7,6 +7,8 @@
 //! 190 KB of it until the device is dropped, which made software frames about six times slower
 //! and grew the viewer by up to a gigabyte a frame.
 
+use sylva::forest::Phenology;
+
 use crate::textures::{bark_layer, leaf_layer};
 use crate::world::World;
 
@@ -18,12 +20,54 @@ pub(crate) const ID_TERRAIN: [f32; 3] = [1.0, 0.0, 0.0];
 pub(crate) const ID_BARK: [f32; 3] = [0.0, 1.0, 0.0];
 pub(crate) const ID_LEAF: [f32; 3] = [0.0, 0.0, 1.0];
 
-/// Bytes per material in the shader's array: colour (rgb, texture layer plus one) and id.
-pub(crate) const MATERIAL_BYTES: usize = 32;
+/// How much darker a proxy's crown is than its leaf colour, in every season.
+const PROXY_SHADE: f32 = 0.6;
 
-/// One material: colour, flat id colour, and the texture layer plus one (0: untextured; -1:
-/// the terrain, which the shader paints by slope and altitude).
-type Material = ([f32; 3], [f32; 3], f32);
+/// Bytes per material in the shader's array: colour (rgb, texture layer plus one), id, and
+/// the species' year (leaf out, leaf fall, whether it has one; spring colour; autumn colour).
+pub(crate) const MATERIAL_BYTES: usize = 80;
+
+/// One material: colour, flat id colour, the texture layer plus one (0: untextured; -1:
+/// the terrain, which the shader paints by slope and altitude), and the year its leaves
+/// follow (none for bark, the terrain, the floor's plants and evergreens).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Material {
+    colour: [f32; 3],
+    id: [f32; 3],
+    layer: f32,
+    year: Option<Phenology>,
+}
+
+impl Material {
+    fn new(colour: [f32; 3], id: [f32; 3], layer: f32) -> Material {
+        Material {
+            colour,
+            id,
+            layer,
+            year: None,
+        }
+    }
+
+    /// This leaf material following `year` when it is a deciduous one.
+    fn following(mut self, year: Option<Phenology>) -> Material {
+        self.year = year.filter(|p| !p.evergreen);
+        self
+    }
+
+    /// The shader's 20 floats: see [`MATERIAL_BYTES`].
+    fn floats(&self) -> [f32; 20] {
+        let [r, g, b] = self.colour;
+        let [ir, ig, ib] = self.id;
+        let (season, spring, autumn) = match self.year {
+            Some(p) => ([p.leaf_out, p.leaf_fall, 1.0, 0.0], p.spring, p.autumn),
+            None => ([0.0; 4], [0.0; 3], [0.0; 3]),
+        };
+        [
+            r, g, b, self.layer, ir, ig, ib, 1.0, season[0], season[1], season[2], season[3],
+            spring[0], spring[1], spring[2], 0.0, autumn[0], autumn[1], autumn[2], 0.0,
+        ]
+    }
+}
 
 /// The world's materials, deduplicated, and which of them each variant uses.
 #[derive(Debug)]
@@ -33,15 +77,15 @@ pub(crate) struct Materials {
     /// (bark, leaves) material of each variant.
     pub(crate) variants: Vec<(u32, u32)>,
     /// (bark, leaves) material of each variant's proxy: untextured, the crown darker than
-    /// the leaf colour, as the leaf cards' texture and the gaps between them darken a real
-    /// crown.
+    /// the leaf colour ([`PROXY_SHADE`]), as the leaf cards' texture and the gaps between
+    /// them darken a real crown.
     pub(crate) proxies: Vec<(u32, u32)>,
 }
 
 impl Materials {
     /// The materials of `world`'s variants and proxies; material 0 is the terrain.
     pub(crate) fn of(world: &World) -> Materials {
-        let mut list: Vec<Material> = vec![(TERRAIN, ID_TERRAIN, -1.0)];
+        let mut list: Vec<Material> = vec![Material::new(TERRAIN, ID_TERRAIN, -1.0)];
         // Variants of a species share their materials: each is stored once.
         let mut intern = |m: Material| -> u32 {
             let index = list
@@ -58,20 +102,23 @@ impl Materials {
             .iter()
             .map(|v| {
                 (
-                    intern((
+                    intern(Material::new(
                         v.bark_colour,
                         ID_BARK,
                         1.0 + bark_layer(v.bark_pattern) as f32,
                     )),
-                    intern((
-                        v.leaf_colour,
-                        ID_LEAF,
-                        if v.textured_leaves {
-                            1.0 + leaf_layer(v.leaf_shape) as f32
-                        } else {
-                            0.0
-                        },
-                    )),
+                    intern(
+                        Material::new(
+                            v.leaf_colour,
+                            ID_LEAF,
+                            if v.textured_leaves {
+                                1.0 + leaf_layer(v.leaf_shape) as f32
+                            } else {
+                                0.0
+                            },
+                        )
+                        .following(v.phenology),
+                    ),
                 )
             })
             .collect();
@@ -80,19 +127,21 @@ impl Materials {
             .iter()
             .map(|v| {
                 (
-                    intern((v.bark_colour, ID_BARK, 0.0)),
-                    intern((v.leaf_colour.map(|c| c * 0.6), ID_LEAF, 0.0)),
+                    intern(Material::new(v.bark_colour, ID_BARK, 0.0)),
+                    intern(
+                        Material::new(v.leaf_colour.map(|c| c * PROXY_SHADE), ID_LEAF, 0.0)
+                            .following(v.phenology.map(|p| Phenology {
+                                spring: p.spring.map(|c| c * PROXY_SHADE),
+                                autumn: p.autumn.map(|c| c * PROXY_SHADE),
+                                ..p
+                            })),
+                    ),
                 )
             })
             .collect();
         let bytes = list
             .iter()
-            .flat_map(|(colour, id, layer)| {
-                let m: [f32; 8] = [
-                    colour[0], colour[1], colour[2], *layer, id[0], id[1], id[2], 1.0,
-                ];
-                bytemuck::cast::<[f32; 8], [u8; MATERIAL_BYTES]>(m)
-            })
+            .flat_map(|m| bytemuck::cast::<[f32; 20], [u8; MATERIAL_BYTES]>(m.floats()))
             .collect();
         Materials {
             bytes,

@@ -43,6 +43,8 @@ pub(crate) struct Offscreen {
     /// Every tree at full detail (no coarser levels or impostors).
     pub(crate) full_detail: bool,
     pub(crate) time: f32,
+    /// The day of the year the frames show (`None`: the species as given).
+    pub(crate) season: Option<f32>,
 }
 
 impl Offscreen {
@@ -75,6 +77,7 @@ impl Offscreen {
             wind: 1.0,
             full_detail: false,
             time: 0.0,
+            season: None,
         })
     }
 
@@ -106,6 +109,7 @@ impl Offscreen {
                 full_detail: self.full_detail,
                 wind: self.wind,
                 time: self.time,
+                season: self.season,
             },
         );
         let pixels = read_back(

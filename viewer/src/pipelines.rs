@@ -54,7 +54,12 @@ impl Pipelines {
             .replace(
                 "CLUSTER_SHADE_MEAN",
                 &format!("{:?}", sylva::forest::CLUSTER_SHADE_MEAN),
-            );
+            )
+            .replace("FLUSH_DAYS", &format!("{:?}", sylva::forest::FLUSH_DAYS))
+            .replace("FALL_DAYS", &format!("{:?}", sylva::forest::FALL_DAYS))
+            .replace("TURN_DAYS", &format!("{:?}", sylva::forest::TURN_DAYS))
+            .replace("GREEN_DAYS", &format!("{:?}", sylva::forest::GREEN_DAYS))
+            .replace("TREE_DAYS", &format!("{:?}", sylva::forest::TREE_DAYS));
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shader.wgsl"),
             source: wgpu::ShaderSource::Wgsl(source.into()),

@@ -39,6 +39,9 @@ struct Globals {
     zenith: [f32; 4],
     fog: [f32; 4],
     wind: [f32; 4],
+    // x: the day of the year; y: 1 when the seasons are played (0 draws the species as
+    // given); z: snow lying, 0 to 1 (`sylva_forest::snow`).
+    season: [f32; 4],
 }
 
 /// What one frame drew.
@@ -74,6 +77,8 @@ pub(crate) struct View {
     /// Wind strength (1: a breeze; 0: still air) and the time in seconds.
     pub(crate) wind: f32,
     pub(crate) time: f32,
+    /// The day of the year the seasons are drawn on (`None`: the species as given, summer).
+    pub(crate) season: Option<f32>,
 }
 
 /// Shading or flat material ids.
@@ -334,6 +339,10 @@ impl Renderer {
                 0.0,
             ],
             wind: [wind.x, 0.0, wind.z, view.time],
+            season: match view.season {
+                Some(day) => [day, 1.0, sylva::forest::snow(day), 0.0],
+                None => [0.0; 4],
+            },
         };
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
     }

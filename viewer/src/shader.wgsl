@@ -17,11 +17,18 @@ struct Globals {
     fog: vec4<f32>,
     // xz: wind direction times strength (horizontal); w: time in seconds.
     wind: vec4<f32>,
+    // x: the day of the year; y: 1 when the seasons are played; z: snow lying, 0 to 1.
+    season: vec4<f32>,
 };
 
 struct Material {
     colour: vec4<f32>,
     id: vec4<f32>,
+    // A deciduous leaf material's year: x the day it leafs out, y the day half its leaves
+    // have fallen, z 1 (0: no year, the colour all year); its spring and autumn colours.
+    season: vec4<f32>,
+    spring: vec4<f32>,
+    autumn: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -65,6 +72,9 @@ struct VertexOut {
     @location(4) @interpolate(flat) material: u32,
     // The placement's fade between levels of detail (see faded_out).
     @location(5) @interpolate(flat) fade: f32,
+    // The share of an untextured crown (a far tree's proxy) the season leaves on the tree,
+    // its pixels thinned by a dither; 1 for everything else.
+    @location(6) @interpolate(flat) share: f32,
 };
 
 fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
@@ -136,16 +146,68 @@ fn cluster_shade(phase: f32) -> vec3<f32> {
     return light * vec3<f32>(0.92 + 0.08 * warm, 1.0, 1.0 - 0.12 * warm) / CLUSTER_SHADE_MEAN;
 }
 
+// The seasons, as sylva_forest::Phenology::leaves has them (repeated here; the day
+// constants are replaced when the shader is built): a deciduous species' share of its leaf
+// cards on a day, their colour and size. A tree's day runs up to TREE_DAYS early or late
+// by its phase (sylva_forest::tree_day).
+struct LeafSeason {
+    share: f32,
+    colour: vec3<f32>,
+    size: f32,
+};
+
+fn ramp(x: f32) -> f32 {
+    let t = clamp(x, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+fn leaf_season(m: Material, tree_phase: f32) -> LeafSeason {
+    var out: LeafSeason;
+    out.share = 1.0;
+    out.colour = m.colour.rgb;
+    out.size = 1.0;
+    if (globals.season.y < 0.5 || m.season.z < 0.5) {
+        return out;
+    }
+    let shifted = globals.season.x + (2.0 * clamp(tree_phase, 0.0, 1.0) - 1.0) * TREE_DAYS;
+    let day = shifted - 1.0 - floor((shifted - 1.0) / 365.0) * 365.0 + 1.0;
+    let since = day - m.season.x;
+    let flush = ramp(since / FLUSH_DAYS);
+    let fall = 1.0 - ramp((day - (m.season.y - 0.5 * FALL_DAYS)) / FALL_DAYS);
+    out.share = select(min(flush, fall), 0.0, day < m.season.x);
+    let green = ramp(since / GREEN_DAYS);
+    let turn = ramp((day - (m.season.y - 5.0 - TURN_DAYS)) / TURN_DAYS);
+    out.colour = mix(mix(m.spring.rgb, m.colour.rgb, green), m.autumn.rgb, turn);
+    out.size = 0.4 + 0.6 * ramp(since / (FLUSH_DAYS + 15.0));
+    return out;
+}
+
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
     var out: VertexOut;
-    let world = to_world(in);
+    let material = materials[in.material];
+    let card = is_card(material);
+    // A card whose order in the year (its wind phase) is not below its species' share that
+    // day is not on the tree: every corner goes behind the far plane, so it is not drawn.
+    // Young cards grow from their base (the pivot).
+    let season = leaf_season(material, in.tree.w);
+    let order = fract(in.wind.w);
+    var grown = in;
+    grown.position = in.wind.xyz + (in.position - in.wind.xyz) * select(1.0, season.size, card);
+    let world = to_world(grown);
     out.clip = globals.view_proj * vec4<f32>(world, 1.0);
+    if (card && order >= season.share) {
+        out.clip = vec4<f32>(0.0, 0.0, 2.0, 1.0);
+    }
     out.world = world;
     out.normal = rotate(in.rotation, in.normal);
     out.uv = in.uv;
-    let card = is_card(materials[in.material]);
-    out.tint = in.tint.rgb * select(vec3<f32>(1.0), cluster_shade(fract(in.wind.w)), card);
+    // The day's colour over the species' own, so the material's colour turns into it; a
+    // proxy's untextured crown turns too, and thins as its cards would.
+    let turned = season.colour / max(material.colour.rgb, vec3<f32>(1e-4));
+    let shade = select(vec3<f32>(1.0), cluster_shade(order), card);
+    out.tint = in.tint.rgb * shade * turned;
+    out.share = select(1.0, season.share, !card && material.season.z > 0.5);
     out.material = in.material;
     out.fade = in.tint.w;
     return out;
@@ -263,7 +325,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let duv_dy = dpdy(in.uv);
     let material = materials[in.material];
     let tex = texel(in.uv, material);
-    if (tex.alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
+    if (tex.alpha < 0.5 || faded_out(in.clip.xy, in.fade) || dither(in.clip.xy) >= in.share) {
         discard;
     }
     var albedo = material.colour.rgb * tex.colour * in.tint;
@@ -271,6 +333,12 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let height = (in.world.y - globals.fog.y) / max(globals.fog.z - globals.fog.y, 1e-3);
         albedo = ground(normalize(in.normal), clamp(height, 0.0, 1.0)) * ground_detail(in.world.xz);
     }
+    // Snow lies on what faces up (a card, seen from either side, either way): the
+    // exports' snow catch (sylva_forest::vertex_phenology) times the snow that day.
+    let up = normalize(in.normal).y;
+    let catch_snow = select(max(up, 0.0), abs(up), is_card(material));
+    let snow_cover = globals.season.z * smoothstep(0.2, 0.7, catch_snow) * 0.85;
+    albedo = mix(albedo, vec3<f32>(0.85, 0.87, 0.90), snow_cover);
     var n = normalize(in.normal);
     if (!front) {
         n = -n;
@@ -304,7 +372,7 @@ fn lit(world: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, translucent: f32) -> v
 fn fs_id(in: VertexOut) -> @location(0) vec4<f32> {
     // Clear parts of leaf cards are no leaf.
     let material = materials[in.material];
-    if (texel(in.uv, material).alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
+    if (texel(in.uv, material).alpha < 0.5 || faded_out(in.clip.xy, in.fade) || dither(in.clip.xy) >= in.share) {
         discard;
     }
     return material.id;
@@ -321,7 +389,15 @@ struct ShadowOut {
 @vertex
 fn vs_shadow(in: VertexIn) -> ShadowOut {
     var out: ShadowOut;
-    out.clip = globals.light_view_proj * vec4<f32>(to_world(in), 1.0);
+    let material = materials[in.material];
+    let card = is_card(material);
+    let season = leaf_season(material, in.tree.w);
+    var grown = in;
+    grown.position = in.wind.xyz + (in.position - in.wind.xyz) * select(1.0, season.size, card);
+    out.clip = globals.light_view_proj * vec4<f32>(to_world(grown), 1.0);
+    if (card && fract(in.wind.w) >= season.share) {
+        out.clip = vec4<f32>(0.0, 0.0, 2.0, 1.0);
+    }
     out.uv = in.uv;
     out.material = in.material;
     out.fade = in.tint.w;
@@ -371,6 +447,8 @@ struct ImpostorOut {
     @location(4) @interpolate(flat) atlas: vec4<f32>,
     @location(5) @interpolate(flat) rotation: vec4<f32>,
     @location(6) @interpolate(flat) fade: f32,
+    // The tree's phase, which moves its day in the year.
+    @location(7) @interpolate(flat) phase: f32,
 };
 
 // A view's picture axes, as sylva_export::lod::OrthoView::axes: right horizontal, up the rest.
@@ -414,6 +492,7 @@ fn vs_impostor(in: VertexIn) -> ImpostorOut {
     out.atlas = vec4<f32>(in.wind.x, in.wind.y, radius, in.wind.w);
     out.rotation = in.rotation;
     out.fade = in.tint.w;
+    out.phase = in.tree.w;
     return out;
 }
 
@@ -466,19 +545,33 @@ fn impostor_texel(in: ImpostorOut) -> ImpostorTexel {
     return out;
 }
 
+// Whether the seasons take this impostor texel's leaves off the tree: leaf texels go as the
+// species' share of cards falls (by a dither, so a crown thins evenly), and what stays turns
+// to the day's colour.
+fn impostor_leaves(in: ImpostorOut) -> LeafSeason {
+    return leaf_season(materials[in.material], in.phase);
+}
+
 @fragment
 fn fs_impostor(in: ImpostorOut) -> @location(0) vec4<f32> {
     let t = impostor_texel(in);
-    if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
+    let season = impostor_leaves(in);
+    let bare = t.leaf >= 0.5 && dither(in.clip.xy) >= season.share;
+    if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade) || bare) {
         discard;
     }
-    return vec4<f32>(lit(in.world, t.normal, t.colour * in.tint, 0.35 * t.leaf), 1.0);
+    let material = materials[in.material];
+    let turned = mix(vec3<f32>(1.0), season.colour / max(material.colour.rgb, vec3<f32>(1e-4)), t.leaf);
+    var albedo = t.colour * in.tint * turned;
+    albedo = mix(albedo, vec3<f32>(0.85, 0.87, 0.90), globals.season.z * smoothstep(0.2, 0.7, t.normal.y) * 0.85);
+    return vec4<f32>(lit(in.world, t.normal, albedo, 0.35 * t.leaf), 1.0);
 }
 
 @fragment
 fn fs_impostor_id(in: ImpostorOut) -> @location(0) vec4<f32> {
     let t = impostor_texel(in);
-    if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade)) {
+    let bare = t.leaf >= 0.5 && dither(in.clip.xy) >= impostor_leaves(in).share;
+    if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade) || bare) {
         discard;
     }
     let bark = materials[u32(in.atlas.w + 0.5)];

@@ -48,6 +48,8 @@ struct App {
     last: Instant,
     /// When the window opened: the wind's clock.
     started: Instant,
+    /// The day of the year drawn, and whether the year plays (N).
+    year: crate::season::YearClock,
     frame_ms: f64,
     error: Option<ViewerError>,
     lost: Arc<AtomicBool>,
@@ -102,6 +104,7 @@ pub(crate) fn run(
     max_frames: u32,
     save_to: std::path::PathBuf,
     editor: Option<Editor>,
+    season: Option<f32>,
 ) -> Result<(), ViewerError> {
     let save_to = match &editor {
         Some(e) => e.project.join(sylva::world::MASKS_FOLDER),
@@ -117,6 +120,7 @@ pub(crate) fn run(
         captured: false,
         last: Instant::now(),
         started: Instant::now(),
+        year: crate::season::YearClock::at(season),
         frame_ms: 0.0,
         error: None,
         lost: Arc::new(AtomicBool::new(false)),
@@ -283,6 +287,7 @@ impl App {
                 full_detail: false,
                 wind: 1.0,
                 time: self.started.elapsed().as_secs_f32(),
+                season: self.year.day(),
             },
         );
         let before = match &mut self.editor {
@@ -327,6 +332,7 @@ impl App {
         if let Some(year) = self.scene.world.year() {
             mode.push_str(&format!("year {year} (Y: +10, Shift+Y: +1); "));
         }
+        mode.push_str(&self.year.title());
         gpu.window.set_title(&format!(
             "sylva: {editing}{mode}{} draw calls, {} instances, {:.1} M triangles, {:.1} ms; {} trees in {} cells{}",
             stats.draws,
@@ -521,6 +527,15 @@ impl ApplicationHandler for App {
                             }
                             KeyCode::KeyP if !event.repeat => self.toggle_painting(),
                             KeyCode::KeyG if !event.repeat => self.toggle_guide(),
+                            KeyCode::KeyN => {
+                                let shift = self.keys.contains(&KeyCode::ShiftLeft)
+                                    || self.keys.contains(&KeyCode::ShiftRight);
+                                if shift {
+                                    self.year.advance(10.0);
+                                } else if !event.repeat {
+                                    self.year.toggle();
+                                }
+                            }
                             KeyCode::KeyY => {
                                 let shift = self.keys.contains(&KeyCode::ShiftLeft)
                                     || self.keys.contains(&KeyCode::ShiftRight);

@@ -295,6 +295,7 @@ impl World {
                 leaf_shape: s.leaf_shape,
                 bark_pattern: s.bark_pattern,
                 textured_leaves: true,
+                phenology: Some(s.phenology),
             });
         }
         let mut atlases = Vec::new();
