@@ -151,10 +151,10 @@ pub const PRESETS: &[Preset] = &[
     ),
     preset!(
         "sylva-hazel",
-        "A hazel shrub: many arching stems from the ground (metres)",
+        "A hazel shrub: many stems from the ground fanning out like a vase (metres)",
         6,
         35.0,
-        Some(([0.0, -1.0, 0.0], 0.1))
+        None
     ),
 ];
 

@@ -175,7 +175,7 @@ mod tests {
         assert_eq!(materials.variants.len(), world.variants.len());
         assert_eq!(materials.proxies.len(), world.variants.len());
         let floats: &[f32] = bytemuck::cast_slice(&materials.bytes);
-        let records: Vec<&[f32]> = floats.chunks(8).collect();
+        let records: Vec<&[f32]> = floats.chunks(MATERIAL_BYTES / 4).collect();
         assert_eq!(records.len(), materials.count());
         for (i, a) in records.iter().enumerate() {
             assert!(
@@ -202,7 +202,7 @@ mod tests {
         let world = World::build(SceneOptions::small(5, 150.0)).expect("world builds");
         let materials = Materials::of(&world);
         let floats: &[f32] = bytemuck::cast_slice(&materials.bytes);
-        let records: Vec<&[f32]> = floats.chunks(8).collect();
+        let records: Vec<&[f32]> = floats.chunks(MATERIAL_BYTES / 4).collect();
         let first = world.variants.len() - sylva::forest::GroundKind::ALL.len();
         let (_, grass) = materials.variants[first];
         let (_, fern) = materials.variants[first + 1];
