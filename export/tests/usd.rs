@@ -131,10 +131,11 @@ fn the_file_is_the_same_at_any_thread_count() {
     // Known answer: the bytes of this seed's file. A change here is a change of format (or of
     // the forest); say which in the commit. Issue 50: patches sized by the crowns' cover
     // seen from above (more trees), denser needle cards, cutoffs below each card's mean alpha;
-    // the seasons' `primvars:sylva:phenology` and leaf materials' `sylva_phenology` data.
+    // the seasons' `primvars:sylva:phenology`, leaf materials' `sylva_phenology` data and the
+    // instancer's `primvars:sylva:tree_phase`.
     assert_eq!(
         (reference.len(), fnv1a(&reference)),
-        (7_375_831, 3_438_953_535_609_186_779),
+        (7_528_439, 14_363_994_580_956_980_292),
         "the pinned file changed"
     );
     for threads in [2, 5] {

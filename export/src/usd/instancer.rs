@@ -1,4 +1,5 @@
-//! The point instancer's arrays (prototype indices, positions, orientations, scales), made
+//! The point instancer's arrays (prototype indices, positions, orientations, scales, and each
+//! placement's tree phase for the seasons), made
 //! in one streaming pass: each block's placements are spelt as text on the core that placed
 //! them and appended to one scratch file per array beside the destination, which the file
 //! then takes in order. Memory holds a wave of blocks' text, however many trees there are.
@@ -8,28 +9,32 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use sylva_base::file::{AtomicFile, FileError};
-use sylva_forest::{ForestBuilder, PlacementBlock, Rect};
+use sylva_forest::{ForestBuilder, PlacementBlock, Rect, tree_wind};
 use sylva_terrain::HeightField;
 use sylva_terrain::glam::Vec3;
 
-use super::text::{half, tuple};
+use super::text::{float, half, tuple};
 use crate::census::{check_transform, kept_trees};
 use crate::error::{ExportError, Invalid};
 use crate::spill::{TreeSpill, scratch_beside};
 
-/// The instancer's arrays, in the order the file holds them, with their USD types.
-pub(super) const ARRAYS: [(&str, &str); 4] = [
+/// The instancer's arrays, in the order the file holds them, with their USD types. The last
+/// is a primvar, one value per instance: the phase of the tree each placement belongs to,
+/// which moves the tree's day in the year (`sylva_forest::tree_day`), as glTF's
+/// `_WIND_TREE` w does.
+pub(super) const ARRAYS: [(&str, &str); 5] = [
     ("int[]", "protoIndices"),
     ("point3f[]", "positions"),
     ("quath[]", "orientations"),
     ("float3[]", "scales"),
+    ("float[]", "primvars:sylva:tree_phase"),
 ];
 
 /// One block's placements as the arrays' text, each element led by a separator (a comma,
 /// and a line break every eighth), and the box they reach.
 #[derive(Debug, Default)]
 struct BlockText {
-    arrays: [String; 4],
+    arrays: [String; 5],
     lo: Vec3,
     hi: Vec3,
     placements: usize,
@@ -48,7 +53,8 @@ fn block_text(
         hi: Vec3::NEG_INFINITY,
         ..BlockText::default()
     };
-    let [ids, positions, orientations, scales] = &mut text.arrays;
+    let [ids, positions, orientations, scales, phases] = &mut text.arrays;
+    let tree_phases: Vec<f32> = block.trees.iter().map(|t| tree_wind(t)[3]).collect();
     for p in &block.placements {
         let Some(&proto) = prototype_of
             .get(p.variant as usize)
@@ -82,6 +88,11 @@ fn block_text(
         orientations.push(')');
         scales.push_str(separator);
         tuple(scales, &[x.scale; 3]);
+        phases.push_str(separator);
+        float(
+            phases,
+            tree_phases.get(p.tree as usize).copied().unwrap_or(0.5),
+        );
         let reach = x.scale * radius.get(proto as usize).copied().unwrap_or(0.0);
         text.lo = text.lo.min(x.translation - reach);
         text.hi = text.hi.max(x.translation + reach);
@@ -157,7 +168,7 @@ impl Arrays {
     ) -> Result<Arrays, ExportError> {
         let mut scratch = ARRAYS
             .iter()
-            .map(|(_, name)| Scratch::create(destination, name))
+            .map(|(_, name)| Scratch::create(destination, &name.replace(':', "_")))
             .collect::<Result<Vec<_>, _>>()?;
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         let mut placements = 0usize;
@@ -192,13 +203,19 @@ impl Arrays {
         })
     }
 
-    /// Writes the four arrays, each `{indent}type name = [...]`, to `out`; the scratch
-    /// files are removed.
+    /// Writes the arrays, each `{indent}type name = [...]` (a primvar one value per
+    /// instance), to `out`; the scratch files are removed.
     pub(super) fn write(mut self, out: &mut AtomicFile, indent: &str) -> Result<(), ExportError> {
         for ((kind, name), scratch) in ARRAYS.iter().zip(&mut self.scratch) {
             out.put(format!("{indent}{kind} {name} = [").as_bytes())?;
             scratch.copy_into(out)?;
-            out.put(b"]\n")?;
+            if name.starts_with("primvars:") {
+                out.put(
+                    format!("] (\n{indent}    interpolation = \"vertex\"\n{indent})\n").as_bytes(),
+                )?;
+            } else {
+                out.put(b"]\n")?;
+            }
         }
         Ok(())
     }
