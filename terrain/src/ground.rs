@@ -47,6 +47,27 @@ impl TerrainMesh {
     /// The ground colour of every vertex ([`ground_colour`]), heights taken relative to the
     /// mesh's own lowest and highest vertex.
     pub fn ground_colours(&self) -> Vec<[f32; 3]> {
+        self.ground_colours_under_snow(0.0)
+    }
+
+    /// [`TerrainMesh::ground_colours`] with `snow` (0 to 1) lying on the ground as well: a
+    /// winter's day of a forest drawn with a season. Snow settles on the flats and slides off
+    /// slopes of over about 40 degrees.
+    ///
+    /// ```
+    /// use sylva_terrain::DiamondSquare;
+    /// let terrain = DiamondSquare::new(9).with_seed(1).with_amplitude(0.1).generate()?;
+    /// let mesh = terrain.mesh(1)?;
+    /// let (bare, white) = (mesh.ground_colours(), mesh.ground_colours_under_snow(1.0));
+    /// assert!(white[0][2] > bare[0][2] + 0.3); // nearly flat ground: snow-white
+    /// # Ok::<(), sylva_terrain::TerrainError>(())
+    /// ```
+    pub fn ground_colours_under_snow(&self, snow: f32) -> Vec<[f32; 3]> {
+        let snow = if snow.is_finite() {
+            snow.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let (lo, hi) = self
             .vertices
             .iter()
@@ -56,7 +77,11 @@ impl TerrainMesh {
         let span = (hi - lo).max(1e-6);
         self.vertices
             .iter()
-            .map(|v| ground_colour(v.normal[1], (v.position[1] - lo) / span))
+            .map(|v| {
+                let ground = Vec3::from(ground_colour(v.normal[1], (v.position[1] - lo) / span));
+                let lying = snow * smoothstep(0.7, 0.85, v.normal[1]);
+                ground.lerp(Vec3::from(SNOW), lying).to_array()
+            })
             .collect()
     }
 }

@@ -47,6 +47,7 @@ struct VariantLayout {
 fn lay_out_terrain(
     d: &mut DocumentBuilder,
     t: &TerrainMesh,
+    snow: f32,
     options: &GltfOptions,
 ) -> Vec<[f32; 3]> {
     let vbytes = size_of_val(t.vertices.as_slice());
@@ -54,7 +55,7 @@ fn lay_out_terrain(
     let ibytes = 4 * t.indices.len();
     let at = d.reserve(ibytes);
     let indices = d.index_view(0, at, ibytes);
-    let terrain_colours = t.ground_colours();
+    let terrain_colours = t.ground_colours_under_snow(snow);
     let colours = d.view(12 * terrain_colours.len(), None, Some(ARRAY_BUFFER));
     let material = d.material(
         "terrain".into(),
@@ -214,8 +215,9 @@ impl Document {
         let variants = builder.variants();
         let species = &builder.config().species;
         let mut d = DocumentBuilder::default();
-        let terrain_colours =
-            terrain.map_or_else(Vec::new, |t| lay_out_terrain(&mut d, t, options));
+        let terrain_colours = terrain.map_or_else(Vec::new, |t| {
+            lay_out_terrain(&mut d, t, snow_lying(builder), options)
+        });
         let mut used_variants: Vec<usize> = nodes.iter().map(|n| n.variant).collect();
         used_variants.dedup();
         // Geometry shared with other files (tiles of one world) lives in buffer 1, laid out
@@ -337,4 +339,10 @@ impl Document {
             bin_len,
         })
     }
+}
+
+/// The snow on the ground of a forest drawn on a day of the year
+/// ([`sylva_forest::ForestConfig::season`]); none without a season.
+pub(super) fn snow_lying(builder: &ForestBuilder) -> f32 {
+    builder.config().season.map_or(0.0, sylva_forest::snow)
 }

@@ -244,8 +244,9 @@ pub fn write_usda(
     file.put(head.as_bytes())?;
     if let Some(t) = terrain_mesh {
         let tint = options.terrain_colour;
+        let snow = builder.config().season.map_or(0.0, sylva_forest::snow);
         let colours = t
-            .ground_colours()
+            .ground_colours_under_snow(snow)
             .into_iter()
             .map(|c| [c[0] * tint[0], c[1] * tint[1], c[2] * tint[2]])
             .collect();
