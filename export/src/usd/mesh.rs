@@ -132,33 +132,29 @@ impl MeshData {
             ));
         }
         if let Some(phenology) = &self.phenology {
-            out.push_str(&format!("{i}    float2[] primvars:sylva:phenology = "));
-            array_of(out, phenology, |o, p| {
-                o.push('(');
-                float(o, p[0]);
-                o.push_str(", ");
-                float(o, p[1]);
-                o.push(')');
-            });
-            out.push_str(&format!(
-                " (\n{i}        interpolation = \"vertex\"\n{i}    )\n"
-            ));
+            pairs_per_vertex(out, i, "float2[] primvars:sylva:phenology", phenology);
         }
-        out.push_str(&format!("{i}    texCoord2f[] primvars:st = "));
-        array_of(out, &self.st, |o, st| {
-            o.push('(');
-            float(o, st[0]);
-            o.push_str(", ");
-            float(o, st[1]);
-            o.push(')');
-        });
-        out.push_str(&format!(
-            " (\n{i}        interpolation = \"vertex\"\n{i}    )\n"
-        ));
+        pairs_per_vertex(out, i, "texCoord2f[] primvars:st", &self.st);
         out.push_str(&format!(
             "{i}    uniform token subdivisionScheme = \"none\"\n{i}}}\n"
         ));
     }
+}
+
+/// A primvar of two numbers a vertex, `{indent}    declaration = [(a, b), ...]`, with
+/// vertex interpolation.
+fn pairs_per_vertex(out: &mut String, indent: &str, declaration: &str, values: &[[f32; 2]]) {
+    out.push_str(&format!("{indent}    {declaration} = "));
+    array_of(out, values, |o, pair| {
+        o.push('(');
+        float(o, pair[0]);
+        o.push_str(", ");
+        float(o, pair[1]);
+        o.push(')');
+    });
+    out.push_str(&format!(
+        " (\n{indent}        interpolation = \"vertex\"\n{indent}    )\n"
+    ));
 }
 
 #[cfg(test)]
