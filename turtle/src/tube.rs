@@ -401,7 +401,8 @@ impl GeometrySink for MeshBuilder {
         let wind = Wind {
             pivot: p.to_array(),
             depth: self.depth + 1,
-            phase: order.clamp(0.0, 0.999_999),
+            // Below 1 by a margin that survives being added to the depth in one f32.
+            phase: order.clamp(0.0, 0.999),
         }
         .packed();
         // Counter-clockwise seen from the up vector, which is the leaf's normal.
