@@ -48,6 +48,8 @@ struct Material {
 @group(3) @binding(1) var shadow_sampler: sampler_comparison;
 
 const TAU: f32 = 6.2831853;
+// Snow's colour: sylva_terrain::ground::SNOW.
+const SNOW: vec3<f32> = vec3<f32>(0.85, 0.87, 0.90);
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -182,31 +184,48 @@ fn leaf_season(m: Material, tree_phase: f32) -> LeafSeason {
     return out;
 }
 
+// A vertex of a leaf card as the season has it, in mesh space: grown from the card's base
+// (its wind pivot) to the season's size; other vertices as they are.
+fn grown_position(in: VertexIn, season: LeafSeason, card: bool) -> vec3<f32> {
+    return in.wind.xyz + (in.position - in.wind.xyz) * select(1.0, season.size, card);
+}
+
+// Whether a leaf card is off the tree: its order in the year (its wind phase) is not below
+// its species' share that day. Its corners are then put behind the far plane.
+fn fallen(in: VertexIn, season: LeafSeason, card: bool) -> bool {
+    return card && fract(in.wind.w) >= season.share;
+}
+
+const FALLEN_CLIP: vec4<f32> = vec4<f32>(0.0, 0.0, 2.0, 1.0);
+
+// The factor that turns a material's own colour into the season's.
+fn turned(season: LeafSeason, material: Material) -> vec3<f32> {
+    return season.colour / max(material.colour.rgb, vec3<f32>(1e-4));
+}
+
+// `albedo` under the snow lying that day where the surface catches it (0 to 1: how far it
+// faces up), as sylva_forest::vertex_phenology's snow catch.
+fn snowed(albedo: vec3<f32>, catch_snow: f32) -> vec3<f32> {
+    return mix(albedo, SNOW, globals.season.z * smoothstep(0.2, 0.7, catch_snow) * 0.85);
+}
+
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
     var out: VertexOut;
     let material = materials[in.material];
     let card = is_card(material);
-    // A card whose order in the year (its wind phase) is not below its species' share that
-    // day is not on the tree: every corner goes behind the far plane, so it is not drawn.
-    // Young cards grow from their base (the pivot).
     let season = leaf_season(material, in.tree.w);
-    let order = fract(in.wind.w);
     var grown = in;
-    grown.position = in.wind.xyz + (in.position - in.wind.xyz) * select(1.0, season.size, card);
+    grown.position = grown_position(in, season, card);
     let world = to_world(grown);
-    out.clip = globals.view_proj * vec4<f32>(world, 1.0);
-    if (card && order >= season.share) {
-        out.clip = vec4<f32>(0.0, 0.0, 2.0, 1.0);
-    }
+    out.clip = select(globals.view_proj * vec4<f32>(world, 1.0), FALLEN_CLIP, fallen(in, season, card));
     out.world = world;
     out.normal = rotate(in.rotation, in.normal);
     out.uv = in.uv;
     // The day's colour over the species' own, so the material's colour turns into it; a
     // proxy's untextured crown turns too, and thins as its cards would.
-    let turned = season.colour / max(material.colour.rgb, vec3<f32>(1e-4));
-    let shade = select(vec3<f32>(1.0), cluster_shade(order), card);
-    out.tint = in.tint.rgb * shade * turned;
+    let shade = select(vec3<f32>(1.0), cluster_shade(fract(in.wind.w)), card);
+    out.tint = in.tint.rgb * shade * turned(season, material);
     out.share = select(1.0, season.share, !card && material.season.z > 0.5);
     out.material = in.material;
     out.fade = in.tint.w;
@@ -241,12 +260,11 @@ fn ground(normal: vec3<f32>, height: f32) -> vec3<f32> {
     let grass = vec3<f32>(0.20, 0.30, 0.09);
     let soil = vec3<f32>(0.30, 0.23, 0.14);
     let rock = vec3<f32>(0.36, 0.35, 0.33);
-    let snow_colour = vec3<f32>(0.85, 0.87, 0.90);
     let slope = 1.0 - clamp(normal.y, 0.0, 1.0);
     let soil_w = smoothstep(0.08, 0.25, slope);
     let rock_w = smoothstep(0.25, 0.45, slope);
     let snow_w = smoothstep(0.80, 0.90, height) * (1.0 - rock_w);
-    return mix(mix(mix(grass, soil, soil_w), rock, rock_w), snow_colour, snow_w);
+    return mix(mix(mix(grass, soil, soil_w), rock, rock_w), SNOW, snow_w);
 }
 
 // Value noise on a unit lattice, from a hash of the corners: the ground's fine detail.
@@ -336,9 +354,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     // Snow lies on what faces up (a card, seen from either side, either way): the
     // exports' snow catch (sylva_forest::vertex_phenology) times the snow that day.
     let up = normalize(in.normal).y;
-    let catch_snow = select(max(up, 0.0), abs(up), is_card(material));
-    let snow_cover = globals.season.z * smoothstep(0.2, 0.7, catch_snow) * 0.85;
-    albedo = mix(albedo, vec3<f32>(0.85, 0.87, 0.90), snow_cover);
+    albedo = snowed(albedo, select(max(up, 0.0), abs(up), is_card(material)));
     var n = normalize(in.normal);
     if (!front) {
         n = -n;
@@ -393,11 +409,9 @@ fn vs_shadow(in: VertexIn) -> ShadowOut {
     let card = is_card(material);
     let season = leaf_season(material, in.tree.w);
     var grown = in;
-    grown.position = in.wind.xyz + (in.position - in.wind.xyz) * select(1.0, season.size, card);
-    out.clip = globals.light_view_proj * vec4<f32>(to_world(grown), 1.0);
-    if (card && fract(in.wind.w) >= season.share) {
-        out.clip = vec4<f32>(0.0, 0.0, 2.0, 1.0);
-    }
+    grown.position = grown_position(in, season, card);
+    let clip = globals.light_view_proj * vec4<f32>(to_world(grown), 1.0);
+    out.clip = select(clip, FALLEN_CLIP, fallen(in, season, card));
     out.uv = in.uv;
     out.material = in.material;
     out.fade = in.tint.w;
@@ -545,32 +559,25 @@ fn impostor_texel(in: ImpostorOut) -> ImpostorTexel {
     return out;
 }
 
-// Whether the seasons take this impostor texel's leaves off the tree: leaf texels go as the
-// species' share of cards falls (by a dither, so a crown thins evenly), and what stays turns
-// to the day's colour.
-fn impostor_leaves(in: ImpostorOut) -> LeafSeason {
-    return leaf_season(materials[in.material], in.phase);
-}
-
 @fragment
 fn fs_impostor(in: ImpostorOut) -> @location(0) vec4<f32> {
     let t = impostor_texel(in);
-    let season = impostor_leaves(in);
+    // Leaf texels go as the species' share of cards falls (by a dither, so a crown thins
+    // evenly), and what stays turns to the day's colour.
+    let material = materials[in.material];
+    let season = leaf_season(material, in.phase);
     let bare = t.leaf >= 0.5 && dither(in.clip.xy) >= season.share;
     if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade) || bare) {
         discard;
     }
-    let material = materials[in.material];
-    let turned = mix(vec3<f32>(1.0), season.colour / max(material.colour.rgb, vec3<f32>(1e-4)), t.leaf);
-    var albedo = t.colour * in.tint * turned;
-    albedo = mix(albedo, vec3<f32>(0.85, 0.87, 0.90), globals.season.z * smoothstep(0.2, 0.7, t.normal.y) * 0.85);
+    let albedo = snowed(t.colour * in.tint * mix(vec3<f32>(1.0), turned(season, material), t.leaf), t.normal.y);
     return vec4<f32>(lit(in.world, t.normal, albedo, 0.35 * t.leaf), 1.0);
 }
 
 @fragment
 fn fs_impostor_id(in: ImpostorOut) -> @location(0) vec4<f32> {
     let t = impostor_texel(in);
-    let bare = t.leaf >= 0.5 && dither(in.clip.xy) >= impostor_leaves(in).share;
+    let bare = t.leaf >= 0.5 && dither(in.clip.xy) >= leaf_season(materials[in.material], in.phase).share;
     if (t.alpha < 0.5 || faded_out(in.clip.xy, in.fade) || bare) {
         discard;
     }
