@@ -37,6 +37,7 @@ mod census;
 mod error;
 mod gltf;
 pub mod lod;
+mod phenology;
 mod spill;
 mod texture;
 mod tiles;

@@ -12,28 +12,26 @@
 //!
 //! [`Phenology`]: sylva_forest::Phenology
 
-use serde_json::json;
-use sylva_forest::{FALL_DAYS, FLUSH_DAYS, GREEN_DAYS, Species, TREE_DAYS, TURN_DAYS};
+use serde_json::{Map, Value, json};
+use sylva_forest::Species;
 
-/// `extras` of a species' leaf material: `{"sylva_phenology": {...}}`. `summer` is the
-/// species' leaf colour as drawn (the day's colour when the forest was drawn with a season).
-pub(super) fn phenology_extras(species: &Species) -> serde_json::Value {
-    let p = &species.phenology;
-    json!({
-        "sylva_phenology": {
-            "evergreen": p.evergreen,
-            "leaf_out": p.leaf_out,
-            "leaf_fall": p.leaf_fall,
-            "spring": p.spring,
-            "summer": species.leaf,
-            "autumn": p.autumn,
-            "flush_days": FLUSH_DAYS,
-            "fall_days": FALL_DAYS,
-            "turn_days": TURN_DAYS,
-            "green_days": GREEN_DAYS,
-            "tree_days": TREE_DAYS,
-        }
-    })
+use crate::phenology::{self, Value as Entry};
+
+/// `extras` of a species' leaf material: `{"sylva_phenology": {...}}`, the entries of
+/// [`phenology::entries`].
+pub(super) fn phenology_extras(species: &Species) -> Value {
+    let year: Map<String, Value> = phenology::entries(species)
+        .into_iter()
+        .map(|(name, entry)| {
+            let value = match entry {
+                Entry::Flag(flag) => json!(flag),
+                Entry::Number(number) => json!(number),
+                Entry::Colour(colour) => json!(colour),
+            };
+            (name.to_owned(), value)
+        })
+        .collect();
+    json!({ "sylva_phenology": year })
 }
 
 #[cfg(test)]
@@ -50,6 +48,6 @@ mod tests {
         assert_eq!(p["evergreen"], false);
         assert_eq!(p["leaf_out"], 120.0);
         assert_eq!(p["summer"].as_array().unwrap().len(), 3);
-        assert_eq!(p["flush_days"], f64::from(FLUSH_DAYS));
+        assert_eq!(p["flush_days"], f64::from(sylva_forest::FLUSH_DAYS));
     }
 }

@@ -7,7 +7,7 @@ use std::path::Path;
 use sylva_base::file::AtomicFile;
 use sylva_forest::Species;
 
-use super::text::float;
+use super::text::{float, tuple};
 use crate::error::ExportError;
 use crate::texture::{Texture, card_alpha_cutoff};
 
@@ -215,41 +215,27 @@ fn write_material(out: &mut String, path: &str, surface: Surface) {
     out.push_str("\n            token outputs:surface\n        }\n    }\n");
 }
 
-/// A leaf material's metadata naming its species' year, as glTF's `sylva_phenology`
-/// extras do (`crate::gltf` documents how a shader plays it; `primvars:sylva:phenology`
-/// holds each vertex's card order and snow catch).
+/// A leaf material's metadata naming its species' year ([`crate::phenology::entries`], as
+/// glTF's `sylva_phenology` extras; `primvars:sylva:phenology` holds each vertex's card order
+/// and snow catch).
 fn write_phenology(out: &mut String, species: &Species) {
-    let p = &species.phenology;
-    let colour = |out: &mut String, name: &str, c: [f32; 3]| {
-        out.push_str(&format!("                float3 {name} = ("));
-        for (k, v) in c.iter().enumerate() {
-            if k > 0 {
-                out.push_str(", ");
-            }
-            float(out, *v);
-        }
-        out.push_str(")\n");
-    };
-    let number = |out: &mut String, name: &str, v: f32| {
-        out.push_str(&format!("                float {name} = "));
-        float(out, v);
-        out.push('\n');
-    };
+    use crate::phenology::Value;
     out.push_str(" (\n        customData = {\n            dictionary sylva_phenology = {\n");
-    out.push_str(&format!(
-        "                bool evergreen = {}\n",
-        u8::from(p.evergreen)
-    ));
-    number(out, "leaf_out", p.leaf_out);
-    number(out, "leaf_fall", p.leaf_fall);
-    colour(out, "spring", p.spring);
-    colour(out, "summer", species.leaf);
-    colour(out, "autumn", p.autumn);
-    number(out, "flush_days", sylva_forest::FLUSH_DAYS);
-    number(out, "fall_days", sylva_forest::FALL_DAYS);
-    number(out, "turn_days", sylva_forest::TURN_DAYS);
-    number(out, "green_days", sylva_forest::GREEN_DAYS);
-    number(out, "tree_days", sylva_forest::TREE_DAYS);
+    for (name, value) in crate::phenology::entries(species) {
+        out.push_str("                ");
+        match value {
+            Value::Flag(flag) => out.push_str(&format!("bool {name} = {}", u8::from(flag))),
+            Value::Number(number) => {
+                out.push_str(&format!("float {name} = "));
+                float(out, number);
+            }
+            Value::Colour(colour) => {
+                out.push_str(&format!("float3 {name} = "));
+                tuple(out, &colour);
+            }
+        }
+        out.push('\n');
+    }
     out.push_str("            }\n        }\n    )");
 }
 

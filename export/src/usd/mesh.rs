@@ -4,7 +4,7 @@
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
-use super::text::{array_of, float, tuple};
+use super::text::{array_of, tuple};
 
 /// A triangle mesh as a USD mesh holds it: per-vertex positions, normals, texture
 /// coordinates (USD's `st`, t up the image) and optionally colours.
@@ -145,13 +145,7 @@ impl MeshData {
 /// vertex interpolation.
 fn pairs_per_vertex(out: &mut String, indent: &str, declaration: &str, values: &[[f32; 2]]) {
     out.push_str(&format!("{indent}    {declaration} = "));
-    array_of(out, values, |o, pair| {
-        o.push('(');
-        float(o, pair[0]);
-        o.push_str(", ");
-        float(o, pair[1]);
-        o.push(')');
-    });
+    array_of(out, values, |o, pair| tuple(o, pair));
     out.push_str(&format!(
         " (\n{indent}        interpolation = \"vertex\"\n{indent}    )\n"
     ));
