@@ -53,6 +53,7 @@ mod phenology;
 mod siting;
 mod siting_report;
 mod species;
+mod species_file;
 mod stand;
 mod stream;
 pub mod succession;
@@ -90,6 +91,6 @@ pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkSte
 
 /// The limits and tuning constants of forest generation.
 pub mod limits {
-    pub use crate::species::MAX_SPECIES_FILE_BYTES;
+    pub use crate::species_file::MAX_SPECIES_FILE_BYTES;
     pub use crate::stream::{BLOCK_PATCHES, MAX_BLOCKS};
 }
