@@ -1,8 +1,11 @@
 //! A species' year as every export names it: one list of named values, which glTF spells as
 //! a leaf material's `extras.sylva_phenology` and USD as its `customData`, so the two files
-//! always carry the same entries in the same order.
+//! always carry the same entries in the same order; and the snow on a seasoned forest's
+//! ground, which both formats paint on the terrain.
 
-use sylva_forest::{FALL_DAYS, FLUSH_DAYS, GREEN_DAYS, Species, TREE_DAYS, TURN_DAYS};
+use sylva_forest::{
+    FALL_DAYS, FLUSH_DAYS, ForestBuilder, GREEN_DAYS, Species, TREE_DAYS, TURN_DAYS,
+};
 
 /// One entry's value, typed as the formats type it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -30,4 +33,11 @@ pub(crate) fn entries(species: &Species) -> [(&'static str, Value); 11] {
         ("green_days", Value::Number(GREEN_DAYS)),
         ("tree_days", Value::Number(TREE_DAYS)),
     ]
+}
+
+/// The snow on the ground of a forest drawn on a day of the year
+/// ([`sylva_forest::ForestConfig::season`]): [`sylva_forest::snow`] that day, none without a
+/// season.
+pub(crate) fn snow_lying(builder: &ForestBuilder) -> f32 {
+    builder.config().season.map_or(0.0, sylva_forest::snow)
 }

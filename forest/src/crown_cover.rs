@@ -110,11 +110,10 @@ impl GeometrySink for CrownCover {
     }
 
     fn leaf(&mut self, frame: &Frame, size: [f32; 2], _order: f32) {
-        // The card as the mesher draws it: from the frame along the heading, centred across.
-        let (h, l) = (frame.heading() * size[0], frame.left() * (size[1] * 0.5));
-        let p = frame.position;
-        self.triangle(p + l, p - l, p - l + h);
-        self.triangle(p + l, p - l + h, p + l + h);
+        // The card as the mesher draws it.
+        let [a, b, c, d] = frame.card_corners(size);
+        self.triangle(a, b, c);
+        self.triangle(a, c, d);
         self.settle(false);
     }
 

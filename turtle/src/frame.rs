@@ -44,6 +44,25 @@ impl Frame {
         self.rotation * Vec3::Z
     }
 
+    /// The corners of a leaf card of `size` (length along the heading, width along the left
+    /// vector) at this frame: from the frame's position along the heading, centred across,
+    /// counter-clockwise seen from the up vector (the card's normal). The mesher draws cards
+    /// on these corners; whatever measures cards takes the same.
+    ///
+    /// ```
+    /// use sylva_turtle::Frame;
+    /// let [a, b, c, d] = Frame::IDENTITY.card_corners([2.0, 1.0]);
+    /// assert_eq!((c - b).length(), 2.0); // as long as the card
+    /// assert_eq!((a - b).length(), 1.0); // as wide
+    /// assert_eq!(a + b, sylva_turtle::glam::Vec3::ZERO); // the base centred on the frame
+    /// # let _ = d;
+    /// ```
+    pub fn card_corners(&self, size: [f32; 2]) -> [Vec3; 4] {
+        let (h, l) = (self.heading() * size[0], self.left() * (size[1] * 0.5));
+        let p = self.position;
+        [p + l, p - l, p - l + h, p + l + h]
+    }
+
     /// The frame as an affine transform from turtle-local to world coordinates.
     pub fn to_affine(&self) -> Affine3A {
         Affine3A::from_rotation_translation(self.rotation, self.position)

@@ -393,7 +393,6 @@ impl GeometrySink for MeshBuilder {
     }
 
     fn leaf(&mut self, frame: &Frame, size: [f32; 2], order: f32) {
-        let (h, l) = (frame.heading() * size[0], frame.left() * (size[1] * 0.5));
         let p = frame.position;
         // A card flutters about its base, one level deeper than the branch carrying it; its
         // phase is its order in the leaf season, distinct per card, so a shader reads both
@@ -405,8 +404,7 @@ impl GeometrySink for MeshBuilder {
             phase: order.clamp(0.0, 0.999),
         }
         .packed();
-        // Counter-clockwise seen from the up vector, which is the leaf's normal.
-        self.quad([p + l, p - l, p - l + h, p + l + h], frame.up(), wind);
+        self.quad(frame.card_corners(size), frame.up(), wind);
     }
 }
 

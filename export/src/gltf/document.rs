@@ -216,7 +216,7 @@ impl Document {
         let species = &builder.config().species;
         let mut d = DocumentBuilder::default();
         let terrain_colours = terrain.map_or_else(Vec::new, |t| {
-            lay_out_terrain(&mut d, t, snow_lying(builder), options)
+            lay_out_terrain(&mut d, t, crate::phenology::snow_lying(builder), options)
         });
         let mut used_variants: Vec<usize> = nodes.iter().map(|n| n.variant).collect();
         used_variants.dedup();
@@ -339,10 +339,4 @@ impl Document {
             bin_len,
         })
     }
-}
-
-/// The snow on the ground of a forest drawn on a day of the year
-/// ([`sylva_forest::ForestConfig::season`]); none without a season.
-pub(super) fn snow_lying(builder: &ForestBuilder) -> f32 {
-    builder.config().season.map_or(0.0, sylva_forest::snow)
 }

@@ -244,7 +244,7 @@ pub fn write_usda(
     file.put(head.as_bytes())?;
     if let Some(t) = terrain_mesh {
         let tint = options.terrain_colour;
-        let snow = builder.config().season.map_or(0.0, sylva_forest::snow);
+        let snow = crate::phenology::snow_lying(builder);
         let colours = t
             .ground_colours_under_snow(snow)
             .into_iter()
