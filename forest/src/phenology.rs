@@ -167,8 +167,8 @@ pub fn parse_day(text: &str) -> Option<f32> {
         .filter(|d| (1.0..=365.0).contains(d))
 }
 
-/// What a vertex carries for the seasons, as the exports write it (`_PHENOLOGY` in glTF,
-/// `primvars:sylva:phenology` in USD): the order of the leaf card it belongs to (its wind
+/// What a vertex carries for the seasons, as USD writes it (`primvars:sylva:phenology`; glTF
+/// leaves it to `_WIND` and `NORMAL`, which hold it already): the order of the leaf card it belongs to (its wind
 /// phase, [`sylva_turtle::Wind`]; 0 on bark), below which a species' day share keeps a
 /// card ([`LeafSeason::share`]); and how much snow its surface catches, how far it faces
 /// up (a card, drawn from both sides, either way).

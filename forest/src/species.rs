@@ -137,7 +137,7 @@ impl Species {
         let mut s = self.clone();
         let leaves = self.phenology.leaves(day, self.leaf);
         // Snow whitens the wood and an evergreen's needles; a shader that knows which way a
-        // surface faces puts it on the upper sides only (the exports' `_PHENOLOGY`).
+        // surface faces puts it on the upper sides only (`vertex_phenology`).
         let white = crate::snow(day);
         let snowy = |c: [f32; 3], amount: f32| c.map(|x| x + (0.85 - x) * amount * white);
         s.leaf = if self.phenology.evergreen {

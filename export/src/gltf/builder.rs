@@ -10,7 +10,7 @@ use super::schema::{
 };
 use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
-use super::extras::{COLOUR_OFFSET, PHENOLOGY_OFFSET};
+use super::extras::COLOUR_OFFSET;
 use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, position_bounds};
 use crate::error::{ExportError, Invalid};
 
@@ -147,8 +147,14 @@ impl DocumentBuilder {
 
     /// The attributes of tree vertices (48 bytes): the surface's three, then `_WIND`
     /// ([`sylva_turtle::Vertex::wind`], after the uv); and from the extras view the
-    /// `TANGENT`s, the leaf clusters' shades as normalized byte `COLOR_0`s and the seasons'
-    /// data as normalized byte `_PHENOLOGY`s ([`sylva_forest::vertex_phenology`]).
+    /// `TANGENT`s and the leaf clusters' shades as normalized byte `COLOR_0`s.
+    ///
+    /// `_WIND` is the only attribute of sylva's own (a leading underscore) on a primitive:
+    /// Blender 5.0's glTF importer pairs a mesh's custom attributes with their data in set
+    /// order, so two of different sizes fail its import in about half of its runs
+    /// (`ValueError` in `do_primitives`), and two of one size swap silently. The seasons'
+    /// per-vertex data is what `_WIND` and `NORMAL` already hold
+    /// ([`sylva_forest::vertex_phenology`], `docs/engines.md`).
     pub(super) fn tree_attributes(
         &mut self,
         views: TreeViews,
@@ -161,9 +167,6 @@ impl DocumentBuilder {
         let colour = self.accessor(views.extras, COLOUR_OFFSET, UNSIGNED_BYTE, count, "VEC4");
         self.root.accessors[colour].normalized = true;
         attributes.colour = Some(colour);
-        let phenology = self.accessor(views.extras, PHENOLOGY_OFFSET, UNSIGNED_BYTE, count, "VEC2");
-        self.root.accessors[phenology].normalized = true;
-        attributes.phenology = Some(phenology);
         attributes
     }
 

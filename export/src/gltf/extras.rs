@@ -1,21 +1,20 @@
 //! What the exporter adds to each tree vertex beside the turtle's own attributes: the
 //! tangent of the bark's normal map, the shade of the leaf cluster the vertex belongs to and
-//! its seasons' data, interleaved in one view, 24 bytes a vertex.
+//! interleaved in one view, 20 bytes a vertex. (The seasons' data of a vertex is what its
+//! `_WIND` and `NORMAL` hold already: see `builder::tree_attributes`.)
 
 use bytemuck::{Pod, Zeroable};
-use sylva_forest::{cluster_shade, vertex_phenology};
+use sylva_forest::cluster_shade;
 use sylva_turtle::{Vertex, Wind};
 
 use super::tangent::tangents;
 
-/// One vertex's extra attributes: `TANGENT`, then `COLOR_0` and `_PHENOLOGY` as normalized
-/// bytes (the second's last two bytes pad it to four).
+/// One vertex's extra attributes: `TANGENT`, then `COLOR_0` as normalized bytes.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub(super) struct VertexExtras {
     pub(super) tangent: [f32; 4],
     pub(super) colour: [u8; 4],
-    pub(super) phenology: [u8; 4],
 }
 
 /// Bytes of [`VertexExtras`], the stride of their view.
@@ -24,13 +23,9 @@ pub(super) const EXTRAS_BYTES: usize = size_of::<VertexExtras>();
 /// Where `COLOR_0` sits in [`VertexExtras`].
 pub(super) const COLOUR_OFFSET: usize = 16;
 
-/// Where `_PHENOLOGY` sits in [`VertexExtras`]: [`vertex_phenology`] as two normalized bytes.
-pub(super) const PHENOLOGY_OFFSET: usize = 20;
-
 /// The extras of `vertices`: tangents from the `bark` triangles (the leaves' normals need
 /// none); the leaf cards' vertices (those of `leaves`) coloured by their card's
-/// [`cluster_shade`], every other vertex white, so that `COLOR_0` shades only the leaves;
-/// every vertex's [`vertex_phenology`].
+/// [`cluster_shade`], every other vertex white, so that `COLOR_0` shades only the leaves.
 pub(super) fn vertex_extras(
     vertices: &[Vertex],
     bark: &[u32],
@@ -53,12 +48,7 @@ pub(super) fn vertex_extras(
             } else {
                 [255; 4]
             };
-            let [order, snow] = vertex_phenology(v, card);
-            VertexExtras {
-                tangent,
-                colour,
-                phenology: [byte(order), byte(snow), 0, 0],
-            }
+            VertexExtras { tangent, colour }
         })
         .collect()
 }
@@ -90,6 +80,6 @@ mod tests {
             assert!(card(k)[..3].iter().all(|&c| c >= 178));
         }
         assert_ne!(card(0), card(1));
-        assert_eq!(EXTRAS_BYTES, 24);
+        assert_eq!(EXTRAS_BYTES, 20);
     }
 }

@@ -163,9 +163,6 @@ pub(super) struct Attributes {
     /// Ground colours by slope and altitude.
     #[serde(rename = "COLOR_0", skip_serializing_if = "Option::is_none")]
     pub(super) colour: Option<usize>,
-    /// A tree vertex's card order and snow catch ([`sylva_forest::vertex_phenology`]).
-    #[serde(rename = "_PHENOLOGY", skip_serializing_if = "Option::is_none")]
-    pub(super) phenology: Option<usize>,
 }
 
 /// A metallic-roughness material.

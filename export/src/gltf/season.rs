@@ -2,7 +2,7 @@
 //! shader can play one with the meshes as they are.
 //!
 //! A leaf material's `extras.sylva_phenology` holds the species' [`Phenology`] and the
-//! lengths of its phases; the vertices' `_PHENOLOGY` hold each card's order and each
+//! lengths of its phases; the vertices' `_WIND` and `NORMAL` give each card's order and each
 //! surface's snow catch ([`sylva_forest::vertex_phenology`]); each placement's
 //! `_WIND_TREE` w is its tree's phase, which moves the tree's day by up to
 //! [`TREE_DAYS`] ([`sylva_forest::tree_day`]). On a day `d`, a card of order `o` on a
