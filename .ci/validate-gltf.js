@@ -48,8 +48,10 @@ async function main() {
     let count = null;
     for (const [attr, type] of Object.entries(want)) {
       const a = json.accessors[ext.attributes[attr]];
-      if (!a || a.type !== type || a.componentType !== 5126) {
-        console.log(`  instancing: node ${n} ${attr} must be a float ${type} accessor`);
+      // EXT_mesh_gpu_instancing: floats, or for ROTATION normalized signed bytes or shorts.
+      const quantized = attr === 'ROTATION' && a && a.normalized && (a.componentType === 5120 || a.componentType === 5122);
+      if (!a || a.type !== type || !(a.componentType === 5126 || quantized)) {
+        console.log(`  instancing: node ${n} ${attr} must be a float (or for ROTATION a normalized byte or short) ${type} accessor`);
         problems++;
         continue;
       }
@@ -60,10 +62,14 @@ async function main() {
       }
       if (attr === 'ROTATION') {
         const view = json.bufferViews[a.bufferView];
-        const f = new Float32Array(bin.buffer, bin.byteOffset + (view.byteOffset || 0) + (a.byteOffset || 0), a.count * 4);
+        const at = bin.byteOffset + (view.byteOffset || 0) + (a.byteOffset || 0);
+        // Normalized integers decode as max(c / max, -1) (glTF 2.0, 3.11).
+        const [Kind, max, tolerance] = { 5126: [Float32Array, 1, 1e-4], 5122: [Int16Array, 32767, 2e-4], 5120: [Int8Array, 127, 2e-2] }[a.componentType];
+        const raw = new Kind(bin.buffer, at, a.count * 4);
+        const f = (k) => Math.max(raw[k] / max, -1);
         for (let i = 0; i < a.count; i++) {
-          const len = Math.hypot(f[4 * i], f[4 * i + 1], f[4 * i + 2], f[4 * i + 3]);
-          if (Math.abs(len - 1) > 1e-4) {
+          const len = Math.hypot(f(4 * i), f(4 * i + 1), f(4 * i + 2), f(4 * i + 3));
+          if (Math.abs(len - 1) > tolerance) {
             console.log(`  instancing: node ${n} rotation ${i} has length ${len}`);
             problems++;
             break;

@@ -63,9 +63,11 @@ pub(crate) struct WorldArgs {
     /// larch); repeat for several (default: the five bundled species).
     #[arg(long, value_name = "FILE")]
     species: Vec<PathBuf>,
-    /// Instance-cache budget in MiB, shared among the species.
-    #[arg(long, value_name = "MB", default_value_t = 32)]
-    budget_mb: usize,
+    /// Instance-cache budget in MiB, shared among the species (default: sized to the
+    /// forest, 2 KiB a canopy tree from 4 MiB up to 32 MiB, which the default forest
+    /// reaches; at least one hero tree per species and form).
+    #[arg(long, value_name = "MB")]
+    budget_mb: Option<usize>,
     /// World seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -234,11 +236,11 @@ impl WorldArgs {
                     Some(file) => Some(self.model_ground(file, fit, hidden, quiet)?),
                     None => None,
                 };
-                let recipe = WorldBuilder::new(species)
+                let mut recipe = WorldBuilder::new(species)
                     .with_seed(self.seed)
-                    .with_budget(budget_bytes(self.budget_mb)?)
                     .with_density(self.density)
                     .with_masks(self.paint.clone());
+                recipe.budget = self.budget_mb.map(budget_bytes).transpose()?;
                 (recipe, ground)
             }
         };
@@ -247,7 +249,14 @@ impl WorldArgs {
             .with_year(self.year)
             .with_season(self.season);
         recipe.check().map_err(failure)?;
-        let forest = recipe.forest(&bars).map_err(failure)?;
+        // The budget follows the forest's canopy trees (`WorldBuilder::budget_for`).
+        let canopy_trees = match (&ground, self.area, self.trees) {
+            (Some(ground), _, _) => recipe.canopy_trees_on(ground.hectares()),
+            (None, Some(a), _) => recipe.canopy_trees_on(f64::from(a) * f64::from(a) / 1e4),
+            (None, None, Some(n)) => n as f64,
+            (None, None, None) => recipe.canopy_trees_on(f64::from(DEFAULT_SIDE).powi(2) / 1e4),
+        };
+        let forest = recipe.forest(canopy_trees, &bars).map_err(failure)?;
         let ground = match ground {
             Some(ground) => ground,
             None => {

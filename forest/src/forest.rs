@@ -68,7 +68,8 @@ pub struct ForestConfig {
     /// World seed. Default: 1.
     pub seed: u64,
     /// Total instance-cache budget in bytes, shared among species by weight (seedlings get a
-    /// quarter of each species' share). Default: 64 MiB.
+    /// quarter of each species' share). A share too small for one hero tree is raised to one
+    /// hero's bytes, so every species and form is drawn. Default: 64 MiB.
     pub budget: usize,
     /// Random scale variation: scales are uniform in `1 +- scale_variation`. Default: 0.1.
     pub scale_variation: f32,

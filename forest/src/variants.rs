@@ -87,13 +87,7 @@ pub(crate) fn build(config: Plan<'_>) -> Result<Built, ForestError> {
             } else {
                 u64::from(seedling)
             };
-            let cache = form_cache(
-                s,
-                form,
-                part,
-                mix(config.seed ^ ((i as u64) << 1) ^ salt),
-                config.all_ages,
-            )?;
+            let cache = form_cache(s, form, part, mix(config.seed ^ ((i as u64) << 1) ^ salt))?;
             built.heroes += cache.1;
             built.variants.push(Variant {
                 species: i,
@@ -141,14 +135,13 @@ fn every_age(s: &Species, heights: &[(u32, f32)], share: usize) -> Vec<(TreeForm
     plan
 }
 
-/// The cache of one form of `s` under `budget` bytes (in a forest of every age, at least one
-/// hero's), and its hero count.
+/// The cache of one form of `s` under `budget` bytes (at least one hero's), and its hero
+/// count.
 fn form_cache(
     s: &Species,
     form: TreeForm,
     budget: usize,
     seed: u64,
-    every_age: bool,
 ) -> Result<(InstanceCache, u32), ForestError> {
     let mut options = HeroOptions::default()
         .with_budget(budget)
@@ -170,9 +163,10 @@ fn form_cache(
         }
     }
     let built = match build_cache(&s.grammar, &options) {
-        // A forest of every age draws each form from at least one hero, whatever its share
-        // of the budget: the forms are many, and the budget is the canopy's.
-        Err(InstancingError::BudgetTooSmall { needed, .. }) if every_age => {
+        // Every form is drawn from at least one hero, whatever its share of the budget: a
+        // forest of every age has many forms, and a small forest's budget (sized to its
+        // trees) is smaller than the species' heroes.
+        Err(InstancingError::BudgetTooSmall { needed, .. }) => {
             build_cache(&s.grammar, &options.with_budget(needed))?
         }
         other => other?,

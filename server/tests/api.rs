@@ -460,7 +460,7 @@ async fn a_saved_project_is_taken_as_posted() {
     let description = WorldDescription {
         species: vec![sylva_server::SpeciesEntry::Bundled("birch".into())],
         tile_size: 50.0,
-        budget_mb: 4,
+        budget_mb: Some(4),
         ..WorldDescription::default()
     };
     let written = Project::write(&folder, &description, Some(model)).unwrap();

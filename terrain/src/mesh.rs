@@ -57,6 +57,28 @@ impl Heightmap {
         Ok(mesh)
     }
 
+    /// The stride of a mesh whose vertices stand at least `spacing` metres apart, or as near
+    /// as the map allows: the smallest power of two dividing `size - 1` that reaches it (1
+    /// when the samples already do). A small world's map is as many samples as a large
+    /// one's, so its full-detail mesh would be finer than its trees need and most of its
+    /// file.
+    ///
+    /// ```
+    /// let map = sylva_terrain::Heightmap::flat(257, 100.0 / 256.0).unwrap();
+    /// assert_eq!(map.stride_for_spacing(1.5), 4);
+    /// assert_eq!(map.stride_for_spacing(0.1), 1);
+    /// ```
+    pub fn stride_for_spacing(&self, spacing: f32) -> usize {
+        let mut stride = 1;
+        while self.spacing() * (stride as f32) < spacing
+            && (self.size() - 1).is_multiple_of(stride * 2)
+            && stride * 2 < self.size()
+        {
+            stride *= 2;
+        }
+        stride
+    }
+
     /// [`Heightmap::mesh`] into `mesh`, whose vectors are reused: meshing again into memory
     /// already in use skips the cost of fresh pages, which is most of a large mesh's (a
     /// 4097 x 4097 mesh is 940 MB).

@@ -107,7 +107,7 @@ pub(crate) fn parse() -> Result<Args, String> {
     let mut seed = 1u64;
     let mut side = 800.0f32;
     let mut trees: Option<u32> = None;
-    let mut budget_mb = 32usize;
+    let mut budget_mb: Option<usize> = None;
     let mut grammar: Option<String> = None;
     let mut files: Vec<String> = Vec::new();
     let mut camera = None;
@@ -146,7 +146,7 @@ pub(crate) fn parse() -> Result<Args, String> {
             "--seed" => seed = flags.value("--seed")?,
             "--area" => side = flags.value("--area")?,
             "--trees" => trees = Some(flags.value("--trees")?),
-            "--budget-mb" => budget_mb = flags.value("--budget-mb")?,
+            "--budget-mb" => budget_mb = Some(flags.value("--budget-mb")?),
             "--grammar" => grammar = Some(flags.value("--grammar")?),
             "--species" => files.push(flags.value("--species")?),
             "--camera" => camera = Some(Camera::parse(&flags.value::<String>("--camera")?)?),
@@ -354,7 +354,7 @@ pub(crate) fn parse() -> Result<Args, String> {
             side,
             trees,
             species: Vec::new(),
-            budget: budget_mb.max(1) << 20,
+            budget: budget_mb.map(|mb| mb.max(1) << 20),
             paint: paint.clone(),
             specimen: turntable > 0,
             floor: !no_floor,

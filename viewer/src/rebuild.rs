@@ -141,7 +141,7 @@ mod tests {
         let species = base.species.clone();
         let camera = Camera::parse("900,40,0,-10").expect("camera");
         let trees = |density: Option<f32>| {
-            let mut settings = ForestSettings::of_flags(3, 250.0, 8);
+            let mut settings = ForestSettings::of_flags(3, 250.0, Some(8));
             settings.description.density = density;
             let rebuilt = finished(&Rebuild::start(
                 &base,
@@ -173,7 +173,7 @@ mod tests {
         let species = base.species.clone();
         let camera = Camera::parse("120,120,0,-10").expect("camera");
         let settings = |density: f32, roughness: f32| {
-            let mut s = ForestSettings::of_flags(4, 250.0, 8);
+            let mut s = ForestSettings::of_flags(4, 250.0, Some(8));
             s.description.density = Some(density);
             if let sylva::world::TerrainDescription::Generated { roughness: r, .. } =
                 &mut s.description.terrain

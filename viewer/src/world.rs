@@ -88,7 +88,8 @@ pub(crate) struct SceneOptions {
     /// example's `--trees` does.
     pub(crate) trees: Option<u32>,
     pub(crate) species: Vec<Species>,
-    pub(crate) budget: usize,
+    /// Instance-cache bytes; none: sized to the forest (`WorldBuilder::budget_for`).
+    pub(crate) budget: Option<usize>,
     /// A painted forest's masks (`sylva_forest::load_masks`), if any.
     pub(crate) paint: Option<std::path::PathBuf>,
     /// A turntable's world instead: one canopy tree of the first species in the middle of a
@@ -153,7 +154,7 @@ impl SceneOptions {
             side,
             trees: None,
             species: default_species().expect("bundled species")[..2].to_vec(),
-            budget: 8 << 20,
+            budget: Some(8 << 20),
             paint: None,
             specimen: false,
             floor: true,
@@ -190,14 +191,21 @@ impl World {
                 .transpose()?,
         };
         // The species' own density is kept, for a world carried onto other ground.
-        let recipe = WorldBuilder::new(options.species)
+        let mut recipe = WorldBuilder::new(options.species)
             .with_seed(options.seed)
-            .with_budget(options.budget)
+            .with_density(options.density)
             .with_constraints(options.constraints)
             .with_year(options.year)
             .with_masks(options.paint.clone())
             .with_seedlings(!options.specimen);
-        let mut builder = recipe.forest(&Lines)?;
+        recipe.budget = options.budget;
+        // The budget follows the forest's canopy trees, as the `sylva` command's does.
+        let canopy_trees = match (&ground, options.trees) {
+            (Some(ground), _) => recipe.canopy_trees_on(ground.hectares()),
+            (None, Some(n)) => f64::from(n),
+            (None, None) => recipe.canopy_trees_on(f64::from(options.side).powi(2) / 1e4),
+        };
+        let mut builder = recipe.forest(canopy_trees, &Lines)?;
         let own_patch = builder.density().patch;
         if let Some(d) = options.density {
             builder.density_mut().patch = density_patch(d);

@@ -14,7 +14,10 @@ use sylva_paint::PaintLayer;
 
 use crate::error::WorldError;
 use crate::ground::Ground;
-use crate::limits::{DEFAULT_BUDGET_MB, MAX_DENSITY, MAX_YEARS};
+use crate::limits::{
+    BUDGET_BYTES_PER_CANOPY_TREE, CANOPY_TREES_PER_HECTARE, DEFAULT_BUDGET_MB, MAX_DENSITY,
+    MAX_YEARS, MIN_SIZED_BUDGET_MB,
+};
 use crate::progress::{Progress, Stage, timed};
 
 /// How to build a world: its species and the settings that shape its forest. Public fields
@@ -38,9 +41,9 @@ pub struct WorldBuilder {
     pub species: Vec<Species>,
     /// World seed. Default: 1.
     pub seed: u64,
-    /// Instance-cache budget in bytes, shared among the species. Default: 32 MiB
-    /// ([`DEFAULT_BUDGET_MB`]).
-    pub budget: usize,
+    /// Instance-cache budget in bytes, shared among the species. Default: `None`, sized to
+    /// the forest ([`WorldBuilder::budget_for`]).
+    pub budget: Option<usize>,
     /// Canopy trees per hectare. Default: `None`, the species' own spacing.
     pub density: Option<f32>,
     /// Where on the terrain trees may stand. Default: [`Constraints::default`].
@@ -64,7 +67,7 @@ impl WorldBuilder {
         WorldBuilder {
             species,
             seed: 1,
-            budget: DEFAULT_BUDGET_MB as usize * (1 << 20),
+            budget: None,
             density: None,
             constraints: Constraints::default(),
             year: None,
@@ -80,10 +83,46 @@ impl WorldBuilder {
         self
     }
 
-    /// Sets [`WorldBuilder::budget`].
+    /// Sets [`WorldBuilder::budget`] to `bytes`.
     pub fn with_budget(mut self, bytes: usize) -> Self {
-        self.budget = bytes;
+        self.budget = Some(bytes);
         self
+    }
+
+    /// Canopy trees a region of `hectares` is expected to hold before its forest is placed:
+    /// at [`WorldBuilder::density`], or at the bundled species' spacing
+    /// ([`CANOPY_TREES_PER_HECTARE`]).
+    ///
+    /// ```
+    /// use sylva_world::WorldBuilder;
+    /// let recipe = WorldBuilder::new(Vec::new()).with_density(Some(50.0));
+    /// assert_eq!(recipe.canopy_trees_on(4.0), 200.0);
+    /// ```
+    pub fn canopy_trees_on(&self, hectares: f64) -> f64 {
+        hectares * f64::from(self.density.unwrap_or(CANOPY_TREES_PER_HECTARE))
+    }
+
+    /// The instance-cache budget of a forest of `canopy_trees`: [`WorldBuilder::budget`] when
+    /// given, else [`BUDGET_BYTES_PER_CANOPY_TREE`] a tree, from [`MIN_SIZED_BUDGET_MB`] up to
+    /// [`DEFAULT_BUDGET_MB`]. Heroes follow the budget, so a small forest is drawn from few
+    /// hero trees and its file is small; a species' share too small for one hero is raised
+    /// to one ([`sylva_forest::ForestConfig::budget`]).
+    ///
+    /// ```
+    /// use sylva_world::WorldBuilder;
+    /// let sized = WorldBuilder::new(Vec::new());
+    /// assert_eq!(sized.budget_for(18_400.0), 32 << 20);
+    /// assert_eq!(sized.budget_for(290.0), 4 << 20);
+    /// assert_eq!(sized.budget_for(4_000.0), 4_000 << 11);
+    /// assert_eq!(sized.with_budget(4 << 20).budget_for(290.0), 4 << 20);
+    /// ```
+    pub fn budget_for(&self, canopy_trees: f64) -> usize {
+        let [floor, cap] =
+            [MIN_SIZED_BUDGET_MB, DEFAULT_BUDGET_MB].map(|mb| mb as usize * (1 << 20));
+        self.budget.unwrap_or_else(|| {
+            let sized = canopy_trees.max(0.0) * BUDGET_BYTES_PER_CANOPY_TREE as f64;
+            (sized.min(cap as f64) as usize).max(floor)
+        })
     }
 
     /// Sets [`WorldBuilder::density`].
@@ -128,7 +167,7 @@ impl WorldBuilder {
         if self.species.is_empty() {
             return bad("a world needs at least one species".into());
         }
-        if self.budget == 0 {
+        if self.budget == Some(0) {
             return bad("an instance-cache budget of 0 bytes: expected at least 1 MiB".into());
         }
         if let Some(d) = self.density
@@ -146,14 +185,19 @@ impl WorldBuilder {
         Ok(())
     }
 
-    /// The forest's recipe: the species' instance caches from hero trees (seconds), at the
-    /// density asked for. No ground is needed yet: its side may follow from the density
-    /// ([`ForestBuilder::side_for_canopy_trees`]).
-    pub fn forest(&self, progress: &dyn Progress) -> Result<ForestBuilder, WorldError> {
+    /// The recipe of a forest of about `canopy_trees` canopy trees (which size its budget,
+    /// [`WorldBuilder::budget_for`]): the species' instance caches from hero trees
+    /// (seconds), at the density asked for. No ground is needed yet: its side may follow
+    /// from the density ([`ForestBuilder::side_for_canopy_trees`]).
+    pub fn forest(
+        &self,
+        canopy_trees: f64,
+        progress: &dyn Progress,
+    ) -> Result<ForestBuilder, WorldError> {
         self.check()?;
         let mut config = ForestConfig::new(self.species.clone())
             .with_seed(self.seed)
-            .with_budget(self.budget)
+            .with_budget(self.budget_for(canopy_trees))
             .with_all_ages(self.year.is_some())
             .with_season(self.season)
             .with_constraints(self.constraints.clone());
@@ -213,7 +257,7 @@ impl WorldBuilder {
 
     /// [`WorldBuilder::forest`] then [`WorldBuilder::finish`] on `ground`.
     pub fn build(&self, ground: Ground, progress: &dyn Progress) -> Result<World, WorldError> {
-        let forest = self.forest(progress)?;
+        let forest = self.forest(self.canopy_trees_on(ground.hectares()), progress)?;
         self.finish(forest, ground, progress)
     }
 }

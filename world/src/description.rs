@@ -11,9 +11,9 @@ use sylva_forest::Species;
 use crate::error::WorldError;
 use crate::id::WorldId;
 use crate::limits::{
-    DEFAULT_BUDGET_MB, DEFAULT_GROUP, DEFAULT_ORIGIN, DEFAULT_SIDE, DEFAULT_TILE_SIZE,
-    MAX_BUDGET_MB, MAX_DENSITY, MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_GROUP, MAX_HEIGHT_RANGE,
-    MAX_SIDE, MAX_SPACING, MAX_SPECIES, MIN_SIDE, TILE_SIZE_RANGE,
+    DEFAULT_GROUP, DEFAULT_ORIGIN, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_BUDGET_MB, MAX_DENSITY,
+    MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_GROUP, MAX_HEIGHT_RANGE, MAX_SIDE, MAX_SPACING,
+    MAX_SPECIES, MIN_SIDE, TILE_SIZE_RANGE,
 };
 use crate::presets::{self, DEFAULT_RELIEF, DEFAULT_ROUGHNESS, DEFAULT_SMOOTHING};
 
@@ -53,9 +53,11 @@ pub struct WorldDescription {
     pub origin: [f64; 2],
     /// Canopy trees per hectare. Default: `None`, the species' own spacing.
     pub density: Option<f32>,
-    /// Instance-cache budget, MiB, shared among the species. Default:
-    /// [`DEFAULT_BUDGET_MB`], 32.
-    pub budget_mb: u32,
+    /// Instance-cache budget, MiB, shared among the species. Default: `None`, sized to the
+    /// forest ([`WorldBuilder::budget_for`](crate::WorldBuilder::budget_for)): up to
+    /// [`DEFAULT_BUDGET_MB`](crate::limits::DEFAULT_BUDGET_MB), 32, which the default world reaches.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub budget_mb: Option<u32>,
 }
 
 /// A species of a world.
@@ -156,7 +158,7 @@ impl Default for WorldDescription {
             group: DEFAULT_GROUP,
             origin: DEFAULT_ORIGIN,
             density: None,
-            budget_mb: DEFAULT_BUDGET_MB,
+            budget_mb: None,
         }
     }
 }
@@ -235,11 +237,11 @@ impl WorldDescription {
                 "density {d}: expected 0 < trees per hectare <= {MAX_DENSITY}"
             ));
         }
-        if !(1..=MAX_BUDGET_MB).contains(&self.budget_mb) {
-            return bad(format!(
-                "budget_mb {}: expected 1 to {MAX_BUDGET_MB}",
-                self.budget_mb
-            ));
+        if let Some(mb) = self
+            .budget_mb
+            .filter(|mb| !(1..=MAX_BUDGET_MB).contains(mb))
+        {
+            return bad(format!("budget_mb {mb}: expected 1 to {MAX_BUDGET_MB}"));
         }
         match &self.terrain {
             TerrainDescription::Generated {

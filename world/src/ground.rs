@@ -244,6 +244,11 @@ impl Ground {
         Rect::new(Vec2::ZERO, Vec2::new(self.extent[0], self.extent[1]))
     }
 
+    /// The world's area, hectares.
+    pub fn hectares(&self) -> f64 {
+        f64::from(self.extent[0]) * f64::from(self.extent[1]) / 10_000.0
+    }
+
     /// The world's longer side, metres.
     pub fn side(&self) -> f32 {
         self.extent[0].max(self.extent[1])

@@ -79,14 +79,15 @@ impl WorldDescription {
     /// use sylva_world::WorldDescription;
     /// let d = WorldDescription::parse(br#"{"species": ["pine"], "seed": 3, "budget_mb": 4}"#)?;
     /// let builder = d.world_builder()?;
-    /// assert_eq!((builder.seed, builder.budget, builder.species.len()), (3, 4 << 20, 1));
+    /// assert_eq!((builder.seed, builder.budget, builder.species.len()), (3, Some(4 << 20), 1));
     /// # Ok::<(), sylva_world::WorldError>(())
     /// ```
     pub fn world_builder(&self) -> Result<WorldBuilder, WorldError> {
-        Ok(WorldBuilder::new(self.species()?)
+        let mut builder = WorldBuilder::new(self.species()?)
             .with_seed(self.seed)
-            .with_budget(self.budget_mb as usize * (1 << 20))
-            .with_density(self.density))
+            .with_density(self.density);
+        builder.budget = self.budget_mb.map(|mb| mb as usize * (1 << 20));
+        Ok(builder)
     }
 }
 

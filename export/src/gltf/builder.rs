@@ -11,7 +11,8 @@ use super::schema::{
 use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
 use super::extras::COLOUR_OFFSET;
-use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, position_bounds};
+use super::indices::IndexWidth;
+use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, position_bounds};
 use crate::error::{ExportError, Invalid};
 
 /// Zero bytes that bring `len` to a whole number of 4-byte words.
@@ -118,9 +119,14 @@ impl DocumentBuilder {
         a
     }
 
-    /// `count` indices at `offset` bytes into `view`.
-    pub(super) fn indices(&mut self, view: usize, offset: usize, count: usize) -> usize {
-        self.accessor(view, offset, UNSIGNED_INT, count, "SCALAR")
+    /// `count` indices of `width` at `offset` bytes into `view`.
+    pub(super) fn indices(
+        &mut self,
+        view: usize,
+        offset: usize,
+        (width, count): (IndexWidth, usize),
+    ) -> usize {
+        self.accessor(view, offset, width.component(), count, "SCALAR")
     }
 
     /// An index view of `len` bytes at `offset` in `buffer`, none when empty.
@@ -171,13 +177,13 @@ impl DocumentBuilder {
     }
 
     /// The terrain's mesh and node: its vertices (32 bytes each) in `vertices`, `indices`
-    /// indices in `index_view`, and its ground colours by slope and altitude as `COLOR_0`
+    /// indices (of their width) in `index_view`, and its ground colours by slope and altitude as `COLOR_0`
     /// (`colours` of them in `colour_view`), drawn with `material`.
     pub(super) fn terrain(
         &mut self,
         vertices: usize,
         positions: impl Iterator<Item = [f32; 3]>,
-        (index_view, indices): (Option<usize>, usize),
+        (index_view, indices): (Option<usize>, (IndexWidth, usize)),
         (colour_view, colours): (usize, usize),
         material: usize,
     ) {
@@ -382,7 +388,7 @@ mod tests {
         let mut d = DocumentBuilder::default();
         let view = d.view(6, None, Some(ELEMENT_ARRAY_BUFFER));
         assert_eq!(d.bin_len, 8, "views are padded to words");
-        let indices = d.indices(view, 0, 3);
+        let indices = d.indices(view, 0, (IndexWidth::Int, 3));
         let positions = d.view(36, Some(12), None);
         let position = d.positions(positions, 0, [[0.0, 1.0, 0.5], [2.0, -1.0, 0.0], [1.0; 3]]);
         let material = d.material(

@@ -10,10 +10,12 @@ use sylva_turtle::Vertex;
 
 use super::builder::{DocumentBuilder, TreeViews};
 use super::extras::EXTRAS_BYTES;
+use super::indices::IndexWidth;
+use super::placement_words::{SECTION_ACCESSORS, SECTION_WORDS};
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
 use super::shared::{SharedLayout, TextureSet, section_lengths};
 use super::subset::CacheSubset;
-use super::{ARRAY_BUFFER, FLOAT, GltfOptions, Node};
+use super::{ARRAY_BUFFER, GltfOptions, Node};
 use crate::error::ExportError;
 
 /// The JSON chunk and the binary layout, decided before any byte is written.
@@ -38,6 +40,8 @@ pub(super) struct Document {
 struct VariantLayout {
     attributes: Attributes,
     views: TreeViews,
+    /// The width of its indices, by its vertex count.
+    width: IndexWidth,
     bark_material: usize,
     leaf_material: usize,
 }
@@ -52,7 +56,8 @@ fn lay_out_terrain(
 ) -> Vec<[f32; 3]> {
     let vbytes = size_of_val(t.vertices.as_slice());
     let vertices = d.view(vbytes, Some(32), Some(ARRAY_BUFFER));
-    let ibytes = 4 * t.indices.len();
+    let width = IndexWidth::for_vertices(t.vertices.len());
+    let ibytes = width.bytes() * t.indices.len();
     let at = d.reserve(ibytes);
     let indices = d.index_view(0, at, ibytes);
     let terrain_colours = t.ground_colours_under_snow(snow);
@@ -67,7 +72,7 @@ fn lay_out_terrain(
     d.terrain(
         vertices,
         t.vertices.iter().map(|v| v.position),
-        (indices, t.indices.len()),
+        (indices, (width, t.indices.len())),
         (colours, terrain_colours.len()),
         material,
     );
@@ -105,6 +110,7 @@ fn lay_out_variant(
     VariantLayout {
         attributes,
         views,
+        width: IndexWidth::for_vertices(vertices.len()),
         bark_material,
         leaf_material,
     }
@@ -123,7 +129,9 @@ fn instance_primitives(
         (shared.views.leaves, leaves, shared.leaf_material),
     ] {
         if let (Some(view), false) = (view, span.is_empty()) {
-            let indices = d.indices(view, span.start as usize * 4, span.count as usize);
+            let width = shared.width;
+            let at = span.start as usize * width.bytes();
+            let indices = d.indices(view, at, (width, span.count as usize));
             primitives.push(Primitive {
                 attributes: shared.attributes,
                 indices: Some(indices),
@@ -176,16 +184,12 @@ fn lay_out_node(
                 inst.id, inst.age, node.instance
             );
             let mesh = d.mesh(mesh_name, primitives);
-            let widths = [
-                (12, "VEC3"),
-                (16, "VEC4"),
-                (12, "VEC3"),
-                (12, "VEC3"),
-                (16, "VEC4"),
-            ];
             let [t, r, s, c, w] = [0, 1, 2, 3, 4].map(|k| {
-                let (width, kind) = widths[k];
-                d.accessor(sections[k], width * node.first, FLOAT, node.count, kind)
+                let (component, kind, normalized) = SECTION_ACCESSORS[k];
+                let at = 4 * SECTION_WORDS[k] * node.first;
+                let a = d.accessor(sections[k], at, component, node.count, kind);
+                d.root.accessors[a].normalized = normalized;
+                a
             });
             let name = format!("{name} {tag} instance {}", node.instance);
             d.instanced_node(name, mesh, [t, r, s, c], Some(w));
@@ -286,7 +290,7 @@ impl Document {
         let sections = if one_node_each.is_some() {
             [0; 5]
         } else {
-            [12, 16, 12, 12, 16].map(|width| d.view(width * placements, None, None))
+            SECTION_WORDS.map(|words| d.view(4 * words * placements, None, None))
         };
         let bin_len = d.bin_len;
         for (k, node) in nodes.iter().enumerate() {

@@ -9,8 +9,10 @@ use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
 use super::document::Document;
-use super::extras::vertex_extras;
-use super::{Node, PLACEMENT_BYTES, glb_header};
+use super::indices::IndexWidth;
+use super::placement_words::{self, PLACEMENT_BYTES, SECTION_WORDS};
+use super::shared::put_tree_sections;
+use super::{Node, glb_header};
 use crate::census::{check_transform, kept_trees};
 use crate::error::{ExportError, Invalid};
 use crate::spill::TreeSpill;
@@ -50,33 +52,27 @@ pub(super) fn write_geometry(
     document: &Document,
 ) -> Result<(), ExportError> {
     let mut written = 0usize;
+    // Each buffer is padded to a whole number of 4-byte words, as the layout reserved it.
     let mut put = |w: &mut AtomicFile, bytes: &[u8]| -> Result<(), ExportError> {
         w.put(bytes)?;
-        written += bytes.len();
+        w.put(&[0; 3][..padding(bytes.len())])?;
+        written += bytes.len() + padding(bytes.len());
         Ok(())
     };
     if let Some(t) = terrain {
         put(w, bytemuck::cast_slice(&t.vertices))?;
-        put(w, bytemuck::cast_slice(&t.indices))?;
+        put(
+            w,
+            &IndexWidth::for_vertices(t.vertices.len()).encode(&t.indices),
+        )?;
         put(w, bytemuck::cast_slice(&document.terrain_colours))?;
     }
     for subset in &document.embedded {
-        put(w, bytemuck::cast_slice(&subset.vertices))?;
-        put(
-            w,
-            bytemuck::cast_slice(&vertex_extras(
-                &subset.vertices,
-                &subset.bark,
-                &subset.leaves,
-            )),
-        )?;
-        put(w, bytemuck::cast_slice(&subset.bark))?;
-        put(w, bytemuck::cast_slice(&subset.leaves))?;
+        let sections = (&subset.bark[..], &subset.leaves[..]);
+        put_tree_sections(&subset.vertices, sections, |bytes| put(w, bytes))?;
     }
-    // Every buffer above is a whole number of 4-byte words; images are padded to one.
     for image in document.images.iter() {
         put(w, image)?;
-        put(w, &[0; 3][..padding(image.len())])?;
     }
     debug_assert_eq!(written, document.placement_base);
     Ok(())
@@ -86,27 +82,23 @@ pub(super) fn write_geometry(
 /// ([`AtomicFile::start_writeback`]).
 const WRITEBACK_BYTES: usize = 128 << 20;
 
-/// The sections of placements, in file order: translation, rotation, scale, tint and wind,
-/// with the floats each placement has in them.
-const SECTION_FLOATS: [usize; 5] = [3, 4, 3, 3, 4];
-
 /// One node's placements not yet written, section by section, and how many it has written.
 #[derive(Debug, Default)]
 struct NodeBuffer {
-    sections: [Vec<f32>; 5],
+    sections: [Vec<u32>; 5],
     written: usize,
 }
 
 /// A block's placements as the file holds them, grouped by node: the runs `(node, count)` in
-/// ascending node order (each node's placements in the forest's order), and their floats
+/// ascending node order (each node's placements in the forest's order), and their words
 /// section by section in the same order.
 #[derive(Debug, Default)]
 struct BlockRuns {
     runs: Vec<(u32, u32)>,
-    sections: [Vec<f32>; 5],
+    sections: [Vec<u32>; 5],
 }
 
-/// Groups `block`'s placements by node and spells them as the file's floats, each transform
+/// Groups `block`'s placements by node and spells them as the file's words, each transform
 /// checked. Tints and wind data are worked out once per tree, not per placement. Runs on the
 /// core that placed the block, so the writer only copies whole runs.
 fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, Invalid> {
@@ -129,7 +121,7 @@ fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, 
     order.sort_by_key(|&k| nodes[k as usize]);
     let mut out = BlockRuns {
         runs: Vec::new(),
-        sections: SECTION_FLOATS.map(|floats| Vec::with_capacity(floats * nodes.len())),
+        sections: SECTION_WORDS.map(|words| Vec::with_capacity(words * nodes.len())),
     };
     for &k in &order {
         let node = nodes[k as usize];
@@ -144,18 +136,22 @@ fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, 
         let p = &block.placements[k as usize];
         let (x, tree) = (&p.transform, p.tree as usize);
         let [t, r, s, c, w] = &mut out.sections;
-        t.extend_from_slice(&x.translation.to_array());
-        r.extend_from_slice(&x.rotation.normalize().to_array());
-        s.extend_from_slice(&[x.scale; 3]);
-        c.extend_from_slice(tints.get(tree).unwrap_or(&[1.0; 3]));
-        w.extend_from_slice(winds.get(tree).unwrap_or(&[0.0; 4]));
+        t.extend(placement_words::floats(&x.translation.to_array()));
+        r.extend(placement_words::rotation(x.rotation));
+        s.extend(placement_words::floats(&[x.scale; 3]));
+        c.extend(placement_words::floats(
+            tints.get(tree).unwrap_or(&[1.0; 3]),
+        ));
+        w.extend(placement_words::floats(
+            winds.get(tree).unwrap_or(&[0.0; 4]),
+        ));
     }
     Ok(out)
 }
 
 /// Streams the forest once, from the trees the counting pass kept in `spill`, and writes
 /// every placement at its place in the T, R, S, tint and wind sections (which start at file
-/// offset `base`). Blocks are expanded and turned into the file's floats on every core while
+/// offset `base`). Blocks are expanded and turned into the file's words on every core while
 /// the previous wave is written ([`ForestBuilder::stream_map_from`]); each node's placements
 /// are buffered and written at their place whenever the node holds its share of
 /// `chunk_bytes`, so memory stays within about `chunk_bytes` however many placements there
@@ -176,9 +172,9 @@ pub(super) fn write_placements(
 ) -> Result<usize, ExportError> {
     let mut section_base = [0usize; 5];
     let mut at = base;
-    for (k, floats) in SECTION_FLOATS.iter().enumerate() {
+    for (k, words) in SECTION_WORDS.iter().enumerate() {
         section_base[k] = at;
-        at += 4 * floats * total;
+        at += 4 * words * total;
     }
     // Each node's share of the memory, in placements: at least one.
     let flush_at = (chunk_bytes / (PLACEMENT_BYTES * nodes.len().max(1))).max(1);
@@ -186,9 +182,9 @@ pub(super) fn write_placements(
     // Bytes put since the disk was last asked to catch up.
     let mut unsynced = 0usize;
     let mut flush = |w: &mut AtomicFile, node: &Node, buffer: &mut NodeBuffer| {
-        let count = buffer.sections[0].len() / SECTION_FLOATS[0];
-        for (k, floats) in SECTION_FLOATS.iter().enumerate() {
-            let offset = section_base[k] + 4 * floats * (node.first + buffer.written);
+        let count = buffer.sections[0].len() / SECTION_WORDS[0];
+        for (k, words) in SECTION_WORDS.iter().enumerate() {
+            let offset = section_base[k] + 4 * words * (node.first + buffer.written);
             w.put_at(offset as u64, bytemuck::cast_slice(&buffer.sections[k]))?;
             buffer.sections[k].clear();
         }
@@ -208,18 +204,18 @@ pub(super) fn write_placements(
         let mut from = [0usize; 5];
         for &(node, count) in &runs.runs {
             let at = from;
-            for (k, floats) in SECTION_FLOATS.iter().enumerate() {
-                from[k] += floats * count as usize;
+            for (k, words) in SECTION_WORDS.iter().enumerate() {
+                from[k] += words * count as usize;
             }
             let (Some(buffer), Some(node)) =
                 (buffers.get_mut(node as usize), nodes.get(node as usize))
             else {
                 continue;
             };
-            for k in 0..SECTION_FLOATS.len() {
+            for k in 0..SECTION_WORDS.len() {
                 buffer.sections[k].extend_from_slice(&runs.sections[k][at[k]..from[k]]);
             }
-            if buffer.sections[0].len() / SECTION_FLOATS[0] >= flush_at {
+            if buffer.sections[0].len() / SECTION_WORDS[0] >= flush_at {
                 flush(w, node, buffer)?;
             }
         }

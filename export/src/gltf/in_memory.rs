@@ -10,6 +10,7 @@ use sylva_turtle::{Mesh, Vertex};
 
 use super::builder::{DocumentBuilder, TreeViews, padding};
 use super::extras::{EXTRAS_BYTES, vertex_extras};
+use super::indices::IndexWidth;
 use super::schema::Primitive;
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, glb_header};
 use crate::error::ExportError;
@@ -38,7 +39,7 @@ impl InMemory {
                 None,
                 Some(ELEMENT_ARRAY_BUFFER),
             );
-            self.doc.indices(view, 0, indices.len())
+            self.doc.indices(view, 0, (IndexWidth::Int, indices.len()))
         })
     }
 
@@ -100,7 +101,7 @@ impl InMemory {
         self.doc.terrain(
             vertices,
             terrain.vertices.iter().map(|v| v.position),
-            (index_view, terrain.indices.len()),
+            (index_view, (IndexWidth::Int, terrain.indices.len())),
             (colour_view, colours.len()),
             material,
         );

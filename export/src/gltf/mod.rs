@@ -17,7 +17,9 @@ mod document;
 mod extras;
 mod file;
 mod in_memory;
+mod indices;
 mod lod;
+mod placement_words;
 mod schema;
 mod season;
 mod shared;
@@ -156,17 +158,16 @@ pub struct GlbStats {
     pub triangles: u64,
 }
 
-/// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, about a million placements of 68 bytes.
+/// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, about 1.1 million placements of 60 bytes.
 pub const CHUNK_BYTES: usize = 64 << 20;
 
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_BYTE: u32 = 5121;
+const SHORT: u32 = 5122;
+const UNSIGNED_SHORT: u32 = 5123;
 const UNSIGNED_INT: u32 = 5125;
-/// Bytes of one placement in the file: translation, rotation, scale (as three floats), the
-/// tree's tint and its wind data.
-const PLACEMENT_BYTES: usize = 12 + 16 + 12 + 12 + 16;
 
 /// Writes the forest of `region` on `terrain`, and optionally a terrain mesh, as a binary glTF
 /// at `path`. The file declares EXT_mesh_gpu_instancing; every node of an instance mesh

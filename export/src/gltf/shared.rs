@@ -12,6 +12,7 @@ use sylva_turtle::Vertex;
 
 use super::builder::padding;
 use super::extras::{EXTRAS_BYTES, vertex_extras};
+use super::indices::IndexWidth;
 use crate::error::ExportError;
 use crate::texture::Texture;
 
@@ -36,14 +37,29 @@ pub(super) struct SharedLayout {
 }
 
 /// Bytes of the four sections a tree mesh is written in: its vertices, their extras
-/// (tangents and leaf shades), its bark indices and its leaf indices.
+/// (tangents and leaf shades), its bark indices and its leaf indices (of the width its
+/// vertex count allows).
 pub(super) fn section_lengths(vertices: &[Vertex], bark: &[u32], leaves: &[u32]) -> [usize; 4] {
+    let width = IndexWidth::for_vertices(vertices.len()).bytes();
     [
         size_of_val(vertices),
         EXTRAS_BYTES * vertices.len(),
-        4 * bark.len(),
-        4 * leaves.len(),
+        width * bark.len(),
+        width * leaves.len(),
     ]
+}
+
+/// Puts a tree mesh's four sections (see [`section_lengths`]) with `put`, which pads each.
+pub(super) fn put_tree_sections<E>(
+    vertices: &[Vertex],
+    (bark, leaves): (&[u32], &[u32]),
+    mut put: impl FnMut(&[u8]) -> Result<(), E>,
+) -> Result<(), E> {
+    let width = IndexWidth::for_vertices(vertices.len());
+    put(bytemuck::cast_slice(vertices))?;
+    put(bytemuck::cast_slice(&vertex_extras(vertices, bark, leaves)))?;
+    put(&width.encode(bark))?;
+    put(&width.encode(leaves))
 }
 
 impl SharedLayout {
@@ -186,14 +202,7 @@ pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usi
     };
     for v in builder.variants() {
         let c = &v.cache;
-        put(bytemuck::cast_slice(&c.vertices))?;
-        put(bytemuck::cast_slice(&vertex_extras(
-            &c.vertices,
-            &c.bark,
-            &c.leaves,
-        )))?;
-        put(bytemuck::cast_slice(&c.bark))?;
-        put(bytemuck::cast_slice(&c.leaves))?;
+        put_tree_sections(&c.vertices, (&c.bark, &c.leaves), &mut put)?;
     }
     for png in layout.textures.images().iter() {
         put(png)?;

@@ -29,13 +29,14 @@ pub(crate) struct ForestSettings {
 impl ForestSettings {
     /// Settings for the world the viewer's flags describe: `seed`, a side of `side` metres,
     /// generated terrain as the viewer makes it by default, the species' own density, an
-    /// instance-cache budget of `budget_mb` (within the description's 1 to 128).
-    pub(crate) fn of_flags(seed: u64, side: f32, budget_mb: usize) -> ForestSettings {
+    /// instance-cache budget of `budget_mb` (within the description's 1 to 128; none: sized
+    /// to the forest).
+    pub(crate) fn of_flags(seed: u64, side: f32, budget_mb: Option<usize>) -> ForestSettings {
         ForestSettings {
             description: WorldDescription {
                 seed,
                 area: side.clamp(MIN_SIDE, MAX_SIDE),
-                budget_mb: budget_mb.clamp(1, MAX_BUDGET_MB as usize) as u32,
+                budget_mb: budget_mb.map(|mb| mb.clamp(1, MAX_BUDGET_MB as usize) as u32),
                 ..WorldDescription::default()
             },
             model: None,
@@ -126,7 +127,7 @@ impl ForestSettings {
             side: d.area,
             trees: None,
             species,
-            budget: d.budget_mb as usize * (1 << 20),
+            budget: d.budget_mb.map(|mb| mb as usize * (1 << 20)),
             terrain: None,
             ground: Some((ground.map, ground.extent)),
             density: d.density,

@@ -44,7 +44,8 @@ pub(crate) fn session(
 /// The forest settings of the viewer's flags: its seed, side and budget, and its elevation
 /// model (which a project keeps whole: a cropped one cannot be kept).
 fn flags_forest(scene: &SceneOptions) -> Result<ForestSettings, ViewerError> {
-    let mut settings = ForestSettings::of_flags(scene.seed, scene.side, scene.budget >> 20);
+    let mut settings =
+        ForestSettings::of_flags(scene.seed, scene.side, scene.budget.map(|b| b >> 20));
     if let Some(file) = &scene.terrain {
         if file.crop.is_some() {
             return Err(ViewerError::Usage(

@@ -493,7 +493,7 @@ mod tests {
     use super::*;
 
     fn settings() -> ForestSettings {
-        ForestSettings::of_flags(1, 400.0, 32)
+        ForestSettings::of_flags(1, 400.0, Some(32))
     }
 
     fn scratch(name: &str) -> PathBuf {

@@ -215,7 +215,7 @@ mod tests {
         ] {
             let project = std::env::temp_dir().join(format!("sylva-panel-golden-{name}"));
             let _ = std::fs::remove_dir_all(&project);
-            let settings = super::super::forest::ForestSettings::of_flags(1, 800.0, 32);
+            let settings = super::super::forest::ForestSettings::of_flags(1, 800.0, Some(32));
             let mut editor = super::super::Editor::open(&[], project.clone(), settings).unwrap();
             editor.tab = tab;
             let Some(pixels) = panel(&mut editor, size) else {
@@ -248,7 +248,7 @@ mod tests {
     #[test]
     fn the_panel_shows_a_problem_in_red() {
         let project = std::env::temp_dir().join("sylva-panel-problem");
-        let settings = super::super::forest::ForestSettings::of_flags(1, 400.0, 32);
+        let settings = super::super::forest::ForestSettings::of_flags(1, 400.0, Some(32));
         let mut editor = super::super::Editor::open(&[], project.clone(), settings).unwrap();
         let size = (1280, 720);
         let Some(clean) = panel(&mut editor, size) else {
