@@ -64,7 +64,7 @@ pub(crate) struct WorldArgs {
     #[arg(long, value_name = "FILE")]
     species: Vec<PathBuf>,
     /// Instance-cache budget in MiB, shared among the species (default: sized to the
-    /// forest, 2 KiB a canopy tree from 4 MiB up to 32 MiB, which the default forest
+    /// forest, 2 KiB a canopy tree from 6 MiB up to 32 MiB, which the default forest
     /// reaches; at least one hero tree per species and form).
     #[arg(long, value_name = "MB")]
     budget_mb: Option<usize>,

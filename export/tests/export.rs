@@ -30,6 +30,9 @@ fn exported_glb_is_well_formed_and_counts_match() {
     // Required too: an importer without instancing must refuse the file rather than stack
     // every placement at the origin.
     assert_eq!(json["extensionsRequired"][0], "EXT_mesh_gpu_instancing");
+    // Its trees' normals and tangents are normalized bytes (issue 51), which an importer
+    // must read as such.
+    assert_eq!(json["extensionsRequired"][1], "KHR_mesh_quantization");
     // Leaf cards carry an alpha-masked, double-sided texture embedded as PNG.
     let images = json["images"].as_array().unwrap();
     assert!(!images.is_empty() && images.iter().all(|i| i["mimeType"] == "image/png"));
@@ -216,10 +219,11 @@ fn the_file_is_the_same_at_any_chunk_size_and_thread_count() {
     // (more trees), denser needle cards, cutoffs below each card's mean alpha; the seasons'
     // leaf materials' `sylva_phenology` extras (the `_PHENOLOGY` vertex attribute came and went: see
     // `custom_attributes_are_one_a_primitive`). Issue 51: placements' ROTATION as normalized
-    // shorts, 16-bit indices for a cache of at most 65,535 vertices.
+    // shorts, 16-bit indices for a cache of at most 65,535 vertices, byte normals and
+    // tangents (KHR_mesh_quantization).
     assert_eq!(
         (reference.len(), fnv1a(&reference)),
-        (3_431_012, 7_566_834_196_123_935_691),
+        (2_862_272, 12_268_288_974_223_102_809),
         "the pinned file changed"
     );
     // A tiny buffer writes each instance's placements in many small pieces, still in two
@@ -340,6 +344,7 @@ fn one_node_per_placement_writes_plain_nodes_sharing_meshes() {
     let bytes = std::fs::read(&path).unwrap();
     let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    // No extension at all, not even quantization: this file is for importers with neither.
     assert!(json.get("extensionsUsed").is_none());
     let nodes = json["nodes"].as_array().unwrap();
     assert_eq!(nodes.len(), stats.placements);

@@ -112,7 +112,7 @@ impl WorldBuilder {
     /// use sylva_world::WorldBuilder;
     /// let sized = WorldBuilder::new(Vec::new());
     /// assert_eq!(sized.budget_for(18_400.0), 32 << 20);
-    /// assert_eq!(sized.budget_for(290.0), 4 << 20);
+    /// assert_eq!(sized.budget_for(290.0), 6 << 20);
     /// assert_eq!(sized.budget_for(4_000.0), 4_000 << 11);
     /// assert_eq!(sized.with_budget(4 << 20).budget_for(290.0), 4 << 20);
     /// ```

@@ -5,14 +5,14 @@
 
 use super::schema::{
     Accessor, Attributes, Buffer, BufferView, GPU_INSTANCING, GpuInstancing, Image,
-    InstanceAttributes, Material, Mesh, Node, NodeExtensions, Pbr, Primitive, Root, Sampler, Scene,
-    Texture, TextureRef,
+    InstanceAttributes, MESH_QUANTIZATION, Material, Mesh, Node, NodeExtensions, Pbr, Primitive,
+    Root, Sampler, Scene, Texture, TextureRef,
 };
 use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
-use super::extras::COLOUR_OFFSET;
+use super::extras::VertexLayout;
 use super::indices::IndexWidth;
-use super::{ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, position_bounds};
+use super::{BYTE, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, position_bounds};
 use crate::error::{ExportError, Invalid};
 
 /// Zero bytes that bring `len` to a whole number of 4-byte words.
@@ -36,11 +36,14 @@ pub(super) struct DocumentBuilder {
     pub(super) root: Root,
     /// Bytes of buffer 0 (the GLB's BIN chunk) laid out so far, a whole number of words.
     pub(super) bin_len: usize,
+    /// Whether an attribute is quantized (`KHR_mesh_quantization`, which the file then
+    /// requires: an importer without it would misread the normals).
+    pub(super) quantized: bool,
 }
 
-/// Where the four buffers of a tree mesh are: one vertex view (positions, normals, uvs, wind),
-/// the vertex extras (tangents and leaf shades, `extras::VertexExtras`), and the bark and leaf
-/// indices (none when empty).
+/// Where the four buffers of a tree mesh are: one view of its vertices and one of their
+/// extras (as `extras::VertexLayout` lays them out), and the bark and leaf indices (none
+/// when empty).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct TreeViews {
     pub(super) vertices: usize,
@@ -151,9 +154,10 @@ impl DocumentBuilder {
         }
     }
 
-    /// The attributes of tree vertices (48 bytes): the surface's three, then `_WIND`
-    /// ([`sylva_turtle::Vertex::wind`], after the uv); and from the extras view the
-    /// `TANGENT`s and the leaf clusters' shades as normalized byte `COLOR_0`s.
+    /// The attributes of tree vertices in `layout`: positions, uvs and `_WIND`
+    /// ([`sylva_turtle::Vertex::wind`]) as floats; `NORMAL`s and `TANGENT`s as floats, or
+    /// in [`VertexLayout::Quantized`] as normalized bytes (`KHR_mesh_quantization`, which
+    /// the file then requires); the leaf clusters' shades as normalized byte `COLOR_0`s.
     ///
     /// `_WIND` is the only attribute of sylva's own (a leading underscore) on a primitive:
     /// Blender 5.0's glTF importer pairs a mesh's custom attributes with their data in set
@@ -165,14 +169,32 @@ impl DocumentBuilder {
         &mut self,
         views: TreeViews,
         positions: impl Iterator<Item = [f32; 3]>,
+        layout: VertexLayout,
     ) -> Attributes {
-        let mut attributes = self.surface_attributes(views.vertices, positions);
-        let count = self.root.accessors[attributes.position].count;
-        attributes.wind = Some(self.accessor(views.vertices, 32, FLOAT, count, "VEC4"));
-        attributes.tangent = Some(self.accessor(views.extras, 0, FLOAT, count, "VEC4"));
-        let colour = self.accessor(views.extras, COLOUR_OFFSET, UNSIGNED_BYTE, count, "VEC4");
-        self.root.accessors[colour].normalized = true;
-        attributes.colour = Some(colour);
+        let position = self.positions(views.vertices, 0, positions);
+        let count = self.root.accessors[position].count;
+        let at = layout.offsets();
+        let view = |(k, offset): (usize, usize)| ([views.vertices, views.extras][k], offset);
+        let quantized = layout == VertexLayout::Quantized;
+        let (component, normalized) = if quantized {
+            (BYTE, true)
+        } else {
+            (FLOAT, false)
+        };
+        let mut accessor = |(view, offset), component, kind, normalized| {
+            let a = self.accessor(view, offset, component, count, kind);
+            self.root.accessors[a].normalized = normalized;
+            Some(a)
+        };
+        let attributes = Attributes {
+            position,
+            normal: accessor(view(at.normal), component, "VEC3", normalized),
+            tangent: accessor(view(at.tangent), component, "VEC4", normalized),
+            colour: accessor((views.extras, at.colour), UNSIGNED_BYTE, "VEC4", true),
+            uv: accessor((views.vertices, at.uv), FLOAT, "VEC2", false),
+            wind: accessor((views.vertices, at.wind), FLOAT, "VEC4", false),
+        };
+        self.quantized |= quantized;
         attributes
     }
 
@@ -369,6 +391,10 @@ impl DocumentBuilder {
         if self.root.nodes.iter().any(|n| n.extensions.is_some()) {
             self.root.extensions_used.push(GPU_INSTANCING.into());
             self.root.extensions_required.push(GPU_INSTANCING.into());
+        }
+        if self.quantized {
+            self.root.extensions_used.push(MESH_QUANTIZATION.into());
+            self.root.extensions_required.push(MESH_QUANTIZATION.into());
         }
         let mut json =
             serde_json::to_string(&self.root).map_err(|e| Invalid::Json(e.to_string()))?;

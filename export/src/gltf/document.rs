@@ -9,11 +9,11 @@ use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use super::builder::{DocumentBuilder, TreeViews};
-use super::extras::EXTRAS_BYTES;
+use super::extras::VertexLayout;
 use super::indices::IndexWidth;
 use super::placement_words::{SECTION_ACCESSORS, SECTION_WORDS};
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
-use super::shared::{SharedLayout, TextureSet, section_lengths};
+use super::shared::{SHARED_LAYOUT, SharedLayout, TextureSet, section_lengths};
 use super::subset::CacheSubset;
 use super::{ARRAY_BUFFER, GltfOptions, Node};
 use crate::error::ExportError;
@@ -29,6 +29,8 @@ pub(super) struct Document {
     pub(super) images: Arc<Vec<Vec<u8>>>,
     /// The terrain's ground colours, after its indices.
     pub(super) terrain_colours: Vec<[f32; 3]>,
+    /// How its tree vertices are laid out.
+    pub(super) layout: VertexLayout,
     /// Offset in the BIN chunk where the placement sections start.
     pub(super) placement_base: usize,
     pub(super) bin_len: usize,
@@ -84,27 +86,27 @@ fn lay_out_terrain(
 /// its bark and leaf materials.
 fn lay_out_variant(
     d: &mut DocumentBuilder,
-    (vertices, lengths): (&[Vertex], [usize; 4]),
+    (vertices, lengths, layout): (&[Vertex], [usize; 4], VertexLayout),
     species: &Species,
     (buffer, at): (usize, [usize; 4]),
     textures: &TextureSet,
     options: &GltfOptions,
 ) -> VariantLayout {
     let [vbytes, ebytes, bbytes, lbytes] = lengths;
-    let stride = size_of::<Vertex>() as u32;
+    let stride = layout.vertex_bytes() as u32;
     let views = TreeViews {
         vertices: d.view_in(buffer, at[0], vbytes, Some(stride), Some(ARRAY_BUFFER)),
         extras: d.view_in(
             buffer,
             at[1],
             ebytes,
-            Some(EXTRAS_BYTES as u32),
+            Some(layout.extras_bytes() as u32),
             Some(ARRAY_BUFFER),
         ),
         bark: d.index_view(buffer, at[2], bbytes),
         leaves: d.index_view(buffer, at[3], lbytes),
     };
-    let attributes = d.tree_attributes(views, vertices.iter().map(|v| v.position));
+    let attributes = d.tree_attributes(views, vertices.iter().map(|v| v.position), layout);
     let (bark_material, leaf_material) =
         d.species_materials(species, options.roughness, textures.of_species(species));
     VariantLayout {
@@ -222,6 +224,14 @@ impl Document {
         let terrain_colours = terrain.map_or_else(Vec::new, |t| {
             lay_out_terrain(&mut d, t, crate::phenology::snow_lying(builder), options)
         });
+        // Instanced files quantize their normals, as the files shared with them do; the
+        // fallback of a node per placement is for importers without instancing (Godot 4),
+        // which read no quantization either.
+        let layout = match (&options.shared_geometry, one_node_each) {
+            (Some(_), _) => SHARED_LAYOUT,
+            (None, Some(_)) => VertexLayout::Float,
+            (None, None) => VertexLayout::Quantized,
+        };
         let mut used_variants: Vec<usize> = nodes.iter().map(|n| n.variant).collect();
         used_variants.dedup();
         // Geometry shared with other files (tiles of one world) lives in buffer 1, laid out
@@ -256,21 +266,21 @@ impl Document {
         for &v in &used_variants {
             let c = &variants[v].cache;
             let (vertices, lengths, at) = match (&shared_layout, &subsets[v]) {
-                (Some((_, layout)), _) => {
-                    let at = layout.variants[v];
-                    let lengths = section_lengths(&c.vertices, &c.bark, &c.leaves);
+                (Some((_, shared_file)), _) => {
+                    let at = shared_file.variants[v];
+                    let lengths = section_lengths(layout, &c.vertices, &c.bark, &c.leaves);
                     let at = (1, [at.vertices, at.extras, at.bark, at.leaves]);
                     (c.vertices.as_slice(), lengths, at)
                 }
                 (None, Some(subset)) => {
-                    let lengths = subset.section_lengths();
+                    let lengths = subset.section_lengths(layout);
                     let at = (0, lengths.map(|len| d.reserve(len)));
                     (subset.vertices.as_slice(), lengths, at)
                 }
                 (None, None) => continue,
             };
             let s = &species[variants[v].species];
-            let geometry = (vertices, lengths);
+            let geometry = (vertices, lengths, layout);
             shared[v] = Some(lay_out_variant(&mut d, geometry, s, at, &textures, options));
         }
         let image_views: Vec<usize> = match &shared_layout {
@@ -339,6 +349,7 @@ impl Document {
             embedded: subsets.into_iter().flatten().collect(),
             images,
             terrain_colours,
+            layout,
             placement_base,
             bin_len,
         })

@@ -69,7 +69,9 @@ pub(super) fn write_geometry(
     }
     for subset in &document.embedded {
         let sections = (&subset.bark[..], &subset.leaves[..]);
-        put_tree_sections(&subset.vertices, sections, |bytes| put(w, bytes))?;
+        put_tree_sections(document.layout, &subset.vertices, sections, |bytes| {
+            put(w, bytes)
+        })?;
     }
     for image in document.images.iter() {
         put(w, image)?;

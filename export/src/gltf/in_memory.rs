@@ -6,10 +6,10 @@ use std::path::Path;
 
 use sylva_base::file::AtomicFile;
 use sylva_terrain::TerrainMesh;
-use sylva_turtle::{Mesh, Vertex};
+use sylva_turtle::Mesh;
 
 use super::builder::{DocumentBuilder, TreeViews, padding};
-use super::extras::{EXTRAS_BYTES, vertex_extras};
+use super::extras::VertexLayout;
 use super::indices::IndexWidth;
 use super::schema::Primitive;
 use super::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, glb_header};
@@ -44,31 +44,31 @@ impl InMemory {
     }
 
     /// A tree mesh's primitives: bark and leaves over one vertex buffer with wind data and
-    /// tangents, none for a mesh without vertices.
+    /// tangents, none for a mesh without vertices. Float normals and tangents
+    /// ([`VertexLayout::Float`]): one tree's file is for any importer.
     pub(super) fn tree(&mut self, mesh: &Mesh, bark: usize, leaves: usize) -> Vec<Primitive> {
         if mesh.vertices.is_empty() {
             return Vec::new();
         }
-        let stride = size_of::<Vertex>() as u32;
+        let layout = VertexLayout::Float;
         let vertices = self.view(
-            bytemuck::cast_slice(&mesh.vertices),
-            Some(stride),
+            &layout.vertices(&mesh.vertices),
+            Some(layout.vertex_bytes() as u32),
             Some(ARRAY_BUFFER),
         );
-        let extras = vertex_extras(&mesh.vertices, &mesh.bark, &mesh.leaves);
+        let extras = layout.extras(&mesh.vertices, &mesh.bark, &mesh.leaves);
         let views = TreeViews {
             vertices,
             extras: self.view(
-                bytemuck::cast_slice(&extras),
-                Some(EXTRAS_BYTES as u32),
+                &extras,
+                Some(layout.extras_bytes() as u32),
                 Some(ARRAY_BUFFER),
             ),
             bark: None,
             leaves: None,
         };
-        let attributes = self
-            .doc
-            .tree_attributes(views, mesh.vertices.iter().map(|v| v.position));
+        let positions = mesh.vertices.iter().map(|v| v.position);
+        let attributes = self.doc.tree_attributes(views, positions, layout);
         let mut primitives = Vec::new();
         for (indices, material) in [(&mesh.bark, bark), (&mesh.leaves, leaves)] {
             if let Some(indices) = self.indices(indices) {

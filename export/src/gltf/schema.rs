@@ -8,6 +8,8 @@ use serde_json::Value;
 
 /// The name glTF gives the extension that places one mesh many times from accessors.
 pub(super) const GPU_INSTANCING: &str = "EXT_mesh_gpu_instancing";
+/// Normalized integer vertex attributes (the trees' normals and tangents).
+pub(super) const MESH_QUANTIZATION: &str = "KHR_mesh_quantization";
 
 /// The whole JSON chunk.
 #[derive(Debug, Default, Serialize)]

@@ -11,10 +11,14 @@ use sylva_forest::{BarkPattern, ForestBuilder, LeafShape, Species};
 use sylva_turtle::Vertex;
 
 use super::builder::padding;
-use super::extras::{EXTRAS_BYTES, vertex_extras};
+use super::extras::VertexLayout;
 use super::indices::IndexWidth;
 use crate::error::ExportError;
 use crate::texture::Texture;
+
+/// How the shared file lays out tree vertices: tiles are instanced, and their importers
+/// (CesiumJS, three.js's tiles renderer) read quantized normals.
+pub(super) const SHARED_LAYOUT: VertexLayout = VertexLayout::Quantized;
 
 /// Where one variant's buffers sit in the shared file (byte offsets).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -36,28 +40,35 @@ pub(super) struct SharedLayout {
     pub(super) len: usize,
 }
 
-/// Bytes of the four sections a tree mesh is written in: its vertices, their extras
-/// (tangents and leaf shades), its bark indices and its leaf indices (of the width its
-/// vertex count allows).
-pub(super) fn section_lengths(vertices: &[Vertex], bark: &[u32], leaves: &[u32]) -> [usize; 4] {
+/// Bytes of the four sections a tree mesh is written in, in `layout`: its vertices, their
+/// extras (tangents and leaf shades among them), its bark indices and its leaf indices (of
+/// the width its vertex count allows).
+pub(super) fn section_lengths(
+    layout: VertexLayout,
+    vertices: &[Vertex],
+    bark: &[u32],
+    leaves: &[u32],
+) -> [usize; 4] {
     let width = IndexWidth::for_vertices(vertices.len()).bytes();
     [
-        size_of_val(vertices),
-        EXTRAS_BYTES * vertices.len(),
+        layout.vertex_bytes() * vertices.len(),
+        layout.extras_bytes() * vertices.len(),
         width * bark.len(),
         width * leaves.len(),
     ]
 }
 
-/// Puts a tree mesh's four sections (see [`section_lengths`]) with `put`, which pads each.
+/// Puts a tree mesh's four sections (see [`section_lengths`]) in `layout` with `put`,
+/// which pads each.
 pub(super) fn put_tree_sections<E>(
+    layout: VertexLayout,
     vertices: &[Vertex],
     (bark, leaves): (&[u32], &[u32]),
     mut put: impl FnMut(&[u8]) -> Result<(), E>,
 ) -> Result<(), E> {
     let width = IndexWidth::for_vertices(vertices.len());
-    put(bytemuck::cast_slice(vertices))?;
-    put(bytemuck::cast_slice(&vertex_extras(vertices, bark, leaves)))?;
+    put(&layout.vertices(vertices))?;
+    put(&layout.extras(vertices, bark, leaves))?;
     put(&width.encode(bark))?;
     put(&width.encode(leaves))
 }
@@ -77,7 +88,7 @@ impl SharedLayout {
             .map(|v| {
                 let c = &v.cache;
                 let [vertices, extras, bark, leaves] =
-                    section_lengths(&c.vertices, &c.bark, &c.leaves);
+                    section_lengths(SHARED_LAYOUT, &c.vertices, &c.bark, &c.leaves);
                 VariantSpans {
                     vertices: take(vertices),
                     extras: take(extras),
@@ -202,7 +213,7 @@ pub fn write_shared_geometry(builder: &ForestBuilder, path: &Path) -> Result<usi
     };
     for v in builder.variants() {
         let c = &v.cache;
-        put_tree_sections(&c.vertices, (&c.bark, &c.leaves), &mut put)?;
+        put_tree_sections(SHARED_LAYOUT, &c.vertices, (&c.bark, &c.leaves), &mut put)?;
     }
     for png in layout.textures.images().iter() {
         put(png)?;

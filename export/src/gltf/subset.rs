@@ -5,6 +5,7 @@
 use sylva_instancing::{InstanceCache, Span};
 use sylva_turtle::Vertex;
 
+use super::extras::VertexLayout;
 use super::shared::section_lengths;
 
 /// The used instances' geometry of one cache: the vertices their triangles reference, in the
@@ -91,9 +92,9 @@ impl CacheSubset {
         self.spans.get(instance).copied().flatten()
     }
 
-    /// Bytes of its vertices, vertex extras, bark indices and leaf indices.
-    pub(super) fn section_lengths(&self) -> [usize; 4] {
-        section_lengths(&self.vertices, &self.bark, &self.leaves)
+    /// Bytes of its vertices, vertex extras, bark indices and leaf indices in `layout`.
+    pub(super) fn section_lengths(&self, layout: VertexLayout) -> [usize; 4] {
+        section_lengths(layout, &self.vertices, &self.bark, &self.leaves)
     }
 }
 
