@@ -249,13 +249,11 @@ impl WorldArgs {
             .with_year(self.year)
             .with_season(self.season);
         recipe.check().map_err(failure)?;
-        // The budget follows the forest's canopy trees (`WorldBuilder::budget_for`).
-        let canopy_trees = match (&ground, self.area, self.trees) {
-            (Some(ground), _, _) => recipe.canopy_trees_on(ground.hectares()),
-            (None, Some(a), _) => recipe.canopy_trees_on(f64::from(a) * f64::from(a) / 1e4),
-            (None, None, Some(n)) => n as f64,
-            (None, None, None) => recipe.canopy_trees_on(f64::from(DEFAULT_SIDE).powi(2) / 1e4),
-        };
+        // The budget follows the forest's canopy trees (`WorldBuilder::budget_for`); an
+        // area given wins over a tree count, as it does for the side below.
+        let trees = self.trees.filter(|_| self.area.is_none());
+        let side = self.area.unwrap_or(DEFAULT_SIDE);
+        let canopy_trees = recipe.canopy_trees_expected(ground.as_ref(), trees, side);
         let forest = recipe.forest(canopy_trees, &bars).map_err(failure)?;
         let ground = match ground {
             Some(ground) => ground,

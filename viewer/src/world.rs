@@ -200,11 +200,8 @@ impl World {
             .with_seedlings(!options.specimen);
         recipe.budget = options.budget;
         // The budget follows the forest's canopy trees, as the `sylva` command's does.
-        let canopy_trees = match (&ground, options.trees) {
-            (Some(ground), _) => recipe.canopy_trees_on(ground.hectares()),
-            (None, Some(n)) => f64::from(n),
-            (None, None) => recipe.canopy_trees_on(f64::from(options.side).powi(2) / 1e4),
-        };
+        let trees = options.trees.map(|n| n as usize);
+        let canopy_trees = recipe.canopy_trees_expected(ground.as_ref(), trees, options.side);
         let mut builder = recipe.forest(canopy_trees, &Lines)?;
         let own_patch = builder.density().patch;
         if let Some(d) = options.density {

@@ -102,6 +102,30 @@ impl WorldBuilder {
         hectares * f64::from(self.density.unwrap_or(CANOPY_TREES_PER_HECTARE))
     }
 
+    /// Canopy trees a world is expected to hold, to size its budget before its forest is
+    /// placed: on `ground` when it is known; else `trees` when the world is sized for them
+    /// (its side follows, [`ForestBuilder::side_for_canopy_trees`]); else on a square of
+    /// `side` metres. The `sylva` command and the viewer ask this one question.
+    ///
+    /// ```
+    /// use sylva_world::WorldBuilder;
+    /// let recipe = WorldBuilder::new(Vec::new()).with_density(Some(100.0));
+    /// assert_eq!(recipe.canopy_trees_expected(None, Some(5_000), 800.0), 5_000.0);
+    /// assert_eq!(recipe.canopy_trees_expected(None, None, 200.0), 400.0);
+    /// ```
+    pub fn canopy_trees_expected(
+        &self,
+        ground: Option<&Ground>,
+        trees: Option<usize>,
+        side: f32,
+    ) -> f64 {
+        match (ground, trees) {
+            (Some(ground), _) => self.canopy_trees_on(ground.hectares()),
+            (None, Some(n)) => n as f64,
+            (None, None) => self.canopy_trees_on(f64::from(side).powi(2) / 1e4),
+        }
+    }
+
     /// The instance-cache budget of a forest of `canopy_trees`: [`WorldBuilder::budget`] when
     /// given, else [`BUDGET_BYTES_PER_CANOPY_TREE`] a tree, from [`MIN_SIZED_BUDGET_MB`] up to
     /// [`DEFAULT_BUDGET_MB`]. Heroes follow the budget, so a small forest is drawn from few
