@@ -39,6 +39,7 @@
 mod appearance;
 mod census;
 mod composition;
+mod config;
 mod crown_cover;
 mod density;
 mod error;
@@ -65,13 +66,12 @@ mod years;
 pub use appearance::{BarkPattern, LeafShape};
 pub use census::InstanceCounts;
 pub use composition::ComposedDensity;
+pub use config::{Constraints, ForestConfig};
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};
 pub use error::ForestError;
 pub use extent::Extent;
 pub use floor::{FloorItem, FloorOptions, ForestFloor, MAX_FLOOR_ITEMS};
-pub use forest::{
-    Constraints, Forest, ForestBuilder, ForestConfig, ForestStats, VariantPlacements,
-};
+pub use forest::{Forest, ForestBuilder, ForestStats, VariantPlacements};
 pub use form::TreeForm;
 pub use ground::{GroundCover, GroundKind, GroundLook};
 pub use life::{BREAST_HEIGHT, Life, SEEDLING_HEIGHT};

@@ -6,9 +6,10 @@
 use rayon::prelude::*;
 use sylva_terrain::HeightField;
 
+use crate::config::Constraints;
 use crate::density::Rect;
 use crate::error::ForestError;
-use crate::forest::{Constraints, ForestBuilder};
+use crate::forest::ForestBuilder;
 use crate::siting_report::{Refusal, SitingReport};
 
 impl Constraints {
