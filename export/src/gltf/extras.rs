@@ -6,6 +6,8 @@
 //! coordinates tile past 1) and wind stay floats. (A vertex's seasons are what its `_WIND`
 //! and `NORMAL` hold already: see `builder::tree_attributes`.)
 
+use std::borrow::Cow;
+
 use bytemuck::{Pod, Zeroable};
 use sylva_forest::cluster_shade;
 use sylva_turtle::{Vertex, Wind};
@@ -102,20 +104,17 @@ impl VertexLayout {
         }
     }
 
-    /// The vertex view's bytes of `vertices`.
-    pub(super) fn vertices(self, vertices: &[Vertex]) -> Vec<u8> {
+    /// The vertex view's bytes of `vertices`: the turtle's own vertices as they are in
+    /// [`VertexLayout::Float`] (no copy), their floats one after another otherwise.
+    pub(super) fn vertices(self, vertices: &[Vertex]) -> Cow<'_, [u8]> {
         match self {
-            VertexLayout::Float => bytemuck::cast_slice(vertices).to_vec(),
+            VertexLayout::Float => Cow::Borrowed(bytemuck::cast_slice(vertices)),
             VertexLayout::Quantized => {
-                let floats: Vec<TreeVertex> = vertices
-                    .iter()
-                    .map(|v| TreeVertex {
-                        position: v.position,
-                        uv: v.uv,
-                        wind: v.wind,
-                    })
-                    .collect();
-                bytemuck::cast_slice(&floats).to_vec()
+                Cow::Owned(bytes_of_each(vertices.iter().map(|v| TreeVertex {
+                    position: v.position,
+                    uv: v.uv,
+                    wind: v.wind,
+                })))
             }
         }
     }
@@ -130,28 +129,29 @@ impl VertexLayout {
         let each = vertices.iter().zip(tangents).zip(shades);
         match self {
             VertexLayout::Float => {
-                let extras: Vec<FloatExtras> = each
-                    .map(|((_, tangent), colour)| FloatExtras { tangent, colour })
-                    .collect();
-                bytemuck::cast_slice(&extras).to_vec()
+                bytes_of_each(each.map(|((_, tangent), colour)| FloatExtras { tangent, colour }))
             }
-            VertexLayout::Quantized => {
-                let extras: Vec<QuantizedExtras> = each
-                    .map(|((v, t), colour)| {
-                        let [nx, ny, nz] = unit_bytes(v.normal);
-                        let [tx, ty, tz] = unit_bytes([t[0], t[1], t[2]]);
-                        let handedness = if t[3] < 0.0 { -127 } else { 127 };
-                        QuantizedExtras {
-                            normal: [nx, ny, nz, 0],
-                            tangent: [tx, ty, tz, handedness],
-                            colour,
-                        }
-                    })
-                    .collect();
-                bytemuck::cast_slice(&extras).to_vec()
-            }
+            VertexLayout::Quantized => bytes_of_each(each.map(|((v, t), colour)| {
+                let [nx, ny, nz] = unit_bytes(v.normal);
+                let [tx, ty, tz] = unit_bytes([t[0], t[1], t[2]]);
+                let handedness = if t[3] < 0.0 { -127 } else { 127 };
+                QuantizedExtras {
+                    normal: [nx, ny, nz, 0],
+                    tangent: [tx, ty, tz, handedness],
+                    colour,
+                }
+            })),
         }
     }
+}
+
+/// The bytes of `items`, one after another, in one allocation.
+fn bytes_of_each<P: Pod>(items: impl ExactSizeIterator<Item = P>) -> Vec<u8> {
+    let mut bytes = Vec::with_capacity(items.len() * size_of::<P>());
+    for item in items {
+        bytes.extend_from_slice(bytemuck::bytes_of(&item));
+    }
+    bytes
 }
 
 /// A component in [-1, 1] as a normalized signed byte (glTF decodes `max(c / 127, -1)`).
