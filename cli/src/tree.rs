@@ -38,7 +38,7 @@ pub(crate) struct TreeArgs {
     #[arg(long)]
     caps: bool,
     /// A species instead of a grammar: a species file, or a bundled species by name (oak,
-    /// birch, spruce, pine, hazel, fir, larch), drawn with its own turtle settings, colours
+    /// birch, spruce, pine, hazel, fir, larch, beech, sycamore, aspen, alder), drawn with its own turtle settings, colours
     /// and textures.
     #[arg(long, value_name = "FILE|NAME", conflicts_with_all = ["file", "preset", "angle", "shape", "sides", "caps"])]
     species: Option<String>,

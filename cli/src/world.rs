@@ -60,7 +60,8 @@ pub(crate) struct WorldArgs {
     #[arg(long, value_name = "TREES_PER_HA")]
     density: Option<f32>,
     /// A species file or a bundled species by name (oak, birch, spruce, pine, hazel, fir,
-    /// larch); repeat for several (default: the five bundled species).
+    /// larch, beech, sycamore, aspen, alder); repeat for several (default: oak, birch,
+    /// spruce, pine and hazel).
     #[arg(long, value_name = "FILE")]
     species: Vec<PathBuf>,
     /// Instance-cache budget in MiB, shared among the species (default: sized to the

@@ -45,8 +45,8 @@ mod usd;
 
 pub use error::{ExportError, Invalid};
 pub use gltf::{
-    GlbStats, GltfOptions, tree_glb, write_glb, write_shared_geometry, write_stand_glb,
-    write_tree_glb,
+    GlbStats, GltfOptions, WIND_TREE_REACH, tree_glb, write_glb, write_shared_geometry,
+    write_stand_glb, write_tree_glb,
 };
 pub use texture::{Texture, linear_to_srgb, srgb_to_linear};
 pub use tiles::{

@@ -56,8 +56,8 @@ pub fn cluster_shade(phase: f32) -> [f32; 3] {
 /// [`sylva_turtle::Vertex::wind`]): the tree's base (xyz, world space) and a phase in
 /// `[0, 1)` (w) drawn from its seed, so neighbours do not sway in step. Every placement of a
 /// tree carries the same values, so a wind shader bends the whole tree about its base
-/// whichever instances it was assembled from; exports write it as the `_WIND_TREE` instance
-/// attribute.
+/// whichever instances it was assembled from; glTF writes it as the `_WIND_TREE` instance
+/// attribute (the base as an offset from each placement, `sylva_export::WIND_TREE_REACH`).
 ///
 /// ```
 /// use sylva_forest::tree_wind;

@@ -12,6 +12,7 @@ use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
 use super::extras::VertexLayout;
 use super::indices::IndexWidth;
+use super::placement_words::WIND_TREE_REACH;
 use super::{BYTE, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, position_bounds};
 use crate::error::{ExportError, Invalid};
 
@@ -300,7 +301,7 @@ impl DocumentBuilder {
     }
 
     /// A node drawing `mesh` once per element of the instancing accessors: translation,
-    /// rotation, scale, tint and (when given) wind.
+    /// rotation, scale, tint and (when given) wind, whose reach the node's extras then say.
     pub(super) fn instanced_node(
         &mut self,
         name: String,
@@ -322,6 +323,8 @@ impl DocumentBuilder {
                     },
                 },
             }),
+            // A wind shader needs the reach to read `_WIND_TREE`'s offsets in metres.
+            extras: wind.map(|_| serde_json::json!({ "sylva_wind_tree_reach": WIND_TREE_REACH })),
             ..Node::default()
         });
     }

@@ -144,8 +144,9 @@ fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, 
         c.extend(placement_words::floats(
             tints.get(tree).unwrap_or(&[1.0; 3]),
         ));
-        w.extend(placement_words::floats(
-            winds.get(tree).unwrap_or(&[0.0; 4]),
+        w.extend(placement_words::wind(
+            winds.get(tree).copied().unwrap_or_default(),
+            x.translation.to_array(),
         ));
     }
     Ok(out)

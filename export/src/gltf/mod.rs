@@ -29,6 +29,7 @@ mod tangent;
 
 pub(crate) use coarse::{CoarseImpostor, write_coarse_glb};
 pub(crate) use lod::{LodCards, LodMesh, write_lod_glb};
+pub use placement_words::WIND_TREE_REACH;
 pub use shared::write_shared_geometry;
 pub use stand::{tree_glb, write_stand_glb, write_tree_glb};
 

@@ -127,7 +127,8 @@ pub(super) struct InstanceAttributes {
     /// Each tree's tint, as three.js and others read it: the instance colour.
     #[serde(rename = "_COLOR_0")]
     pub(super) colour: usize,
-    /// Each tree's base and phase, for wind shaders (`tree_wind`).
+    /// Each tree's base, as an offset from the placement over the node's
+    /// `extras.sylva_wind_tree_reach`, and its phase, for wind shaders (`tree_wind`).
     #[serde(rename = "_WIND_TREE", skip_serializing_if = "Option::is_none")]
     pub(super) wind: Option<usize>,
 }
