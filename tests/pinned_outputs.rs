@@ -200,3 +200,65 @@ fn forest_over_time_of_seed_1() {
         stems.0
     );
 }
+
+/// What the Python package reads of fixed seeds, pinned with the same values by
+/// `python/tests/test_same_as_rust.py`: the bundled oak of seed 1 (its positions, then its
+/// bark and leaf triangles, as `sylva.tree("oak", seed=1)` gives them) and the placements of
+/// a 150 m world of seed 3 (`sylva.Forest(area=150, seed=3).placements()`, column by column:
+/// positions, rotations, scales, variants, instances), hashed over their little-endian bytes.
+#[test]
+fn what_python_reads_of_an_oak_and_a_world() {
+    use sylva::forest::PlacementBlock;
+    use sylva::world::{Ground, Quiet, WorldBuilder};
+
+    let oak = sylva::presets::named_or_file("oak").unwrap();
+    let mesh = oak.mesh(oak.generations, 1).unwrap();
+    let positions: Vec<f32> = mesh.vertices.iter().flat_map(|v| v.position).collect();
+    let tree = Fnv::new()
+        .f32s(&positions)
+        .u32s(&mesh.bark)
+        .u32s(&mesh.leaves)
+        .0;
+
+    let ground = Ground::generated(3, 150.0).unwrap();
+    let world = WorldBuilder::new(sylva::presets::species().unwrap())
+        .with_seed(3)
+        .build(ground, &Quiet)
+        .unwrap();
+    let mut columns: [Vec<f32>; 3] = Default::default();
+    let mut ids: [Vec<u32>; 2] = Default::default();
+    world
+        .forest
+        .stream(
+            &world.ground.map,
+            world.region(),
+            &mut |b: &PlacementBlock| {
+                for p in &b.placements {
+                    let x = &p.transform;
+                    columns[0].extend(x.translation.to_array());
+                    columns[1].extend(x.rotation.to_array());
+                    columns[2].push(x.scale);
+                    ids[0].push(p.variant);
+                    ids[1].push(p.instance);
+                }
+                Ok(())
+            },
+        )
+        .unwrap();
+    let mut placements = Fnv::new();
+    for c in &columns {
+        placements.f32s(c);
+    }
+    for c in &ids {
+        placements.u32s(c);
+    }
+    assert_eq!(
+        (mesh.vertices.len(), tree, ids[0].len(), placements.0),
+        (34_386, 0xce84_0083_bdb6_7140, 10_104, 0x8074_86d9_eb2f_a626),
+        "{} {:#x} {} {:#x}",
+        mesh.vertices.len(),
+        tree,
+        ids[0].len(),
+        placements.0
+    );
+}

@@ -12,15 +12,12 @@ use sylva::instancing::Assembler;
 use sylva::terrain::Heightmap;
 
 use sylva::world::Fit;
-use sylva::world::limits::DEFAULT_REGION_SIDE;
+use sylva::world::limits::{DEFAULT_REGION_SIDE, TERRAIN_MESH_SPACING};
 
 use crate::Failure;
 use crate::progress::{ms, peak_rss_mb, phase, print_stats};
 use crate::tiles::TilesArgs;
 use crate::world::WorldArgs;
-
-/// Least distance between the terrain mesh's vertices in a forest's GLB, metres.
-const TERRAIN_SPACING: f32 = 1.5;
 
 /// `sylva forest`'s flags.
 #[derive(Debug, Args)]
@@ -123,9 +120,7 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         },
     )?;
     let (builder, map, region) = (&world.builder, &world.map, world.region);
-    // Vertices 1.5 m apart at least: a 100 m world's 257 samples a side would be 0.4 m
-    // apart, a quarter of its file.
-    let stride = map.stride_for_spacing(TERRAIN_SPACING);
+    let stride = map.stride_for_spacing(TERRAIN_MESH_SPACING);
     let (terrain_mesh, _) = phase(hidden, "meshing terrain", || map.mesh(stride));
     let terrain_mesh = terrain_mesh?;
     // With --stats, one pass that only places every tree and computes every instance

@@ -247,12 +247,18 @@ impl Species {
 }
 
 impl Species {
-    /// The skeleton of its tree at `generations` from `seed`.
-    pub(crate) fn sample_skeleton(
-        &self,
-        generations: u32,
-        seed: u64,
-    ) -> Result<Skeleton, ForestError> {
+    /// The skeleton of its tree at `generations` from `seed`: the segments [`Species::mesh`]
+    /// draws as bark, as bones with their radii and parents.
+    ///
+    /// ```
+    /// let oak = sylva_forest::Species::from_preset("sylva-oak", 4)?;
+    /// let skeleton = oak.skeleton(4, 1)?;
+    /// assert!(skeleton.bones.len() > 10);
+    /// assert_eq!(skeleton.bones[0].parent, None);
+    /// assert!(skeleton.bones[1..].iter().all(|b| b.parent.is_some()));
+    /// # Ok::<(), sylva_forest::ForestError>(())
+    /// ```
+    pub fn skeleton(&self, generations: u32, seed: u64) -> Result<Skeleton, ForestError> {
         let mut skeleton = Skeleton::default();
         self.draw_into(generations, seed, &mut skeleton)?;
         Ok(skeleton)
@@ -263,7 +269,7 @@ impl Species {
     pub(crate) fn drawn_height(&self, generations: u32, samples: u64) -> Result<f32, ForestError> {
         let mut sum = 0.0;
         for seed in 0..samples {
-            sum += skeleton_top(&self.sample_skeleton(generations, seed)?);
+            sum += skeleton_top(&self.skeleton(generations, seed)?);
         }
         Ok((sum / samples as f32).max(1e-3))
     }

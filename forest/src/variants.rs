@@ -252,7 +252,7 @@ pub(crate) fn live_generations(generations: u32) -> Vec<u32> {
 /// Where a canopy tree of `s` snaps at `share` of its height: every stem there at least half
 /// as thick as the thickest (the trunk, and limbs as stout), measured on a sample tree.
 fn stem_break(s: &Species, share: f32) -> Result<StemBreak, ForestError> {
-    let skeleton = s.sample_skeleton(s.generations, 0)?;
+    let skeleton = s.skeleton(s.generations, 0)?;
     let height = share * skeleton_top(&skeleton);
     let thickest = skeleton
         .bones

@@ -11,6 +11,9 @@ pub const DEFAULT_SIDE: f32 = 800.0;
 /// takes by default (its middle), metres: a forest of this side is a GLB of about 70 MB,
 /// which desktop viewers open; the whole model goes to 3D Tiles (`--whole`).
 pub const DEFAULT_REGION_SIDE: f32 = 1_000.0;
+/// Least distance between the vertices of a forest file's terrain mesh, metres: a 100 m
+/// world's 257 samples a side would be 0.4 m apart, a quarter of its file.
+pub const TERRAIN_MESH_SPACING: f32 = 1.5;
 
 /// Most canopy trees per hectare a density may ask for.
 pub const MAX_DENSITY: f32 = 10_000.0;

@@ -113,6 +113,47 @@ impl YearStats {
         h
     }
 
+    /// The year's figures in [`YearStats::csv_header`]'s order, every column but the last
+    /// (`events`), unrounded: what [`YearStats::csv_row`] prints.
+    ///
+    /// ```
+    /// use sylva_forest::succession::YearStats;
+    /// let names = ["oak".to_string()];
+    /// let mut year = YearStats::default();
+    /// (year.year, year.stems_per_ha) = (3, 120.5);
+    /// let values = year.values();
+    /// // 8 figures, 5 causes of death and the canopy cover; a species has 4 (none here).
+    /// assert_eq!(values.len(), 14);
+    /// assert_eq!(values[..2], [3.0, 120.5]);
+    /// assert_eq!(YearStats::csv_header(&names).split(',').count(), values.len() + 4 + 1);
+    /// ```
+    pub fn values(&self) -> Vec<f64> {
+        let mut v = vec![
+            f64::from(self.year),
+            f64::from(self.stems_per_ha),
+            f64::from(self.basal_area),
+            f64::from(self.mean_height),
+            f64::from(self.mean_diameter),
+            f64::from(self.dead_standing_per_ha),
+            f64::from(self.fallen_per_ha),
+            f64::from(self.recruits_per_ha),
+        ];
+        v.extend(self.deaths_per_ha.map(f64::from));
+        v.push(f64::from(self.canopy_cover));
+        for s in &self.species {
+            v.extend(
+                [
+                    s.stems_per_ha,
+                    s.saplings_per_ha,
+                    s.basal_area,
+                    s.mean_height,
+                ]
+                .map(f64::from),
+            );
+        }
+        v
+    }
+
     /// One CSV row: the figures in the header's order, then the events as
     /// `kind;kind;...`.
     pub fn csv_row(&self) -> String {

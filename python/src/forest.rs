@@ -1,0 +1,596 @@
+//! `sylva.Forest`: a world built once (species, terrain, seed, region) as the `sylva`
+//! command builds it, then written as glTF, USD or 3D Tiles, or read as NumPy arrays of
+//! trees and placements, and each branch instance's mesh.
+
+use std::path::PathBuf;
+
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString};
+use sylva::export::{
+    GltfOptions, TileScheme, TilesetOptions, UsdOptions, check_tileset_folder, write_glb,
+    write_tile, write_tileset, write_usda,
+};
+use sylva::forest::{PlacementBlock, Rect};
+use sylva::terrain::dem::{ElevationModel, ReadOptions};
+use sylva::terrain::glam::Vec2;
+use sylva::turtle::Vertex;
+use sylva::world::limits::{
+    DEFAULT_GROUP, DEFAULT_REGION_SIDE, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES,
+    TERRAIN_MESH_SPACING,
+};
+use sylva::world::{Fit, Ground, World, WorldBuilder};
+
+use crate::arrays::{column, dict, rows, triangles};
+use crate::errors::{Raise, Raised, invalid};
+use crate::progress::Callback;
+use crate::tree::{day_of, file_size};
+
+/// Most placements `Forest.placements` reads at once: 25 million (1.1 GB of arrays, a
+/// million canopy trees' worth); a larger forest is read a region at a time.
+const MAX_READ_PLACEMENTS: usize = 25_000_000;
+
+/// A forest: species on ground, built once as the `sylva` command builds it.
+///
+/// Forest(*, area=800, species=None, seed=1, terrain=None, spacing=None, density=None,
+/// budget_mb=None, season=None, year=None, progress=None). Without `species` the five
+/// bundled species (oak, birch, spruce, pine, hazel) grow; give bundled names
+/// (sylva.species_names()) or species files. `terrain` is an elevation model's file
+/// (GeoTIFF, SRTM .hgt, ESRI ASCII grid, 16-bit PNG) or a 2-D array of heights in metres,
+/// row 0 the north edge, `spacing` metres apart (needed for an array, or a file that does
+/// not say); a model larger than 1000 m gives its middle 1000 m. Without it, `area` metres
+/// of generated terrain. `density` is canopy trees per hectare, `budget_mb` the instance
+/// cache's size (default: sized to the forest), `season` a day of the year or a season's
+/// name, `year` draws the forest as it stands in that year of a forest over time.
+/// `progress(stage, done, total)` hears how the build goes. The GIL is released while it
+/// builds.
+#[pyclass(module = "sylva", name = "Forest", frozen)]
+#[derive(Debug)]
+pub(crate) struct Forest {
+    world: World,
+    notes: Vec<String>,
+}
+
+/// What the forest stands on before it is built: nothing given, or ground read.
+fn ground_of(terrain: Option<&Bound<'_, PyAny>>, spacing: Option<f32>) -> PyResult<Option<Ground>> {
+    let Some(terrain) = terrain else {
+        return Ok(None);
+    };
+    let options = ReadOptions {
+        spacing,
+        ..ReadOptions::default()
+    };
+    let fit = Fit::Middle {
+        side: DEFAULT_REGION_SIDE,
+    };
+    if terrain.is_instance_of::<PyString>() || terrain.hasattr("__fspath__")? {
+        let path: PathBuf = terrain.extract()?;
+        let py = terrain.py();
+        let ground = py.detach(|| Ground::read(&path, &options, None, fit, "spacing="));
+        return ground.raise().map(Some);
+    }
+    let heights: PyArrayLike2<'_, f32, AllowTypeChange> = terrain.extract().map_err(|_| {
+        invalid("terrain: expected a file's path or a 2-D array of heights in metres")
+    })?;
+    let view = heights.as_array();
+    let (rows_count, columns) = view.dim();
+    let model = ElevationModel {
+        width: columns,
+        height: rows_count,
+        // Row-major whatever the array's own order.
+        heights: view.iter().copied().collect(),
+        spacing: [spacing.unwrap_or(1.0); 2],
+        nodata: 0,
+        georeference: None,
+        spacing_from_file: false,
+    };
+    Ground::of_model(model, "terrain array", &options, None, fit, "spacing=")
+        .raise()
+        .map(Some)
+}
+
+#[pymethods]
+impl Forest {
+    #[new]
+    #[pyo3(signature = (
+        *, area = None, species = None, seed = 1, terrain = None, spacing = None,
+        density = None, budget_mb = None, season = None, year = None, progress = None
+    ))]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "Python's keyword arguments, each a setting of the world"
+    )]
+    fn new(
+        py: Python<'_>,
+        area: Option<f32>,
+        species: Option<Vec<String>>,
+        seed: u64,
+        terrain: Option<Bound<'_, PyAny>>,
+        spacing: Option<f32>,
+        density: Option<f32>,
+        budget_mb: Option<u32>,
+        season: Option<Bound<'_, PyAny>>,
+        year: Option<u32>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Forest> {
+        let season = season.as_ref().map(day_of).transpose()?;
+        if budget_mb == Some(0) {
+            return Err(invalid("budget_mb must be positive"));
+        }
+        let ground = ground_of(terrain.as_ref(), spacing)?;
+        let callback = Callback::new(progress);
+        let built = py.detach(|| {
+            let species = match &species {
+                None => sylva::presets::species()?,
+                Some(names) => names
+                    .iter()
+                    .map(sylva::presets::named_or_file)
+                    .collect::<Result<Vec<_>, _>>()?,
+            };
+            let mut recipe = WorldBuilder::new(species)
+                .with_seed(seed)
+                .with_density(density)
+                .with_season(season)
+                .with_year(year);
+            recipe.budget = budget_mb.map(|mb| mb as usize * (1 << 20));
+            let (ground, notes) = match ground {
+                Some(ground) => {
+                    let notes = ground.notes("terrain");
+                    (ground, notes)
+                }
+                None => (
+                    Ground::generated(seed, area.unwrap_or(DEFAULT_SIDE))?,
+                    Vec::new(),
+                ),
+            };
+            // As the `sylva` command builds a world: the budget sized to the ground's canopy
+            // trees, the same bytes for the same settings.
+            let world = recipe.build(ground, &callback)?;
+            Ok::<_, Raised>(Forest { world, notes })
+        });
+        callback.finish(built.raise())
+    }
+
+    /// Metres along the world's longer side.
+    #[getter]
+    fn side(&self) -> f32 {
+        self.world.side()
+    }
+
+    /// The region the trees stand in: ((x0, z0), (x1, z1)), metres.
+    #[getter]
+    fn region(&self) -> ((f32, f32), (f32, f32)) {
+        let r = self.world.region();
+        ((r.min.x, r.min.y), (r.max.x, r.max.y))
+    }
+
+    /// The world seed.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.world.seed
+    }
+
+    /// What was made of an elevation model: the window taken of a larger one, cells
+    /// filled. Empty for generated terrain.
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.notes.clone()
+    }
+
+    /// The terrain's heights, metres (float32, rows x columns, row 0 at z = 0), `spacing`
+    /// apart.
+    #[getter]
+    fn heights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        let map = &self.world.ground.map;
+        let size = map.size();
+        column(py, map.heights().to_vec()).reshape([size, size])
+    }
+
+    /// Metres between the terrain's samples.
+    #[getter]
+    fn spacing(&self) -> f32 {
+        self.world.ground.map.spacing()
+    }
+
+    /// The species' names, in order (a variant's `species` indexes it).
+    #[getter]
+    fn species(&self) -> Vec<String> {
+        let config = self.world.forest.config();
+        config.species.iter().map(|s| s.name.clone()).collect()
+    }
+
+    /// The forest's variants (a species at one age or form, each with its instance cache):
+    /// a list of dicts with `species` (an index into Forest.species), `seedling`,
+    /// `generations`, `form` and `instances` (how many branch instances its cache holds).
+    fn variants<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        self.world
+            .forest
+            .variants()
+            .iter()
+            .map(|v| {
+                dict(
+                    py,
+                    [
+                        ("species", v.species.into_pyobject(py)?.into_any()),
+                        (
+                            "seedling",
+                            v.seedling.into_pyobject(py)?.to_owned().into_any(),
+                        ),
+                        ("generations", v.generations.into_pyobject(py)?.into_any()),
+                        (
+                            "form",
+                            format!("{:?}", v.form).into_pyobject(py)?.into_any(),
+                        ),
+                        (
+                            "instances",
+                            v.cache.instances.len().into_pyobject(py)?.into_any(),
+                        ),
+                    ],
+                )
+            })
+            .collect()
+    }
+
+    /// The trees, in the order the forest streams them (block by block): `position`
+    /// (float32, n x 3, the root on the ground), `yaw` (radians about +y), `scale`,
+    /// `variant` (uint16, an index into Forest.variants()), `species` (uint16, an index into
+    /// Forest.species) and `seed` (uint32, each tree's own).
+    fn trees<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let (world, variants) = (&self.world, self.world.forest.variants());
+        let mut t = TreeColumns::default();
+        py.detach(|| {
+            world.forest.stream_with(
+                &world.ground.map,
+                world.region(),
+                &|_| false,
+                &mut |block: &PlacementBlock| {
+                    t.extend(block, variants);
+                    if t.position.len() > MAX_TREES {
+                        return Err(Raised::Other(format!("more than {MAX_TREES} trees")));
+                    }
+                    Ok(())
+                },
+            )
+        })
+        .raise()?;
+        t.into_dict(py)
+    }
+
+    /// Every placement of a branch instance (the forest as a renderer draws it), in the
+    /// forest's streaming order, within `region` ((x0, z0), (x1, z1)) when given: `position`
+    /// (float32, n x 3), `rotation` (float32, n x 4, a unit quaternion x, y, z, w), `scale`
+    /// (float32), `variant` and `instance` (uint32: the mesh, Forest.instance_mesh), and
+    /// `tree` (uint32, the tree's index in Forest.trees() for the whole forest). At most 25
+    /// million placements at once.
+    #[pyo3(signature = (region = None))]
+    fn placements<'py>(
+        &self,
+        py: Python<'py>,
+        region: Option<((f32, f32), (f32, f32))>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let world = &self.world;
+        let region = match region {
+            Some(((x0, z0), (x1, z1))) => Rect::new(Vec2::new(x0, z0), Vec2::new(x1, z1)),
+            None => world.region(),
+        };
+        let mut p = PlacementColumns::default();
+        py.detach(|| {
+            world.forest.stream_with(
+                &world.ground.map,
+                region,
+                &|_| true,
+                &mut |block: &PlacementBlock| {
+                    p.extend(block);
+                    if p.position.len() > MAX_READ_PLACEMENTS {
+                        return Err(Raised::Other(format!(
+                            "more than {MAX_READ_PLACEMENTS} placements: read them a region \
+                             at a time (placements(region=...))"
+                        )));
+                    }
+                    Ok(())
+                },
+            )
+        })
+        .raise()?;
+        p.into_dict(py)
+    }
+
+    /// The mesh of branch instance `instance` of variant `variant`, as placements place it:
+    /// a dict of `positions`, `normals` (float32, n x 3), `uvs` (n x 2), `bark` and `leaves`
+    /// (uint32 triangles indexing these vertices).
+    fn instance_mesh<'py>(
+        &self,
+        py: Python<'py>,
+        variant: usize,
+        instance: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let variants = self.world.forest.variants();
+        let cache = &variants
+            .get(variant)
+            .ok_or_else(|| {
+                invalid(format!(
+                    "variant {variant}: the forest has {}",
+                    variants.len()
+                ))
+            })?
+            .cache;
+        let inst = cache.instances.get(instance).ok_or_else(|| {
+            invalid(format!(
+                "instance {instance}: variant {variant} has {}",
+                cache.instances.len()
+            ))
+        })?;
+        let span = |s: sylva::instancing::Span, all: &[u32]| -> Vec<u32> {
+            all.get(s.start as usize..s.end() as usize)
+                .unwrap_or_default()
+                .to_vec()
+        };
+        let (bark, leaves) = (
+            span(inst.bark, &cache.bark),
+            span(inst.leaves, &cache.leaves),
+        );
+        // The vertices the instance's triangles use, in the cache's order, renumbered from 0.
+        let mut used: Vec<u32> = bark.iter().chain(&leaves).copied().collect();
+        used.sort_unstable();
+        used.dedup();
+        let vertices: Vec<&Vertex> = used
+            .iter()
+            .filter_map(|&i| cache.vertices.get(i as usize))
+            .collect();
+        let renumber = |v: Vec<u32>| -> Vec<u32> {
+            v.into_iter()
+                .map(|i| used.binary_search(&i).unwrap_or_default() as u32)
+                .collect()
+        };
+        dict(
+            py,
+            [
+                (
+                    "positions",
+                    rows(py, vertices.iter().map(|v| v.position).collect())?.into_any(),
+                ),
+                (
+                    "normals",
+                    rows(py, vertices.iter().map(|v| v.normal).collect())?.into_any(),
+                ),
+                (
+                    "uvs",
+                    rows(py, vertices.iter().map(|v| v.uv).collect())?.into_any(),
+                ),
+                ("bark", triangles(py, renumber(bark))?.into_any()),
+                ("leaves", triangles(py, renumber(leaves))?.into_any()),
+            ],
+        )
+    }
+
+    /// Writes the forest and its terrain as one binary glTF, as `sylva forest` does (the
+    /// same bytes for the same world). With `instancing=False` every placement is a node of
+    /// its own, for importers without EXT_mesh_gpu_instancing (at most 250,000). Returns
+    /// a dict of figures: `trees`, `seedlings`, `placements`, `instance_nodes`, `bytes`.
+    #[pyo3(signature = (path, *, instancing = true, progress = None))]
+    fn write_glb<'py>(
+        &self,
+        py: Python<'py>,
+        path: PathBuf,
+        instancing: bool,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let world = &self.world;
+        let callback = Callback::new(progress);
+        let stats = py.detach(|| {
+            callback.tell("writing glTF", 0, 1);
+            let map = &world.ground.map;
+            let mesh = map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))?;
+            let mut options = GltfOptions::default();
+            options.one_node_per_placement = !instancing;
+            let stats = write_glb(
+                &world.forest,
+                map,
+                world.region(),
+                Some(&mesh),
+                &options,
+                &path,
+            )?;
+            callback.tell("writing glTF", 1, 1);
+            Ok::<_, Raised>(stats)
+        });
+        let stats = callback.finish(stats.raise())?;
+        figures(
+            py,
+            [
+                ("trees", stats.trees as u64),
+                ("seedlings", stats.seedlings as u64),
+                ("placements", stats.placements as u64),
+                ("instance_nodes", stats.instance_nodes as u64),
+                ("bytes", stats.bytes as u64),
+            ],
+        )
+    }
+
+    /// Writes the forest and its terrain as USD text (.usda): one point instancer whose
+    /// prototypes are the branch instances, with its textures in a folder beside it, as
+    /// `sylva forest --usd` does. Returns a dict of figures: `trees`, `seedlings`,
+    /// `placements`, `prototypes`, `images`, `bytes`.
+    fn write_usd<'py>(&self, py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
+        let world = &self.world;
+        let stats = py
+            .detach(|| {
+                let map = &world.ground.map;
+                let mesh = map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))?;
+                let options = UsdOptions::default();
+                Ok::<_, Raised>(write_usda(
+                    &world.forest,
+                    map,
+                    world.region(),
+                    Some(&mesh),
+                    &options,
+                    &path,
+                )?)
+            })
+            .raise()?;
+        figures(
+            py,
+            [
+                ("trees", stats.trees as u64),
+                ("seedlings", stats.seedlings as u64),
+                ("placements", stats.placements as u64),
+                ("prototypes", stats.prototypes as u64),
+                ("images", stats.images as u64),
+                ("bytes", stats.bytes),
+            ],
+        )
+    }
+
+    /// Writes the forest as a 3D Tiles tileset in the folder `path` (tileset.json, shared
+    /// geometry and a GLB per tile), as `sylva tiles` does, tiles `tile_size` metres a side
+    /// grouped `group` to a coarse tile. `progress("tiles", done, total)` hears each tile,
+    /// and an exception it raises stops the writing. Returns a dict of figures: `tiles`,
+    /// `trees`, `bytes`.
+    #[pyo3(signature = (path, *, tile_size = DEFAULT_TILE_SIZE, group = DEFAULT_GROUP, progress = None))]
+    fn write_tiles<'py>(
+        &self,
+        py: Python<'py>,
+        path: PathBuf,
+        tile_size: f32,
+        group: u32,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let world = &self.world;
+        let callback = Callback::new(progress);
+        let written = py.detach(|| {
+            check_tileset_folder(&path).raise()?;
+            let (builder, map) = (&world.forest, &world.ground.map);
+            let scheme = TileScheme::new(world.region(), tile_size, group).raise()?;
+            let root =
+                write_tileset(builder, map, &scheme, &path, &TilesetOptions::default()).raise()?;
+            let ids = scheme.ids();
+            let (mut trees, mut bytes) = (0u64, root as u64);
+            for (k, id) in ids.iter().enumerate() {
+                let s = write_tile(builder, map, &scheme, *id, &path).raise()?;
+                trees += s.trees as u64;
+                bytes += s.bytes as u64;
+                callback.tell("tiles", k as u64 + 1, ids.len() as u64);
+                callback.check()?;
+            }
+            Ok::<_, PyErr>((ids.len() as u64, trees, bytes))
+        });
+        let (tiles, trees, bytes) = callback.finish(written)?;
+        figures(py, [("tiles", tiles), ("trees", trees), ("bytes", bytes)])
+    }
+
+    /// Writes the terrain as a 16-bit PNG heightmap, as `sylva forest` writes
+    /// forest_height.png. Returns the bytes written.
+    fn write_heightmap(&self, py: Python<'_>, path: PathBuf) -> PyResult<u64> {
+        let map = &self.world.ground.map;
+        py.detach(|| {
+            sylva::base::file::write(&path, |w| {
+                map.write_png16(w).map(drop).map_err(std::io::Error::other)
+            })
+        })
+        .raise()?;
+        file_size(&path)
+    }
+
+    fn __repr__(&self) -> String {
+        let names = self.species().join(", ");
+        format!(
+            "<sylva.Forest {:.0} m, seed {}, {names}>",
+            self.world.side(),
+            self.world.seed
+        )
+    }
+}
+
+/// A dict of whole-number figures.
+fn figures<'py, const N: usize>(
+    py: Python<'py>,
+    items: [(&'static str, u64); N],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (name, value) in items {
+        d.set_item(name, value)?;
+    }
+    Ok(d)
+}
+
+/// Trees as columns.
+#[derive(Debug, Default)]
+struct TreeColumns {
+    position: Vec<[f32; 3]>,
+    yaw: Vec<f32>,
+    scale: Vec<f32>,
+    variant: Vec<u16>,
+    species: Vec<u16>,
+    seed: Vec<u32>,
+}
+
+impl TreeColumns {
+    fn extend(&mut self, block: &PlacementBlock, variants: &[sylva::forest::Variant]) {
+        for t in &block.trees {
+            self.position.push(t.position);
+            self.yaw.push(t.yaw);
+            self.scale.push(t.scale);
+            self.variant.push(t.variant);
+            let species = variants
+                .get(usize::from(t.variant))
+                .map_or(0, |v| v.species);
+            self.species.push(species as u16);
+            self.seed.push(t.seed);
+        }
+    }
+
+    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        dict(
+            py,
+            [
+                ("position", rows(py, self.position)?.into_any()),
+                ("yaw", column(py, self.yaw).into_any()),
+                ("scale", column(py, self.scale).into_any()),
+                ("variant", column(py, self.variant).into_any()),
+                ("species", column(py, self.species).into_any()),
+                ("seed", column(py, self.seed).into_any()),
+            ],
+        )
+    }
+}
+
+/// Placements as columns; `tree` counts trees across blocks.
+#[derive(Debug, Default)]
+struct PlacementColumns {
+    position: Vec<[f32; 3]>,
+    rotation: Vec<[f32; 4]>,
+    scale: Vec<f32>,
+    variant: Vec<u32>,
+    instance: Vec<u32>,
+    tree: Vec<u32>,
+    trees_before: u32,
+}
+
+impl PlacementColumns {
+    fn extend(&mut self, block: &PlacementBlock) {
+        for p in &block.placements {
+            let x = &p.transform;
+            self.position.push(x.translation.to_array());
+            self.rotation.push(x.rotation.to_array());
+            self.scale.push(x.scale);
+            self.variant.push(p.variant);
+            self.instance.push(p.instance);
+            self.tree.push(self.trees_before + p.tree);
+        }
+        self.trees_before += block.trees.len() as u32;
+    }
+
+    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        dict(
+            py,
+            [
+                ("position", rows(py, self.position)?.into_any()),
+                ("rotation", rows(py, self.rotation)?.into_any()),
+                ("scale", column(py, self.scale).into_any()),
+                ("variant", column(py, self.variant).into_any()),
+                ("instance", column(py, self.instance).into_any()),
+                ("tree", column(py, self.tree).into_any()),
+            ],
+        )
+    }
+}
