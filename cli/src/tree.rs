@@ -38,8 +38,8 @@ pub(crate) struct TreeArgs {
     #[arg(long)]
     caps: bool,
     /// A species instead of a grammar: a species file, or a bundled species by name (oak,
-    /// birch, spruce, pine, hazel, fir, larch, beech, sycamore, aspen, alder), drawn with its own turtle settings, colours
-    /// and textures.
+    /// birch, spruce, pine, hazel, fir, larch, beech, sycamore, aspen, alder), drawn with its
+    /// own turtle settings, colours and textures.
     #[arg(long, value_name = "FILE|NAME", conflicts_with_all = ["file", "preset", "angle", "shape", "sides", "caps"])]
     species: Option<String>,
     /// With --species: the day of the year to draw the tree on, 1 to 365, or spring,

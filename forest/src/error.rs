@@ -44,6 +44,16 @@ pub enum ForestError {
         /// The name asked for.
         name: String,
     },
+    /// A name that is neither a bundled species nor a file.
+    #[error(
+        "unknown species '{name}': the bundled ones are {known}; a species file is named by its path"
+    )]
+    UnknownSpecies {
+        /// The name asked for.
+        name: String,
+        /// The bundled species, comma-separated.
+        known: String,
+    },
     /// A species' sample trees could not be derived (usually a size limit: fewer generations).
     #[error("species '{species}': {source}")]
     Derive {

@@ -12,7 +12,7 @@ use sylva::export::{
     write_tile, write_tileset, write_usda,
 };
 use sylva::forest::{PlacementBlock, Rect};
-use sylva::terrain::dem::{ElevationModel, ReadOptions};
+use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::terrain::glam::Vec2;
 use sylva::turtle::Vertex;
 use sylva::world::limits::{
@@ -24,7 +24,7 @@ use sylva::world::{Fit, Ground, World, WorldBuilder};
 use crate::arrays::{column, dict, rows, triangles};
 use crate::errors::{Raise, Raised, invalid};
 use crate::progress::Callback;
-use crate::tree::{day_of, file_size};
+use crate::tree::{day_of, file_size, species_material};
 
 /// Most placements `Forest.placements` reads at once: 25 million (1.1 GB of arrays, a
 /// million canopy trees' worth); a larger forest is read a region at a time.
@@ -32,14 +32,15 @@ const MAX_READ_PLACEMENTS: usize = 25_000_000;
 
 /// A forest: species on ground, built once as the `sylva` command builds it.
 ///
-/// Forest(*, area=800, species=None, seed=1, terrain=None, spacing=None, density=None,
-/// budget_mb=None, season=None, year=None, progress=None). Without `species` the five
-/// bundled species (oak, birch, spruce, pine, hazel) grow; give bundled names
+/// Forest(*, area=800, species=None, seed=1, terrain=None, spacing=None, crop=None,
+/// density=None, budget_mb=None, season=None, year=None, progress=None). Without `species`
+/// the five bundled species (oak, birch, spruce, pine, hazel) grow; give bundled names
 /// (sylva.species_names()) or species files. `terrain` is an elevation model's file
 /// (GeoTIFF, SRTM .hgt, ESRI ASCII grid, 16-bit PNG) or a 2-D array of heights in metres,
 /// row 0 the north edge, `spacing` metres apart (needed for an array, or a file that does
-/// not say); a model larger than 1000 m gives its middle 1000 m. Without it, `area` metres
-/// of generated terrain. `density` is canopy trees per hectare, `budget_mb` the instance
+/// not say); a model larger than 1000 m gives its middle 1000 m (Forest.notes says which
+/// window), or the window `crop` names: (column, row, width, height) in samples, from its
+/// north-west corner. Without it, `area` metres of generated terrain. `density` is canopy trees per hectare, `budget_mb` the instance
 /// cache's size (default: sized to the forest), `season` a day of the year or a season's
 /// name, `year` draws the forest as it stands in that year of a forest over time.
 /// `progress(stage, done, total)` hears how the build goes. The GIL is released while it
@@ -52,7 +53,11 @@ pub(crate) struct Forest {
 }
 
 /// What the forest stands on before it is built: nothing given, or ground read.
-fn ground_of(terrain: Option<&Bound<'_, PyAny>>, spacing: Option<f32>) -> PyResult<Option<Ground>> {
+fn ground_of(
+    terrain: Option<&Bound<'_, PyAny>>,
+    spacing: Option<f32>,
+    crop: Option<Window>,
+) -> PyResult<Option<Ground>> {
     let Some(terrain) = terrain else {
         return Ok(None);
     };
@@ -66,7 +71,7 @@ fn ground_of(terrain: Option<&Bound<'_, PyAny>>, spacing: Option<f32>) -> PyResu
     if terrain.is_instance_of::<PyString>() || terrain.hasattr("__fspath__")? {
         let path: PathBuf = terrain.extract()?;
         let py = terrain.py();
-        let ground = py.detach(|| Ground::read(&path, &options, None, fit, "spacing="));
+        let ground = py.detach(|| Ground::read(&path, &options, crop, fit, "spacing="));
         return ground.raise().map(Some);
     }
     let heights: PyArrayLike2<'_, f32, AllowTypeChange> = terrain.extract().map_err(|_| {
@@ -84,7 +89,7 @@ fn ground_of(terrain: Option<&Bound<'_, PyAny>>, spacing: Option<f32>) -> PyResu
         georeference: None,
         spacing_from_file: false,
     };
-    Ground::of_model(model, "terrain array", &options, None, fit, "spacing=")
+    Ground::of_model(model, "terrain array", &options, crop, fit, "spacing=")
         .raise()
         .map(Some)
 }
@@ -94,7 +99,8 @@ impl Forest {
     #[new]
     #[pyo3(signature = (
         *, area = None, species = None, seed = 1, terrain = None, spacing = None,
-        density = None, budget_mb = None, season = None, year = None, progress = None
+        crop = None, density = None, budget_mb = None, season = None, year = None,
+        progress = None
     ))]
     #[allow(
         clippy::too_many_arguments,
@@ -107,6 +113,7 @@ impl Forest {
         seed: u64,
         terrain: Option<Bound<'_, PyAny>>,
         spacing: Option<f32>,
+        crop: Option<(usize, usize, usize, usize)>,
         density: Option<f32>,
         budget_mb: Option<u32>,
         season: Option<Bound<'_, PyAny>>,
@@ -117,7 +124,13 @@ impl Forest {
         if budget_mb == Some(0) {
             return Err(invalid("budget_mb must be positive"));
         }
-        let ground = ground_of(terrain.as_ref(), spacing)?;
+        let crop = crop.map(|(column, row, width, height)| Window {
+            column,
+            row,
+            width,
+            height,
+        });
+        let ground = ground_of(terrain.as_ref(), spacing, crop)?;
         let callback = Callback::new(progress);
         let built = py.detach(|| {
             let species = match &species {
@@ -197,6 +210,18 @@ impl Forest {
     fn species(&self) -> Vec<String> {
         let config = self.world.forest.config();
         config.species.iter().map(|s| s.name.clone()).collect()
+    }
+
+    /// How each species is drawn, in Forest.species' order: a list of dicts as
+    /// Tree.material gives them (colours, bark and leaf textures as PNG bytes, the alpha
+    /// cutoff).
+    fn materials<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let config = self.world.forest.config();
+        config
+            .species
+            .iter()
+            .map(|s| species_material(py, s))
+            .collect()
     }
 
     /// The forest's variants (a species at one age or form, each with its instance cache):

@@ -5,7 +5,9 @@ use std::path::PathBuf;
 
 use numpy::PyArray2;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict, PyTuple};
+use sylva::export::Texture;
+use sylva::export::limits::CUTOFF_MIP_LEVEL;
 use sylva::forest::{Species, parse_day};
 use sylva::turtle::{Mesh, MeshBuilder, Skeleton, Vertex, interpret, write_obj};
 
@@ -92,6 +94,15 @@ impl Tree {
         skeleton_arrays(py, &self.skeleton)
     }
 
+    /// How its species is drawn, for building materials: `bark_colour` and `leaf_colour`
+    /// (linear RGB), `bark_texture` and `leaf_texture` (PNG bytes: a tiling bark pattern, and
+    /// the leaf card's cluster with its alpha) and `alpha_cutoff` (where to cut the card's
+    /// alpha, as the glTF files do).
+    #[getter]
+    fn material<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        species_material(py, &self.species)
+    }
+
     /// Number of vertices.
     #[getter]
     fn vertex_count(&self) -> usize {
@@ -129,6 +140,31 @@ impl Tree {
             self.skeleton.bones.len()
         )
     }
+}
+
+/// How `species` is drawn, as a dict (see `Tree.material`).
+pub(crate) fn species_material<'py>(
+    py: Python<'py>,
+    species: &Species,
+) -> PyResult<Bound<'py, PyDict>> {
+    let leaf = Texture::leaf(species.leaf_shape);
+    let (bark_png, leaf_png) =
+        py.detach(|| (Texture::bark(species.bark_pattern).png(), leaf.png()));
+    dict(
+        py,
+        [
+            ("bark_colour", PyTuple::new(py, species.bark)?.into_any()),
+            ("leaf_colour", PyTuple::new(py, species.leaf)?.into_any()),
+            ("bark_texture", PyBytes::new(py, &bark_png).into_any()),
+            ("leaf_texture", PyBytes::new(py, &leaf_png).into_any()),
+            (
+                "alpha_cutoff",
+                leaf.alpha_cutoff(CUTOFF_MIP_LEVEL)
+                    .into_pyobject(py)?
+                    .into_any(),
+            ),
+        ],
+    )
 }
 
 /// A file's size, after writing it.

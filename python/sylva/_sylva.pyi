@@ -64,6 +64,13 @@ class Variant(TypedDict):
     form: str
     instances: int
 
+class Material(TypedDict):
+    bark_colour: Tuple[float, float, float]
+    leaf_colour: Tuple[float, float, float]
+    bark_texture: bytes
+    leaf_texture: bytes
+    alpha_cutoff: float
+
 class Grammar:
     """An L-system grammar, ready to derive."""
 
@@ -100,6 +107,8 @@ class Tree:
     @property
     def skeleton(self) -> Skeleton: ...
     @property
+    def material(self) -> Material: ...
+    @property
     def vertex_count(self) -> int: ...
     @property
     def triangle_count(self) -> int: ...
@@ -117,6 +126,7 @@ class Forest:
         seed: int = 1,
         terrain: Union[PathLike, npt.ArrayLike, None] = None,
         spacing: Optional[float] = None,
+        crop: Optional[Tuple[int, int, int, int]] = None,
         density: Optional[float] = None,
         budget_mb: Optional[int] = None,
         season: Optional[Season] = None,
@@ -137,6 +147,7 @@ class Forest:
     def spacing(self) -> float: ...
     @property
     def species(self) -> List[str]: ...
+    def materials(self) -> List[Material]: ...
     def variants(self) -> List[Variant]: ...
     def trees(self) -> Trees: ...
     def placements(self, region: Optional[Region] = None) -> Placements: ...

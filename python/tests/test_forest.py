@@ -98,6 +98,9 @@ def test_terrain_as_an_array_and_as_a_file(tmp_path):
         sylva.Forest(terrain=hill, species=["birch"])
     with pytest.raises(sylva.SylvaError, match="terrain"):
         sylva.Forest(terrain=np.zeros(5), species=["birch"])
+    # A window of the model: its north-west quarter.
+    corner = sylva.Forest(terrain=hill, spacing=1.0, crop=(0, 0, 65, 65), species=["birch"])
+    assert corner.side == pytest.approx(64.0)
     f.write_heightmap(tmp_path / "h.png")
     again = sylva.Forest(terrain=str(tmp_path / "h.png"), spacing=1.0, species=["birch"], seed=1)
     assert again.heights.shape == f.heights.shape

@@ -87,12 +87,22 @@ pub fn bundled(name: &str) -> Option<&'static BundledSpecies> {
 /// let fir = sylva_world::presets::named_or_file("fir")?;
 /// assert_eq!(fir.name, "fir");
 /// assert!(sylva_world::presets::named_or_file("no/such.species").is_err());
+/// // A bare name that is no bundled species, nor a file here, names the bundled ones.
+/// let baobab = sylva_world::presets::named_or_file("baobab").unwrap_err().to_string();
+/// assert!(baobab.starts_with("unknown species 'baobab': the bundled ones are oak, birch"), "{baobab}");
 /// # Ok::<(), sylva_forest::ForestError>(())
 /// ```
 pub fn named_or_file(name: impl AsRef<Path>) -> Result<Species, ForestError> {
     let name = name.as_ref();
-    match bundled(&name.to_string_lossy()) {
+    let text = name.to_string_lossy();
+    match bundled(&text) {
         Some(b) => b.species(),
+        None if name.components().count() == 1 && name.extension().is_none() && !name.exists() => {
+            Err(ForestError::UnknownSpecies {
+                name: text.chars().take(80).collect(),
+                known: bundled_names().join(", "),
+            })
+        }
         None => Species::from_file(name),
     }
 }
