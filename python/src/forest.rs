@@ -285,8 +285,8 @@ impl Forest {
     /// forest's streaming order, within `region` ((x0, z0), (x1, z1)) when given: `position`
     /// (float32, n x 3), `rotation` (float32, n x 4, a unit quaternion x, y, z, w), `scale`
     /// (float32), `variant` and `instance` (uint32: the mesh, Forest.instance_mesh), and
-    /// `tree` (uint32, the tree's index in Forest.trees() for the whole forest). At most 25
-    /// million placements at once.
+    /// `tree` (uint32: for the whole forest the tree's index in Forest.trees(); for a region,
+    /// among the region's trees in streaming order). At most 25 million placements at once.
     #[pyo3(signature = (region = None))]
     fn placements<'py>(
         &self,
