@@ -28,6 +28,27 @@ struct Case {
 fn cases() -> Vec<Case> {
     vec![
         Case {
+            // Lindenmayer's algae (ABOP 1.1): the plainest D0L system, two one-module
+            // productions; the word's length runs through the Fibonacci numbers.
+            name: "d0l_algae",
+            defines: &[],
+            ignore: "",
+            axiom: "A".into(),
+            rules: &["A -> A B", "B -> A"],
+            generations: 24,
+            same_length: true,
+        },
+        Case {
+            // ABOP 1.24a: one production of eleven modules, brackets and turns.
+            name: "d0l_plant_abop_1.24a",
+            defines: &[],
+            ignore: "",
+            axiom: "F".into(),
+            rules: &["F -> F [ + F ] F [ - F ] F"],
+            generations: 6,
+            same_length: true,
+        },
+        Case {
             name: "d0l_plant_abop_1.24d",
             defines: &[],
             ignore: "",

@@ -2,7 +2,7 @@
 
 use crate::engine::block::{self, Instruction};
 use crate::engine::eval::{Op, Span};
-use crate::model::alphabet::{Alphabet, PUSH, SymbolId};
+use crate::model::alphabet::{Alphabet, CUT, PUSH, SymbolId};
 use crate::model::grammar::{Pattern, Production, SuccessorItem};
 use crate::model::statement::Statement;
 
@@ -46,6 +46,23 @@ pub(crate) struct CProduction {
     pub(crate) constant: Option<(Span, Span)>,
 }
 
+/// How a plain table ([`Compiled::plain`]) rewrites a symbol.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum PlainRule {
+    /// No production rewrites it: it is copied.
+    Copied,
+    /// Production `.0` always fires; its successor is `const_symbols[.1 .. .2]`.
+    Fixed(u32, u32, u32),
+    /// A weighted draw among productions whose weights add up to `total`: each choice's
+    /// production, weight and successor span, in the order they are tried.
+    Drawn {
+        /// The weights' sum ([`Compiled::draw_total`]).
+        total: f64,
+        /// `(production, weight, (start, end))` in `const_symbols`.
+        choices: Vec<(u32, f64, (u32, u32))>,
+    },
+}
+
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Compiled {
     pub(crate) ops: Vec<Op>,
@@ -75,6 +92,13 @@ pub(crate) struct Compiled {
     /// symbol). Runs of such modules, with ignored modules and whole branches between them,
     /// are copied in bulk after the first (the signal walking down a long word of ABOP 1.8).
     pub(crate) stays_after_itself: Vec<bool>,
+    /// When every symbol the table rewrites has one production that always fires or a
+    /// weighted draw among productions and nothing else, all of no parameters, with
+    /// successors of parameterless modules known in advance and no cut (ABOP's D0L and
+    /// stochastic 0L systems): how each symbol is rewritten. A word without parameters is
+    /// then rewritten by a lookup (and a draw) per module ([`super::derive`]'s plain pass),
+    /// and no production pays for matching, binding or evaluating what others need.
+    pub(crate) plain: Option<Vec<PlainRule>>,
     pub(crate) const_symbols: Vec<SymbolId>,
     /// Parameter end offsets of the pre-evaluated modules, relative to their successor.
     pub(crate) const_ends: Vec<u32>,
@@ -186,6 +210,7 @@ impl Compiled {
                 })
             })
             .collect();
+        c.plain = c.plain_rules();
         c.stays_after_itself = (0..n)
             .map(|s| {
                 c.rewritten[s]
@@ -198,6 +223,50 @@ impl Compiled {
             })
             .collect();
         c
+    }
+
+    /// How a plain table (see [`Compiled::plain`]) rewrites each symbol, or `None` when a
+    /// symbol's productions need more than a lookup or a draw.
+    fn plain_rules(&self) -> Option<Vec<PlainRule>> {
+        (0..self.rewritten.len())
+            .map(|s| {
+                if !self.rewritten[s] {
+                    return Some(PlainRule::Copied);
+                }
+                if let Some(total) = self.draw_total[s] {
+                    let lo = self.by_symbol[s] as usize;
+                    let choices = self
+                        .of_symbol(s)
+                        .enumerate()
+                        .map(|(k, q)| {
+                            let p = self.order[lo + k];
+                            Some((p, q.weight.unwrap_or(0.0), self.plain_successor(q)?))
+                        })
+                        .collect::<Option<Vec<_>>>()?;
+                    return Some(PlainRule::Drawn { total, choices });
+                }
+                let p = self.simple[s];
+                let (a, b) = self.plain_successor(self.productions.get(p as usize)?)?;
+                Some(PlainRule::Fixed(p, a, b))
+            })
+            .collect()
+    }
+
+    /// The span in `const_symbols` of `q`'s successor when a plain table can emit it: no
+    /// parameters in or out, a module of one symbol, no block, no cut.
+    fn plain_successor(&self, q: &CProduction) -> Option<(u32, u32)> {
+        match q.constant {
+            Some(((s0, s1), (p0, p1)))
+                if q.arity == 0
+                    && q.rest.is_empty()
+                    && q.post.0 == q.post.1
+                    && p0 == p1
+                    && !self.const_symbols[s0 as usize..s1 as usize].contains(&CUT) =>
+            {
+                Some((s0, s1))
+            }
+            _ => None,
+        }
     }
 
     /// The productions of symbol `s`, in the order they are tried.

@@ -88,7 +88,7 @@ impl Deriver<'_> {
 
 /// The production a draw `u` in `[0, total)` lands on among weighted `choices`, in order;
 /// past them all (rounding), the last with a weight.
-fn pick(mut u: f64, choices: impl Iterator<Item = (u32, f64)>) -> Option<u32> {
+pub(super) fn pick(mut u: f64, choices: impl Iterator<Item = (u32, f64)>) -> Option<u32> {
     let mut last = None;
     for (p, w) in choices {
         if u < w {

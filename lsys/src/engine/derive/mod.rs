@@ -14,6 +14,7 @@ mod context;
 mod emit;
 mod entry;
 mod limits;
+mod plain;
 
 use emit::{apply_cuts, copy_run};
 pub use limits::Limits;
@@ -258,6 +259,17 @@ impl<'g> Deriver<'g> {
         out.offsets.reserve(cur.len());
         out.params.reserve(cur.params.len());
         let c = self.compiled();
+        // With sub-L-systems each module is rewritten by the system it stands in.
+        let markers = self
+            .grammar
+            .sub_markers
+            .filter(|_| self.table == Table::Main);
+        if let Some(rules) = &c.plain
+            && markers.is_none()
+            && cur.params.is_empty()
+        {
+            return self.plain_pass(cur, out, (c, rules), generation);
+        }
         if c.has_context {
             self.link_brackets(cur);
         }
@@ -265,11 +277,6 @@ impl<'g> Deriver<'g> {
         let mut cut_seen = false;
         let n = cur.len();
         let mut i = 0;
-        // With sub-L-systems each module is rewritten by the system it stands in.
-        let markers = self
-            .grammar
-            .sub_markers
-            .filter(|_| self.table == Table::Main);
         let mut enclosing: Vec<Option<usize>> = Vec::new();
         self.sub = None;
         while i < n {
