@@ -14,6 +14,7 @@ use sylva::export::{
 use sylva::forest::{PlacementBlock, Rect};
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::terrain::glam::Vec2;
+use sylva::terrain::{TerrainError, TerrainMesh};
 use sylva::turtle::Vertex;
 use sylva::world::limits::{
     DEFAULT_GROUP, DEFAULT_REGION_SIDE, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES,
@@ -405,7 +406,7 @@ impl Forest {
         let stats = py.detach(|| {
             callback.tell("writing glTF", 0, 1);
             let map = &world.ground.map;
-            let mesh = map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))?;
+            let mesh = terrain_mesh(world)?;
             let mut options = GltfOptions::default();
             options.one_node_per_placement = !instancing;
             let stats = write_glb(
@@ -441,7 +442,7 @@ impl Forest {
         let stats = py
             .detach(|| {
                 let map = &world.ground.map;
-                let mesh = map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))?;
+                let mesh = terrain_mesh(world)?;
                 let options = UsdOptions::default();
                 Ok::<_, Raised>(write_usda(
                     &world.forest,
@@ -524,6 +525,13 @@ impl Forest {
             self.world.seed
         )
     }
+}
+
+/// The terrain's mesh as `sylva forest` writes it: vertices at least
+/// [`TERRAIN_MESH_SPACING`] apart.
+fn terrain_mesh(world: &World) -> Result<TerrainMesh, TerrainError> {
+    let map = &world.ground.map;
+    map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))
 }
 
 /// A dict of whole-number figures.

@@ -131,18 +131,27 @@ def species_materials(name, material):
     return bark, leaves
 
 
+def _polygon_mesh(name, points, polygons):
+    """A Blender mesh of `points` (n x 3, y-up, turned z-up) and `polygons` (m x k vertex
+    indices, k corners each)."""
+    polygons = np.asarray(polygons, dtype=np.int32)
+    count, corners = polygons.shape
+    mesh = bpy.data.meshes.new(name)
+    mesh.vertices.add(len(points))
+    mesh.vertices.foreach_set("co", z_up(points).ravel())
+    mesh.loops.add(corners * count)
+    mesh.loops.foreach_set("vertex_index", polygons.ravel())
+    mesh.polygons.add(count)
+    mesh.polygons.foreach_set("loop_start", np.arange(0, corners * count, corners, dtype=np.int32))
+    return mesh
+
+
 def mesh_data(name, positions, normals, uvs, bark, leaves, materials):
     """A Blender mesh of sylva's arrays: bark triangles first with material 0, then leaf
     triangles with material 1; positions and normals turned z-up, uvs flipped as glTF's
     importer flips them."""
-    triangles = np.concatenate([bark, leaves]).astype(np.int32)
-    mesh = bpy.data.meshes.new(name)
-    mesh.vertices.add(len(positions))
-    mesh.vertices.foreach_set("co", z_up(positions).ravel())
-    mesh.loops.add(3 * len(triangles))
-    mesh.loops.foreach_set("vertex_index", triangles.ravel())
-    mesh.polygons.add(len(triangles))
-    mesh.polygons.foreach_set("loop_start", np.arange(0, 3 * len(triangles), 3, dtype=np.int32))
+    triangles = np.concatenate([bark, leaves]).astype(np.int32).reshape(-1, 3)
+    mesh = _polygon_mesh(name, positions, triangles)
     kinds = np.concatenate([np.zeros(len(bark), np.int32), np.ones(len(leaves), np.int32)])
     mesh.polygons.foreach_set("material_index", kinds)
     layer = mesh.uv_layers.new(name="UVMap")
@@ -183,14 +192,8 @@ def terrain_object(forest, name="sylva terrain", collection=None, most=513):
     z, x = np.mgrid[0:rows, 0:cols].astype(np.float32) * step
     points = np.stack([x.ravel(), h.ravel(), z.ravel()], axis=1)
     a = (np.arange(rows - 1)[:, None] * cols + np.arange(cols - 1)[None, :]).ravel()
-    quads = np.stack([a, a + cols, a + cols + 1, a + 1], axis=1).astype(np.int32)
-    mesh = bpy.data.meshes.new(name)
-    mesh.vertices.add(len(points))
-    mesh.vertices.foreach_set("co", z_up(points).ravel())
-    mesh.loops.add(4 * len(quads))
-    mesh.loops.foreach_set("vertex_index", quads.ravel())
-    mesh.polygons.add(len(quads))
-    mesh.polygons.foreach_set("loop_start", np.arange(0, 4 * len(quads), 4, dtype=np.int32))
+    quads = np.stack([a, a + cols, a + cols + 1, a + 1], axis=1)
+    mesh = _polygon_mesh(name, points, quads)
     mesh.update()
     mesh.validate()
     mesh.shade_smooth()
