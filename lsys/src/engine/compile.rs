@@ -2,7 +2,7 @@
 
 use crate::engine::block::{self, Instruction};
 use crate::engine::eval::{Op, Span};
-use crate::model::alphabet::{Alphabet, CUT, PUSH, SymbolId};
+use crate::model::alphabet::{Alphabet, CUT, POP, PUSH, SymbolId};
 use crate::model::grammar::{Pattern, Production, SuccessorItem};
 use crate::model::statement::Statement;
 
@@ -92,6 +92,12 @@ pub(crate) struct Compiled {
     /// symbol). Runs of such modules, with ignored modules and whole branches between them,
     /// are copied in bulk after the first (the signal walking down a long word of ABOP 1.8).
     pub(crate) stays_after_itself: Vec<bool>,
+    /// For each symbol: whether a module of it whose nearest right context is a module of
+    /// the same symbol never fires (every production names a right context whose first
+    /// module is of another symbol, and no string predecessor). In a run of such modules
+    /// with only ignored modules nothing rewrites between them, every one but the last
+    /// stays, and is copied in bulk (a signal waiting at the far end of a long word).
+    pub(crate) stays_before_itself: Vec<bool>,
     /// When every symbol the table rewrites has one production that always fires or a
     /// weighted draw among productions and nothing else, all of no parameters, with
     /// successors of parameterless modules known in advance and no cut (ABOP's D0L and
@@ -211,6 +217,18 @@ impl Compiled {
             })
             .collect();
         c.plain = c.plain_rules();
+        c.stays_before_itself = (0..n)
+            .map(|s| {
+                c.rewritten[s]
+                    && !c.ignored[s]
+                    && c.of_symbol(s).all(|q| {
+                        q.rest.is_empty()
+                            && q.right.first().is_some_and(|r| {
+                                r.symbol.index() != s && r.symbol != PUSH && r.symbol != POP
+                            })
+                    })
+            })
+            .collect();
         c.stays_after_itself = (0..n)
             .map(|s| {
                 c.rewritten[s]

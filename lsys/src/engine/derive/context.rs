@@ -232,6 +232,23 @@ impl Deriver<'_> {
         }
     }
 
+    /// For a module `i` whose symbol stays before itself
+    /// ([`Compiled::stays_before_itself`]): the last module of that symbol in the run from
+    /// `i` of modules of the symbol and ignored modules nothing rewrites. Every module of the
+    /// symbol before it has the next one as its nearest right context, so stays.
+    pub(super) fn run_before(&self, cur: &Word, i: usize, c: &Compiled) -> usize {
+        let symbol = cur.symbols[i];
+        let mut last = i;
+        for (j, &t) in cur.symbols.iter().enumerate().skip(i + 1) {
+            if t == symbol {
+                last = j;
+            } else if !(c.ignored[t.index()] && !c.rewritten[t.index()]) {
+                break;
+            }
+        }
+        last
+    }
+
     /// For a module `i` whose symbol stays after itself ([`Compiled::stays_after_itself`]):
     /// the end of the run after it whose every module of that symbol has its left context
     /// in the run, so stays. The run holds modules of the symbol, ignored symbols and
@@ -253,5 +270,45 @@ impl Deriver<'_> {
             j += 1;
         }
         j
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use crate::LSystem;
+
+    proptest! {
+        /// Copying the modules that stay before themselves changes no word: a grammar with
+        /// right contexts derives what it derives when every module is matched.
+        #[test]
+        fn modules_copied_before_themselves_are_the_ones_that_stay(
+            word in "[ABC+]{1,12}(\\[[AB+]{1,3}\\])?[ABC+]{0,8}",
+            right in prop::sample::select(vec!["A", "C", "C+A", "A B", "[A]"]),
+            successor in "[ABC]{1,3}",
+            other in "[AC+]{1,3}",
+            generations in 1u32..5,
+        ) {
+            let text = format!(
+                "#ignore: +\naxiom: {word}\nB > {right} -> {successor}\nC -> {other}\nA < C -> A"
+            );
+            let grammar = LSystem::parse(&text).unwrap();
+            let mut matched = grammar.clone();
+            matched.compiled.stays_before_itself.iter_mut().for_each(|s| *s = false);
+            prop_assert_eq!(
+                grammar.derive(generations, 0).unwrap(),
+                matched.derive(generations, 0).unwrap(),
+            );
+        }
+    }
+
+    /// A signal at the far end of a long word: every B but the last stays, the last turns.
+    #[test]
+    fn a_signal_arrives_from_the_right() {
+        let g = LSystem::parse("#ignore: +\naxiom: B+B+B+B+A\nB > A -> A").unwrap();
+        assert!(g.compiled.stays_before_itself[g.alphabet().id_of("B").unwrap().index()]);
+        assert_eq!(g.derive(1, 0).unwrap().to_string(), "B+B+B+A+A");
+        assert_eq!(g.derive(3, 0).unwrap().to_string(), "B+A+A+A+A");
     }
 }

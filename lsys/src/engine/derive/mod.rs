@@ -303,6 +303,16 @@ impl<'g> Deriver<'g> {
                 i = j;
                 continue;
             }
+            if c.stays_before_itself[s] && markers.is_none() {
+                // Modules of this symbol followed, past ignored modules only, by another of
+                // it have no right context any production names: copied up to the last.
+                let last = self.run_before(cur, i, c);
+                if last > i {
+                    cut_seen |= copy_run(cur, i, last, out);
+                    i = last;
+                    continue;
+                }
+            }
             let lo = c.by_symbol[s] as usize;
             let hi = c.by_symbol[s + 1] as usize;
             let mut consumed = 1;
