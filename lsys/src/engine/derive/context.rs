@@ -242,7 +242,7 @@ impl Deriver<'_> {
         for (j, &t) in cur.symbols.iter().enumerate().skip(i + 1) {
             if t == symbol {
                 last = j;
-            } else if !(c.ignored[t.index()] && !c.rewritten[t.index()]) {
+            } else if !c.ignored[t.index()] || c.rewritten[t.index()] {
                 break;
             }
         }
