@@ -282,8 +282,8 @@ impl Forest {
         t.into_dict(py)
     }
 
-    /// Every placement of a branch instance (the forest as a renderer draws it), in the
-    /// forest's streaming order, within `region` ((x0, z0), (x1, z1)) when given: `position`
+    /// Every placement of a branch instance with geometry (the forest as a renderer draws
+    /// it, and as the files hold it), in the forest's streaming order, within `region` ((x0, z0), (x1, z1)) when given: `position`
     /// (float32, n x 3), `rotation` (float32, n x 4, a unit quaternion x, y, z, w), `scale`
     /// (float32), `variant` and `instance` (uint32: the mesh, Forest.instance_mesh), and
     /// `tree` (uint32: for the whole forest the tree's index in Forest.trees(); for a region,
@@ -299,6 +299,20 @@ impl Forest {
             Some(((x0, z0), (x1, z1))) => Rect::new(Vec2::new(x0, z0), Vec2::new(x1, z1)),
             None => world.region(),
         };
+        // Instances without geometry are placed but drawn by nobody: left out, as the files
+        // leave them out.
+        let drawn: Vec<Vec<bool>> = world
+            .forest
+            .variants()
+            .iter()
+            .map(|v| {
+                v.cache
+                    .instances
+                    .iter()
+                    .map(|i| !(i.bark.is_empty() && i.leaves.is_empty()))
+                    .collect()
+            })
+            .collect();
         let mut p = PlacementColumns::default();
         py.detach(|| {
             world.forest.stream_with(
@@ -306,7 +320,7 @@ impl Forest {
                 region,
                 &|_| true,
                 &mut |block: &PlacementBlock| {
-                    p.extend(block);
+                    p.extend(block, &drawn);
                     if p.position.len() > MAX_READ_PLACEMENTS {
                         return Err(Raised::Other(format!(
                             "more than {MAX_READ_PLACEMENTS} placements: read them a region \
@@ -600,8 +614,16 @@ struct PlacementColumns {
 }
 
 impl PlacementColumns {
-    fn extend(&mut self, block: &PlacementBlock) {
+    fn extend(&mut self, block: &PlacementBlock, drawn: &[Vec<bool>]) {
         for p in &block.placements {
+            let has_geometry = drawn
+                .get(p.variant as usize)
+                .and_then(|v| v.get(p.instance as usize))
+                .copied()
+                .unwrap_or(false);
+            if !has_geometry {
+                continue;
+            }
             let x = &p.transform;
             self.position.push(x.translation.to_array());
             self.rotation.push(x.rotation.to_array());

@@ -36,6 +36,18 @@ def test_trees_and_placements_agree(forest):
     assert np.all((trees["position"][:, 0] >= x0) & (trees["position"][:, 0] <= x1))
 
 
+def test_placements_are_the_files_placements(tmp_path):
+    """Instances without geometry (a large cache has a few) are left out, as the glTF leaves
+    them out: the arrays hold what the file draws."""
+    f = sylva.Forest(area=150, budget_mb=32, seed=1)
+    p = f.placements()
+    glb = f.write_glb(tmp_path / "f.glb")
+    assert glb["placements"] == len(p["position"])
+    for v, i in set(zip(p["variant"].tolist(), p["instance"].tolist())):
+        mesh = f.instance_mesh(v, i)
+        assert len(mesh["bark"]) + len(mesh["leaves"]) > 0
+
+
 def test_a_region_reads_part_of_the_forest(forest):
     whole = forest.placements()
     part = forest.placements(region=((0.0, 0.0), (60.0, 60.0)))
