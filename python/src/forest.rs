@@ -14,7 +14,7 @@ use sylva::export::{
 use sylva::forest::{PlacementBlock, Rect};
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{TerrainError, TerrainMesh};
+use sylva::terrain::{Heightmap, TerrainError, TerrainMesh};
 use sylva::turtle::Vertex;
 use sylva::world::limits::{
     DEFAULT_GROUP, DEFAULT_REGION_SIDE, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES,
@@ -53,8 +53,9 @@ pub(crate) struct Forest {
     notes: Vec<String>,
 }
 
-/// What the forest stands on before it is built: nothing given, or ground read.
-fn ground_of(
+/// What a forest or a stand stands on: nothing given, or ground read from a model's file or
+/// an array of heights (its middle 1000 m, or the window `crop` names).
+pub(crate) fn ground_of(
     terrain: Option<&Bound<'_, PyAny>>,
     spacing: Option<f32>,
     crop: Option<Window>,
@@ -544,7 +545,11 @@ impl Forest {
 /// The terrain's mesh as `sylva forest` writes it: vertices at least
 /// [`TERRAIN_MESH_SPACING`] apart.
 fn terrain_mesh(world: &World) -> Result<TerrainMesh, TerrainError> {
-    let map = &world.ground.map;
+    ground_mesh(&world.ground.map)
+}
+
+/// A heightmap's mesh with vertices at least [`TERRAIN_MESH_SPACING`] apart.
+pub(crate) fn ground_mesh(map: &Heightmap) -> Result<TerrainMesh, TerrainError> {
     map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))
 }
 

@@ -8,11 +8,12 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sylva::forest::{GrownStand, Planting, Species, StandOptions, grow_stand as grow};
 use sylva::growth::Response;
-use sylva::terrain::FlatPlane;
+use sylva::terrain::{FlatPlane, TerrainMesh};
 use sylva::terrain::glam::Vec2;
 use sylva::turtle::Skeleton;
 
 use crate::errors::{Raise, Raised, invalid};
+use crate::forest::{ground_mesh, ground_of};
 use crate::progress::Callback;
 use crate::tree::{Tree, file_size};
 
@@ -27,6 +28,8 @@ const MAX_STAND_TREES: usize = 400;
 #[derive(Debug)]
 pub(crate) struct Stand {
     stand: GrownStand,
+    /// The ground's mesh, when the stand grew on terrain given.
+    terrain: Option<TerrainMesh>,
     species: Vec<Species>,
     seeds: Vec<u64>,
 }
@@ -76,10 +79,11 @@ impl Stand {
         Ok(d)
     }
 
-    /// Writes the stand as binary glTF with its species' materials. Returns the bytes
-    /// written.
+    /// Writes the stand as binary glTF with its species' materials, and its terrain when it
+    /// grew on terrain given. Returns the bytes written.
     fn write_glb(&self, py: Python<'_>, path: PathBuf) -> PyResult<u64> {
-        py.detach(|| sylva::export::write_stand_glb(&self.stand, &self.species, None, &path))
+        let terrain = self.terrain.as_ref();
+        py.detach(|| sylva::export::write_stand_glb(&self.stand, &self.species, terrain, &path))
             .raise()?;
         file_size(&path)
     }
@@ -93,8 +97,10 @@ impl Stand {
     }
 }
 
-/// Grows trees together on flat ground at height 0, each competing for light and room
-/// (the voxel growth paper).
+/// Grows trees together, each competing for light and room (the voxel growth paper), on
+/// flat ground at height 0, or on `terrain`: an elevation model's file or a 2-D array of
+/// heights, `spacing` metres apart, as sylva.Forest takes it (x and z from its north-west
+/// corner).
 ///
 /// `positions` is an n x 2 array of (x, z) metres, one tree each (at most 400); `species`
 /// a bundled species' name or a species file for all of them, or a list with one for each;
@@ -102,7 +108,14 @@ impl Stand {
 /// species'; `voxel` the side of the space's voxels in metres (0.05 to 1). The GIL is
 /// released while it grows; `progress("growing", done, total)` hears the start and end.
 #[pyfunction]
-#[pyo3(signature = (positions, *, species = None, seed = 1, generations = None, voxel = 0.1, progress = None))]
+#[pyo3(signature = (
+    positions, *, species = None, seed = 1, generations = None, voxel = 0.1, terrain = None,
+    spacing = None, progress = None
+))]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "Python's keyword arguments, each a setting of the stand"
+)]
 pub(crate) fn grow_stand(
     py: Python<'_>,
     positions: PyArrayLike2<'_, f32, AllowTypeChange>,
@@ -110,8 +123,11 @@ pub(crate) fn grow_stand(
     seed: u64,
     generations: Option<u32>,
     voxel: f32,
+    terrain: Option<Bound<'_, PyAny>>,
+    spacing: Option<f32>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Stand> {
+    let ground = ground_of(terrain.as_ref(), spacing, None)?;
     let view = positions.as_array();
     let (n, columns) = view.dim();
     if columns != 2 {
@@ -189,7 +205,7 @@ pub(crate) fn grow_stand(
             |(lo, hi), &p| (lo.min(p), hi.max(p)),
         );
         let margin = Vec2::splat(30.0);
-        let ground = FlatPlane {
+        let flat = FlatPlane {
             height: 0.0,
             min: lo - margin,
             max: hi + margin,
@@ -197,10 +213,17 @@ pub(crate) fn grow_stand(
         let mut options = StandOptions::default();
         options.voxel = voxel;
         callback.tell("growing", 0, 1);
-        let stand = grow(&species, &plantings, &ground, &options)?;
+        let (stand, terrain) = match &ground {
+            Some(g) => (
+                grow(&species, &plantings, &g.map, &options)?,
+                Some(ground_mesh(&g.map)?),
+            ),
+            None => (grow(&species, &plantings, &flat, &options)?, None),
+        };
         callback.tell("growing", 1, 1);
         Ok::<_, Raised>(Stand {
             stand,
+            terrain,
             species,
             seeds,
         })

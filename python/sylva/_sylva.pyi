@@ -191,6 +191,8 @@ def grow_stand(
     seed: int = 1,
     generations: Optional[int] = None,
     voxel: float = 0.1,
+    terrain: Union[PathLike, npt.ArrayLike, None] = None,
+    spacing: Optional[float] = None,
     progress: Optional[Progress] = None,
 ) -> Stand: ...
 def succession(

@@ -24,6 +24,20 @@ def test_a_stand_grows_each_tree_and_writes_it(tmp_path):
         sylva.grow_stand(positions, species=["oak", "birch"])
 
 
+def test_a_stand_grows_on_terrain_given():
+    z, x = np.mgrid[0:65, 0:65].astype(np.float32)
+    slope = 0.2 * x  # rising 20 cm a metre eastward
+    stand = sylva.grow_stand(
+        [[20.0, 30.0], [40.0, 30.0]], species="birch", generations=4, voxel=0.2,
+        terrain=slope, spacing=1.0,
+    )
+    roots = [t.skeleton["starts"][0] for t in stand.trees()]
+    # Each tree stands on the slope where it was planted.
+    assert abs(roots[0][1] - 4.0) < 0.5 and abs(roots[1][1] - 8.0) < 0.5
+    with pytest.raises(sylva.SylvaError, match="spacing"):
+        sylva.grow_stand([[1.0, 1.0]], terrain=slope)
+
+
 def test_a_succession_gives_its_yearly_table():
     heard = []
     table = sylva.succession(area=100, years=12, seed=4, progress=lambda *a: heard.append(a))
