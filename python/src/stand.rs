@@ -8,8 +8,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sylva::forest::{GrownStand, Planting, Species, StandOptions, grow_stand as grow};
 use sylva::growth::Response;
-use sylva::terrain::{FlatPlane, TerrainMesh};
 use sylva::terrain::glam::Vec2;
+use sylva::terrain::{FlatPlane, TerrainMesh};
 use sylva::turtle::Skeleton;
 
 use crate::errors::{Raise, Raised, invalid};
