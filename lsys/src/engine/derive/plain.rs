@@ -56,8 +56,10 @@ impl Deriver<'_> {
                         continue;
                     }
                     let u = self.rng.unit() * total;
-                    let chosen = pick(u, choices.iter().map(|&(p, w, _)| (p, w)))
-                        .and_then(|p| choices.iter().find(|choice| choice.0 == p));
+                    // Picked by position among the choices: the same draw lands on the same
+                    // production as the general pass's pick among production indices.
+                    let positions = choices.iter().enumerate().map(|(k, c)| (k as u32, c.1));
+                    let chosen = pick(u, positions).and_then(|k| choices.get(k as usize));
                     match chosen {
                         Some(&(p, _, span)) => {
                             emit(out, span)?;
