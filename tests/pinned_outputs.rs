@@ -238,7 +238,7 @@ fn what_python_reads_of_an_oak_and_a_world() {
                 for p in &b.placements {
                     let inst = &variants[p.variant as usize].cache.instances[p.instance as usize];
                     // Instances without geometry are left out, as the files leave them out.
-                    if inst.bark.is_empty() && inst.leaves.is_empty() {
+                    if !inst.has_geometry() {
                         continue;
                     }
                     let x = &p.transform;

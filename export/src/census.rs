@@ -91,7 +91,7 @@ pub(crate) fn drawn_instances(variants: &[Variant], counts: &[Vec<u32>]) -> Draw
             if count == 0 {
                 continue;
             }
-            if inst.bark.is_empty() && inst.leaves.is_empty() {
+            if !inst.has_geometry() {
                 drawn.empty_placements += count;
                 continue;
             }

@@ -75,7 +75,7 @@ fn exported_glb_is_well_formed_and_counts_match() {
                 .groups
                 .iter()
                 .zip(&cache.instances)
-                .filter(|(_, i)| !(i.bark.is_empty() && i.leaves.is_empty()))
+                .filter(|(_, i)| i.has_geometry())
                 .map(|(g, _)| g.len())
                 .sum::<usize>()
         })

@@ -24,6 +24,28 @@ pub struct Instance {
     pub exits: Span,
 }
 
+impl Instance {
+    /// Whether it draws anything: an instance of no bark and no leaf triangles (a bud, a
+    /// branch shed) is placed but left out of files and frames.
+    ///
+    /// ```
+    /// use sylva_instancing::{Instance, Similarity, Span};
+    /// let bud = Instance {
+    ///     id: 3,
+    ///     age: 1,
+    ///     bark: Span::new(0, 0),
+    ///     leaves: Span::new(0, 0),
+    ///     frame_inverse: Similarity::IDENTITY,
+    ///     exits: Span::new(0, 0),
+    /// };
+    /// assert!(!bud.has_geometry());
+    /// assert!(Instance { leaves: Span::new(6, 3), ..bud }.has_geometry());
+    /// ```
+    pub fn has_geometry(&self) -> bool {
+        !(self.bark.is_empty() && self.leaves.is_empty())
+    }
+}
+
 /// An exit point of an instance: where a sub-branch of (id, age) must be attached, as a frame
 /// E relative to the instance's own frame (so the sub-branch goes to D * E).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -44,3 +44,15 @@ pub(crate) fn dict<'py>(
     }
     Ok(d)
 }
+
+/// A dict of whole-number figures.
+pub(crate) fn figures<'py, const N: usize>(
+    py: Python<'py>,
+    items: [(&'static str, u64); N],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (name, value) in items {
+        d.set_item(name, value)?;
+    }
+    Ok(d)
+}

@@ -4,26 +4,24 @@
 
 use std::path::PathBuf;
 
-use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyArrayMethods};
+use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::PyDict;
 use sylva::export::{
     GltfOptions, TileScheme, TilesetOptions, UsdOptions, check_tileset_folder, write_glb,
     write_tile, write_tileset, write_usda,
 };
 use sylva::forest::{PlacementBlock, Rect};
-use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
+use sylva::terrain::dem::Window;
 use sylva::terrain::glam::Vec2;
-use sylva::terrain::{Heightmap, TerrainError, TerrainMesh};
 use sylva::turtle::Vertex;
-use sylva::world::limits::{
-    DEFAULT_GROUP, DEFAULT_REGION_SIDE, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES,
-    TERRAIN_MESH_SPACING,
-};
-use sylva::world::{Fit, Ground, World, WorldBuilder};
+use sylva::world::limits::{DEFAULT_GROUP, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES};
+use sylva::world::{Ground, World, WorldBuilder};
 
-use crate::arrays::{column, dict, rows, triangles};
+use crate::arrays::{column, dict, figures, rows, triangles};
+use crate::columns::{PlacementColumns, TreeColumns};
 use crate::errors::{Raise, Raised, invalid};
+use crate::ground::{ground_mesh, ground_of};
 use crate::progress::Callback;
 use crate::tree::{day_of, file_size, species_material};
 
@@ -41,59 +39,16 @@ const MAX_READ_PLACEMENTS: usize = 25_000_000;
 /// row 0 the north edge, `spacing` metres apart (needed for an array, or a file that does
 /// not say); a model larger than 1000 m gives its middle 1000 m (Forest.notes says which
 /// window), or the window `crop` names: (column, row, width, height) in samples, from its
-/// north-west corner. Without it, `area` metres of generated terrain. `density` is canopy trees per hectare, `budget_mb` the instance
-/// cache's size (default: sized to the forest), `season` a day of the year or a season's
-/// name, `year` draws the forest as it stands in that year of a forest over time.
-/// `progress(stage, done, total)` hears how the build goes. The GIL is released while it
-/// builds.
+/// north-west corner. Without it, `area` metres of generated terrain. `density` is canopy
+/// trees per hectare, `budget_mb` the instance cache's size (default: sized to the forest),
+/// `season` a day of the year or a season's name, `year` draws the forest as it stands in
+/// that year of a forest over time. `progress(stage, done, total)` hears how the build goes.
+/// The GIL is released while it builds.
 #[pyclass(module = "sylva", name = "Forest", frozen)]
 #[derive(Debug)]
 pub(crate) struct Forest {
     world: World,
     notes: Vec<String>,
-}
-
-/// What a forest or a stand stands on: nothing given, or ground read from a model's file or
-/// an array of heights (its middle 1000 m, or the window `crop` names).
-pub(crate) fn ground_of(
-    terrain: Option<&Bound<'_, PyAny>>,
-    spacing: Option<f32>,
-    crop: Option<Window>,
-) -> PyResult<Option<Ground>> {
-    let Some(terrain) = terrain else {
-        return Ok(None);
-    };
-    let options = ReadOptions {
-        spacing,
-        ..ReadOptions::default()
-    };
-    let fit = Fit::Middle {
-        side: DEFAULT_REGION_SIDE,
-    };
-    if terrain.is_instance_of::<PyString>() || terrain.hasattr("__fspath__")? {
-        let path: PathBuf = terrain.extract()?;
-        let py = terrain.py();
-        let ground = py.detach(|| Ground::read(&path, &options, crop, fit, "spacing="));
-        return ground.raise().map(Some);
-    }
-    let heights: PyArrayLike2<'_, f32, AllowTypeChange> = terrain.extract().map_err(|_| {
-        invalid("terrain: expected a file's path or a 2-D array of heights in metres")
-    })?;
-    let view = heights.as_array();
-    let (rows_count, columns) = view.dim();
-    let model = ElevationModel {
-        width: columns,
-        height: rows_count,
-        // Row-major whatever the array's own order.
-        heights: view.iter().copied().collect(),
-        spacing: [spacing.unwrap_or(1.0); 2],
-        nodata: 0,
-        georeference: None,
-        spacing_from_file: false,
-    };
-    Ground::of_model(model, "terrain array", &options, crop, fit, "spacing=")
-        .raise()
-        .map(Some)
 }
 
 #[pymethods]
@@ -284,8 +239,8 @@ impl Forest {
     }
 
     /// Every placement of a branch instance with geometry (the forest as a renderer draws
-    /// it, and as the files hold it), in the forest's streaming order, within `region` ((x0, z0), (x1, z1)) when given: `position`
-    /// (float32, n x 3), `rotation` (float32, n x 4, a unit quaternion x, y, z, w), `scale`
+    /// it, and as the files hold it), in the forest's streaming order, within `region`
+    /// ((x0, z0), (x1, z1)) when given: `position` (float32, n x 3), `rotation` (float32, n x 4, a unit quaternion x, y, z, w), `scale`
     /// (float32), `variant` and `instance` (uint32: the mesh, Forest.instance_mesh), and
     /// `tree` (uint32: for the whole forest the tree's index in Forest.trees(); for a region,
     /// among the region's trees in streaming order). At most 25 million placements at once.
@@ -300,28 +255,14 @@ impl Forest {
             Some(((x0, z0), (x1, z1))) => Rect::new(Vec2::new(x0, z0), Vec2::new(x1, z1)),
             None => world.region(),
         };
-        // Instances without geometry are placed but drawn by nobody: left out, as the files
-        // leave them out.
-        let drawn: Vec<Vec<bool>> = world
-            .forest
-            .variants()
-            .iter()
-            .map(|v| {
-                v.cache
-                    .instances
-                    .iter()
-                    .map(|i| !(i.bark.is_empty() && i.leaves.is_empty()))
-                    .collect()
-            })
-            .collect();
-        let mut p = PlacementColumns::default();
+        let mut p = PlacementColumns::drawing(world.forest.variants());
         py.detach(|| {
             world.forest.stream_with(
                 &world.ground.map,
                 region,
                 &|_| true,
                 &mut |block: &PlacementBlock| {
-                    p.extend(block, &drawn);
+                    p.extend(block);
                     if p.position.len() > MAX_READ_PLACEMENTS {
                         return Err(Raised::Other(format!(
                             "more than {MAX_READ_PLACEMENTS} placements: read them a region \
@@ -421,7 +362,7 @@ impl Forest {
         let stats = py.detach(|| {
             callback.tell("writing glTF", 0, 1);
             let map = &world.ground.map;
-            let mesh = terrain_mesh(world)?;
+            let mesh = ground_mesh(map)?;
             let mut options = GltfOptions::default();
             options.one_node_per_placement = !instancing;
             let stats = write_glb(
@@ -457,7 +398,7 @@ impl Forest {
         let stats = py
             .detach(|| {
                 let map = &world.ground.map;
-                let mesh = terrain_mesh(world)?;
+                let mesh = ground_mesh(map)?;
                 let options = UsdOptions::default();
                 Ok::<_, Raised>(write_usda(
                     &world.forest,
@@ -538,119 +479,6 @@ impl Forest {
             "<sylva.Forest {:.0} m, seed {}, {names}>",
             self.world.side(),
             self.world.seed
-        )
-    }
-}
-
-/// The terrain's mesh as `sylva forest` writes it: vertices at least
-/// [`TERRAIN_MESH_SPACING`] apart.
-fn terrain_mesh(world: &World) -> Result<TerrainMesh, TerrainError> {
-    ground_mesh(&world.ground.map)
-}
-
-/// A heightmap's mesh with vertices at least [`TERRAIN_MESH_SPACING`] apart.
-pub(crate) fn ground_mesh(map: &Heightmap) -> Result<TerrainMesh, TerrainError> {
-    map.mesh(map.stride_for_spacing(TERRAIN_MESH_SPACING))
-}
-
-/// A dict of whole-number figures.
-fn figures<'py, const N: usize>(
-    py: Python<'py>,
-    items: [(&'static str, u64); N],
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    for (name, value) in items {
-        d.set_item(name, value)?;
-    }
-    Ok(d)
-}
-
-/// Trees as columns.
-#[derive(Debug, Default)]
-struct TreeColumns {
-    position: Vec<[f32; 3]>,
-    yaw: Vec<f32>,
-    scale: Vec<f32>,
-    variant: Vec<u16>,
-    species: Vec<u16>,
-    seed: Vec<u32>,
-}
-
-impl TreeColumns {
-    fn extend(&mut self, block: &PlacementBlock, variants: &[sylva::forest::Variant]) {
-        for t in &block.trees {
-            self.position.push(t.position);
-            self.yaw.push(t.yaw);
-            self.scale.push(t.scale);
-            self.variant.push(t.variant);
-            let species = variants
-                .get(usize::from(t.variant))
-                .map_or(0, |v| v.species);
-            self.species.push(species as u16);
-            self.seed.push(t.seed);
-        }
-    }
-
-    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-        dict(
-            py,
-            [
-                ("position", rows(py, self.position)?.into_any()),
-                ("yaw", column(py, self.yaw).into_any()),
-                ("scale", column(py, self.scale).into_any()),
-                ("variant", column(py, self.variant).into_any()),
-                ("species", column(py, self.species).into_any()),
-                ("seed", column(py, self.seed).into_any()),
-            ],
-        )
-    }
-}
-
-/// Placements as columns; `tree` counts trees across blocks.
-#[derive(Debug, Default)]
-struct PlacementColumns {
-    position: Vec<[f32; 3]>,
-    rotation: Vec<[f32; 4]>,
-    scale: Vec<f32>,
-    variant: Vec<u32>,
-    instance: Vec<u32>,
-    tree: Vec<u32>,
-    trees_before: u32,
-}
-
-impl PlacementColumns {
-    fn extend(&mut self, block: &PlacementBlock, drawn: &[Vec<bool>]) {
-        for p in &block.placements {
-            let has_geometry = drawn
-                .get(p.variant as usize)
-                .and_then(|v| v.get(p.instance as usize))
-                .copied()
-                .unwrap_or(false);
-            if !has_geometry {
-                continue;
-            }
-            let x = &p.transform;
-            self.position.push(x.translation.to_array());
-            self.rotation.push(x.rotation.to_array());
-            self.scale.push(x.scale);
-            self.variant.push(p.variant);
-            self.instance.push(p.instance);
-            self.tree.push(self.trees_before + p.tree);
-        }
-        self.trees_before += block.trees.len() as u32;
-    }
-
-    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-        dict(
-            py,
-            [
-                ("position", rows(py, self.position)?.into_any()),
-                ("rotation", rows(py, self.rotation)?.into_any()),
-                ("scale", column(py, self.scale).into_any()),
-                ("variant", column(py, self.variant).into_any()),
-                ("instance", column(py, self.instance).into_any()),
-                ("tree", column(py, self.tree).into_any()),
-            ],
         )
     }
 }

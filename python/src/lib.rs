@@ -9,9 +9,11 @@
 //! The package around it (`python/sylva/`) re-exports these names, with type stubs.
 
 mod arrays;
+mod columns;
 mod errors;
 mod forest;
 mod grammar;
+mod ground;
 mod progress;
 mod stand;
 mod succession;

@@ -12,8 +12,9 @@ use sylva::terrain::glam::Vec2;
 use sylva::terrain::{FlatPlane, TerrainMesh};
 use sylva::turtle::Skeleton;
 
+use crate::arrays::figures;
 use crate::errors::{Raise, Raised, invalid};
-use crate::forest::{ground_mesh, ground_of};
+use crate::ground::{ground_mesh, ground_of};
 use crate::progress::Callback;
 use crate::tree::{Tree, file_size};
 
@@ -64,19 +65,18 @@ impl Stand {
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = &self.stand.stats;
-        let d = PyDict::new(py);
-        for (name, value) in [
-            ("segments", s.segments),
-            ("deflected", s.deflected),
-            ("aborted", s.aborted),
-            ("stopped", s.stopped),
-            ("samples", s.samples),
-            ("ray_steps", s.ray_steps),
-            ("iterations", u64::from(s.iterations)),
-        ] {
-            d.set_item(name, value)?;
-        }
-        Ok(d)
+        figures(
+            py,
+            [
+                ("segments", s.segments),
+                ("deflected", s.deflected),
+                ("aborted", s.aborted),
+                ("stopped", s.stopped),
+                ("samples", s.samples),
+                ("ray_steps", s.ray_steps),
+                ("iterations", u64::from(s.iterations)),
+            ],
+        )
     }
 
     /// Writes the stand as binary glTF with its species' materials, and its terrain when it

@@ -261,7 +261,7 @@ impl World {
             }
             let mut of = Vec::with_capacity(cache.instances.len());
             for (k, inst) in cache.instances.iter().enumerate() {
-                if inst.bark.is_empty() && inst.leaves.is_empty() {
+                if !inst.has_geometry() {
                     of.push(None);
                     continue;
                 }
