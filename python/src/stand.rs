@@ -166,12 +166,15 @@ pub(crate) fn grow_stand(
     }
     let callback = Callback::new(progress);
     let grown = py.detach(|| {
-        // Each name once, in order of first use.
+        // Each name once, in order of first use; each planting's species an index into them.
         let mut distinct: Vec<&String> = Vec::new();
+        let mut kinds: Vec<usize> = Vec::with_capacity(names.len());
         for name in &names {
-            if !distinct.contains(&name) {
+            let k = distinct.iter().position(|d| *d == name).unwrap_or_else(|| {
                 distinct.push(name);
-            }
+                distinct.len() - 1
+            });
+            kinds.push(k);
         }
         let mut species = distinct
             .iter()
@@ -190,10 +193,8 @@ pub(crate) fn grow_stand(
             .zip(&seeds)
             .enumerate()
             .map(|(k, (&position, &seed))| Planting {
-                species: distinct
-                    .iter()
-                    .position(|d| **d == names[k.min(names.len() - 1)])
-                    .unwrap_or(0),
+                // One name for all, or one each.
+                species: kinds[k.min(kinds.len() - 1)],
                 position,
                 seed,
                 start: 0,
