@@ -42,6 +42,7 @@ async function main() {
     problems++;
   }
   const want = { TRANSLATION: 'VEC3', ROTATION: 'VEC4', SCALE: 'VEC3' };
+  const inScene = reachable(json, json.scenes[json.scene || 0].nodes);
   for (const [n, node] of (json.nodes || []).entries()) {
     const ext = node.extensions && node.extensions.EXT_mesh_gpu_instancing;
     if (!ext) continue;
@@ -77,14 +78,78 @@ async function main() {
         }
       }
     }
-    placements += count || 0;
+    // A forest's placements are its full detail: the nodes a scene reaches. Coarser levels
+    // (MSFT_lod) place the same trees again, so they are checked below, not counted.
+    if (inScene.has(n)) placements += count || 0;
   }
+  problems += checkLevels(json);
   console.log(`  instancing: ${placements} placements, ${problems} problems`);
   if (expected !== undefined && Number(expected) !== placements) {
     console.log(`  instancing: expected ${expected} placements`);
     problems++;
   }
   process.exit(numErrors === 0 && problems === 0 ? 0 : 1);
+}
+
+// The nodes reachable from `roots` through children.
+function reachable(json, roots) {
+  const seen = new Set();
+  const stack = [...roots];
+  while (stack.length) {
+    const n = stack.pop();
+    if (seen.has(n)) continue;
+    seen.add(n);
+    stack.push(...((json.nodes[n] || {}).children || []));
+  }
+  return seen;
+}
+
+// The TRANSLATION accessors of the instanced nodes under `n`.
+function placedUnder(json, n) {
+  const out = new Set();
+  for (const k of reachable(json, [n])) {
+    const ext = (json.nodes[k].extensions || {}).EXT_mesh_gpu_instancing;
+    if (ext) out.add(ext.attributes.TRANSLATION);
+  }
+  return out;
+}
+
+// MSFT_lod as sylva writes it: the coarser levels are outside the scene, each mesh level
+// places its meshes with the full level's accessors (a branch that a coarser level drops is
+// left out of it; the impostor, last when there is one, has a placement per tree), and
+// MSFT_screencoverage has a share per level, each at most the one before.
+function checkLevels(json) {
+  if (!(json.extensionsUsed || []).includes('MSFT_lod')) return 0;
+  if ((json.extensionsRequired || []).includes('MSFT_lod')) {
+    console.log('  levels: MSFT_lod must not be required (a client without it draws full detail)');
+    return 1;
+  }
+  const scene = reachable(json, json.scenes[json.scene || 0].nodes);
+  let problems = 0;
+  let groups = 0;
+  for (const [n, node] of json.nodes.entries()) {
+    const lod = (node.extensions || {}).MSFT_lod;
+    if (!lod) continue;
+    groups++;
+    const full = placedUnder(json, n);
+    const levels = (node.extras || {}).sylva_levels || {};
+    const meshLevels = lod.ids.length - (levels.impostor ? 1 : 0);
+    for (const [k, id] of lod.ids.entries()) {
+      if (scene.has(id)) { console.log(`  levels: node ${n}'s level ${k + 1} (node ${id}) is in the scene`); problems++; }
+      const foreign = [...placedUnder(json, id)].filter((a) => !full.has(a));
+      if (k < meshLevels && foreign.length > 0) {
+        console.log(`  levels: node ${n}'s level ${k + 1} places accessors ${foreign.slice(0, 5)} that its full level does not`);
+        problems++;
+      }
+    }
+    const cover = (node.extras || {}).MSFT_screencoverage || [];
+    if (cover.length !== lod.ids.length + 1 || cover.some((c, k) => k > 0 && c > cover[k - 1])) {
+      console.log(`  levels: node ${n}'s MSFT_screencoverage ${JSON.stringify(cover)} does not fit its ${lod.ids.length + 1} levels`);
+      problems++;
+    }
+  }
+  console.log(`  levels: ${groups} nodes with MSFT_lod, ${problems} problems`);
+  return problems;
 }
 
 function chunk(data, index) {

@@ -21,6 +21,11 @@ pub(crate) struct Node {
     pub(crate) first: usize,
     /// Its placements.
     pub(crate) count: usize,
+    /// The cell its trees stand in (0 in a file without cells).
+    pub(crate) cell: u32,
+    /// Whether it places its variant's impostor, once per tree, rather than an instance
+    /// (`instance` is then the variant's instance count).
+    pub(crate) impostor: bool,
 }
 
 /// Placements of every instance of every variant (by variant, then instance), and what
@@ -101,6 +106,8 @@ pub(crate) fn drawn_instances(variants: &[Variant], counts: &[Vec<u32>]) -> Draw
                 instance: i,
                 first: drawn.placements,
                 count,
+                cell: 0,
+                impostor: false,
             });
             drawn.placements += count;
             drawn.triangles += count as u64 * u64::from((inst.bark.count + inst.leaves.count) / 3);

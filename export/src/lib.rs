@@ -57,7 +57,10 @@ pub use usd::{UsdOptions, UsdStats, write_usda};
 
 /// The limits and tuning constants of export.
 pub mod limits {
-    pub use crate::gltf::{CHUNK_BYTES, MAX_NODE_PLACEMENTS};
+    pub use crate::gltf::{
+        CELL_SIZE, CHUNK_BYTES, MAX_CELLS_PER_SIDE, MAX_NODE_PLACEMENTS, SEEDLING_CELL_FACTOR,
+        SEEDLING_MIN_PIXELS,
+    };
     pub use crate::texture::{CUTOFF_MIP_LEVEL, TEXTURE_SIZE};
     pub use crate::tiles::MAX_TILES;
 }

@@ -64,7 +64,7 @@ mod walk;
 mod years;
 
 pub use appearance::{BarkPattern, LeafShape};
-pub use census::InstanceCounts;
+pub use census::{BinCounts, BinnedCounts, InstanceCounts};
 pub use composition::ComposedDensity;
 pub use config::{Constraints, ForestConfig};
 pub use density::{Candidate, DensityModel, Rect, distance_to_segment};

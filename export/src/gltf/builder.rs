@@ -5,8 +5,8 @@
 
 use super::schema::{
     Accessor, Attributes, Buffer, BufferView, GPU_INSTANCING, GpuInstancing, Image,
-    InstanceAttributes, MESH_QUANTIZATION, Material, Mesh, Node, NodeExtensions, Pbr, Primitive,
-    Root, Sampler, Scene, Texture, TextureRef,
+    InstanceAttributes, LEVELS_OF_DETAIL, MESH_QUANTIZATION, Material, Mesh, Node, NodeExtensions,
+    Pbr, Primitive, Root, Sampler, Scene, Texture, TextureRef,
 };
 use sylva_forest::{CLUSTER_SHADE_MEAN, Species};
 
@@ -313,7 +313,7 @@ impl DocumentBuilder {
             name: Some(name),
             mesh: Some(mesh),
             extensions: Some(NodeExtensions {
-                gpu_instancing: GpuInstancing {
+                gpu_instancing: Some(GpuInstancing {
                     attributes: InstanceAttributes {
                         translation,
                         rotation,
@@ -321,7 +321,8 @@ impl DocumentBuilder {
                         colour,
                         wind,
                     },
-                },
+                }),
+                lod: None,
             }),
             // A wind shader needs the reach to read `_WIND_TREE`'s offsets in metres.
             extras: wind.map(|_| serde_json::json!({ "sylva_wind_tree_reach": WIND_TREE_REACH })),
@@ -380,20 +381,34 @@ impl DocumentBuilder {
     /// mesh at the origin; required, it refuses the file and the user reaches for
     /// `--no-instancing`), padded with spaces to a whole number of words.
     pub(super) fn into_json(mut self) -> Result<String, ExportError> {
-        let children: std::collections::BTreeSet<usize> = self
+        // A node that is another's child, or another's coarser level, is not a scene's root:
+        // a client without MSFT_lod never reaches the coarser levels.
+        let extensions = || self.root.nodes.iter().filter_map(|n| n.extensions.as_ref());
+        let lower: Vec<usize> = extensions()
+            .filter_map(|e| e.lod.as_ref())
+            .flat_map(|l| l.ids.iter().copied())
+            .collect();
+        let instanced = extensions().any(|e| e.gpu_instancing.is_some());
+        let levels = !lower.is_empty();
+        let below: std::collections::BTreeSet<usize> = self
             .root
             .nodes
             .iter()
             .flat_map(|n| n.children.iter().copied())
+            .chain(lower)
             .collect();
         self.root.scenes = vec![Scene {
             nodes: (0..self.root.nodes.len())
-                .filter(|k| !children.contains(k))
+                .filter(|k| !below.contains(k))
                 .collect(),
         }];
-        if self.root.nodes.iter().any(|n| n.extensions.is_some()) {
+        if instanced {
             self.root.extensions_used.push(GPU_INSTANCING.into());
             self.root.extensions_required.push(GPU_INSTANCING.into());
+        }
+        // Used, not required: a client without it draws every node at full detail.
+        if levels {
+            self.root.extensions_used.push(LEVELS_OF_DETAIL.into());
         }
         if self.quantized {
             self.root.extensions_used.push(MESH_QUANTIZATION.into());

@@ -3,14 +3,16 @@
 
 use std::sync::Arc;
 
-use sylva_forest::{ForestBuilder, Species};
+use sylva_forest::ForestBuilder;
 use sylva_instancing::{Similarity, Span};
 use sylva_terrain::TerrainMesh;
 use sylva_turtle::Vertex;
 
 use super::builder::{DocumentBuilder, TreeViews};
 use super::extras::VertexLayout;
+use super::groups::{Grouping, Layers, lay_out_groups};
 use super::indices::IndexWidth;
+use super::levels::{CARDS_CUTOFF, VariantLevels};
 use super::placement_words::{SECTION_ACCESSORS, SECTION_WORDS};
 use super::schema::{Attributes, Buffer, Node as JsonNode, Primitive};
 use super::shared::{SHARED_LAYOUT, SharedLayout, TextureSet, section_lengths};
@@ -37,9 +39,10 @@ pub(super) struct Document {
     pub(super) total: usize,
 }
 
-/// A used variant's views, attributes and materials, which its instances' meshes share.
+/// A layer's views, attributes and materials, which its instances' meshes share: a used
+/// variant's cache at one level of detail, or its impostor's cards.
 #[derive(Debug, Clone, Copy)]
-struct VariantLayout {
+pub(super) struct VariantLayout {
     attributes: Attributes,
     views: TreeViews,
     /// The width of its indices, by its vertex count.
@@ -81,16 +84,14 @@ fn lay_out_terrain(
     terrain_colours
 }
 
-/// The views of a variant's four buffers (`vertices` and the lengths of the sections for
+/// The views of a layer's four buffers (`vertices` and the lengths of the sections for
 /// them, its extras and its bark and leaf indices) in `buffer` at `at`, its attributes, and
-/// its bark and leaf materials.
+/// the bark and leaf materials it is drawn with.
 fn lay_out_variant(
     d: &mut DocumentBuilder,
     (vertices, lengths, layout): (&[Vertex], [usize; 4], VertexLayout),
-    species: &Species,
     (buffer, at): (usize, [usize; 4]),
-    textures: &TextureSet,
-    options: &GltfOptions,
+    (bark_material, leaf_material): (usize, usize),
 ) -> VariantLayout {
     let [vbytes, ebytes, bbytes, lbytes] = lengths;
     let stride = layout.vertex_bytes() as u32;
@@ -107,8 +108,6 @@ fn lay_out_variant(
         leaves: d.index_view(buffer, at[3], lbytes),
     };
     let attributes = d.tree_attributes(views, vertices.iter().map(|v| v.position), layout);
-    let (bark_material, leaf_material) =
-        d.species_materials(species, options.roughness, textures.of_species(species));
     VariantLayout {
         attributes,
         views,
@@ -120,7 +119,7 @@ fn lay_out_variant(
 
 /// The bark and leaf primitives of an instance whose triangles sit at `spans` (bark, leaves)
 /// in its variant's views.
-fn instance_primitives(
+pub(super) fn instance_primitives(
     d: &mut DocumentBuilder,
     (bark, leaves): (Span, Span),
     shared: &VariantLayout,
@@ -209,17 +208,19 @@ impl Document {
     /// The layout for `nodes` holding `placements` in all. With `one_node_each` (the
     /// fallback for importers without EXT_mesh_gpu_instancing) every placement is a node of
     /// its own, its transform given here, per node in the order of `nodes`, and the file has
-    /// no placement sections.
+    /// no placement sections. With `grouping`, the nodes are gathered under a node per cell
+    /// and variant (with the variant's coarser levels and impostor, when it has levels).
     pub(super) fn lay_out(
         builder: &ForestBuilder,
         terrain: Option<&TerrainMesh>,
         options: &GltfOptions,
-        nodes: &[Node],
-        placements: usize,
+        (nodes, placements): (&[Node], usize),
         one_node_each: Option<&[Vec<Similarity>]>,
+        grouping: Option<Grouping<'_>>,
     ) -> Result<Document, ExportError> {
         let variants = builder.variants();
         let species = &builder.config().species;
+        let levels = grouping.and_then(|g| g.levels);
         let mut d = DocumentBuilder::default();
         let terrain_colours = terrain.map_or_else(Vec::new, |t| {
             lay_out_terrain(&mut d, t, crate::phenology::snow_lying(builder), options)
@@ -233,6 +234,7 @@ impl Document {
             (None, None) => VertexLayout::Quantized,
         };
         let mut used_variants: Vec<usize> = nodes.iter().map(|n| n.variant).collect();
+        used_variants.sort_unstable();
         used_variants.dedup();
         // Geometry shared with other files (tiles of one world) lives in buffer 1, laid out
         // for every variant and texture of the world; otherwise the used variants' buffers
@@ -245,43 +247,66 @@ impl Document {
             Some((_, layout)) => layout.textures.clone(),
             None => TextureSet::of(used_variants.iter().map(|&v| &species[variants[v].species])),
         };
-        // Images are embedded only when nothing is shared (the shared file holds them).
-        let images = match &shared_layout {
-            Some(_) => Arc::default(),
-            None => textures.images(),
-        };
-        // A file of its own embeds, per variant, only the instances its nodes place and the
-        // vertices they reference.
-        let mut subsets: Vec<Option<CacheSubset>> = vec![None; variants.len()];
-        if shared_layout.is_none() {
-            let mut used: Vec<Vec<usize>> = vec![Vec::new(); variants.len()];
-            for n in nodes {
-                used[n.variant].push(n.instance);
+        // Images are embedded only when nothing is shared (the shared file holds them); the
+        // impostors' card textures follow the species' textures.
+        let species_images = textures.images();
+        let mut impostor_texture: Vec<Option<usize>> = vec![None; variants.len()];
+        let images: Arc<Vec<Vec<u8>>> = match (&shared_layout, levels) {
+            (Some(_), _) => Arc::default(),
+            (None, None) => species_images.clone(),
+            (None, Some(levels)) => {
+                let mut all = species_images.as_ref().clone();
+                for &v in &used_variants {
+                    if let Some((_, png)) = &levels.variants[v].cards {
+                        impostor_texture[v] = Some(all.len());
+                        all.push(png.clone());
+                    }
+                }
+                Arc::new(all)
             }
+        };
+        // Per variant, its layers: the cache at each level (the full one first), then the
+        // impostor's cards. A file of its own embeds of each only the instances its nodes
+        // place and the vertices they reference.
+        let mut used: Vec<Vec<usize>> = vec![Vec::new(); variants.len()];
+        for n in nodes.iter().filter(|n| !n.impostor) {
+            used[n.variant].push(n.instance);
+        }
+        let mut subsets: Vec<Vec<CacheSubset>> = vec![Vec::new(); variants.len()];
+        if shared_layout.is_none() {
             for &v in &used_variants {
-                subsets[v] = Some(CacheSubset::of(&variants[v].cache, &used[v]));
+                subsets[v] =
+                    variant_layers(&variants[v].cache, levels.map(|l| &l.variants[v]), &used[v]);
             }
         }
-        let mut shared = vec![None; variants.len()];
+        let mut shared: Vec<Vec<VariantLayout>> = vec![Vec::new(); variants.len()];
         for &v in &used_variants {
             let c = &variants[v].cache;
-            let (vertices, lengths, at) = match (&shared_layout, &subsets[v]) {
-                (Some((_, shared_file)), _) => {
-                    let at = shared_file.variants[v];
-                    let lengths = section_lengths(layout, &c.vertices, &c.bark, &c.leaves);
-                    let at = (1, [at.vertices, at.extras, at.bark, at.leaves]);
-                    (c.vertices.as_slice(), lengths, at)
-                }
-                (None, Some(subset)) => {
-                    let lengths = subset.section_lengths(layout);
-                    let at = (0, lengths.map(|len| d.reserve(len)));
-                    (subset.vertices.as_slice(), lengths, at)
-                }
-                (None, None) => continue,
-            };
             let s = &species[variants[v].species];
-            let geometry = (vertices, lengths, layout);
-            shared[v] = Some(lay_out_variant(&mut d, geometry, s, at, &textures, options));
+            let materials = d.species_materials(s, options.roughness, textures.of_species(s));
+            if let Some((_, shared_file)) = &shared_layout {
+                let at = shared_file.variants[v];
+                let lengths = section_lengths(layout, &c.vertices, &c.bark, &c.leaves);
+                let at = (1, [at.vertices, at.extras, at.bark, at.leaves]);
+                let geometry = (c.vertices.as_slice(), lengths, layout);
+                shared[v].push(lay_out_variant(&mut d, geometry, at, materials));
+                continue;
+            }
+            let meshes = levels.map_or(1, |l| l.variants[v].mesh_levels());
+            for (k, subset) in subsets[v].iter().enumerate() {
+                let materials = match impostor_texture[v] {
+                    Some(texture) if k == meshes => {
+                        let name = format!("{} impostor", s.name);
+                        let cards = d.card_material(name, texture, CARDS_CUTOFF);
+                        (cards, cards)
+                    }
+                    _ => materials,
+                };
+                let lengths = subset.section_lengths(layout);
+                let at = (0, lengths.map(|len| d.reserve(len)));
+                let geometry = (subset.vertices.as_slice(), lengths, layout);
+                shared[v].push(lay_out_variant(&mut d, geometry, at, materials));
+            }
         }
         let image_views: Vec<usize> = match &shared_layout {
             Some((_, layout)) => layout
@@ -303,33 +328,47 @@ impl Document {
             SECTION_WORDS.map(|words| d.view(4 * words * placements, None, None))
         };
         let bin_len = d.bin_len;
-        for (k, node) in nodes.iter().enumerate() {
-            let Some(layout) = &shared[node.variant] else {
-                continue;
-            };
-            let spans = match &subsets[node.variant] {
-                Some(subset) => subset.spans(node.instance),
-                None => variants[node.variant]
+        let spans = |variant: usize, layer: usize, instance: usize| -> Option<(Span, Span)> {
+            match subsets[variant].get(layer) {
+                Some(subset) => subset.spans(instance),
+                None => variants[variant]
                     .cache
                     .instances
-                    .get(node.instance)
+                    .get(instance)
                     .map(|i| (i.bark, i.leaves)),
-            };
-            let Some(spans) = spans else {
-                continue;
-            };
-            let placed = match one_node_each {
-                Some(each) => Placed::Nodes(each.get(k).map_or(&[], Vec::as_slice)),
-                None => Placed::Instanced(sections),
-            };
-            lay_out_node(&mut d, builder, node, (layout, spans), placed);
+            }
+        };
+        match grouping {
+            Some(grouping) => {
+                let layers = Layers {
+                    layouts: &shared,
+                    spans: &spans,
+                };
+                lay_out_groups(&mut d, builder, nodes, grouping, &layers, sections);
+            }
+            None => {
+                for (k, node) in nodes.iter().enumerate() {
+                    let Some(layout) = shared[node.variant].first() else {
+                        continue;
+                    };
+                    let Some(spans) = spans(node.variant, 0, node.instance) else {
+                        continue;
+                    };
+                    let placed = match one_node_each {
+                        Some(each) => Placed::Nodes(each.get(k).map_or(&[], Vec::as_slice)),
+                        None => Placed::Instanced(sections),
+                    };
+                    lay_out_node(&mut d, builder, node, (layout, spans), placed);
+                }
+            }
         }
-        let first_bark = textures.first_bark();
+        // Leaf shapes and impostor cards clamp at their edges; bark tiles.
+        let (first_bark, species_count) = (textures.first_bark(), species_images.len());
         d.images(
             image_views
                 .iter()
                 .enumerate()
-                .map(|(k, &v)| (v, k >= first_bark)),
+                .map(|(k, &v)| (v, (first_bark..species_count).contains(&k))),
         );
         match &shared_layout {
             Some((uri, layout)) => {
@@ -354,4 +393,36 @@ impl Document {
             bin_len,
         })
     }
+}
+
+/// The layers a file embeds of one variant for instances `used`: its cache, then with
+/// `levels` each coarser level of it and the impostor's cards (a layer of one instance, 0).
+fn variant_layers(
+    cache: &sylva_instancing::InstanceCache,
+    levels: Option<&VariantLevels>,
+    used: &[usize],
+) -> Vec<CacheSubset> {
+    let mut out = vec![CacheSubset::of(cache, used)];
+    let Some(levels) = levels else {
+        return out;
+    };
+    let lods = &levels.lods.cache;
+    for level in lods.levels.iter().skip(1) {
+        out.push(CacheSubset::of_parts(
+            &lods.vertices,
+            (&level.bark, &level.leaves),
+            &level.spans,
+            used,
+        ));
+    }
+    if let Some((cards, _)) = &levels.cards {
+        let whole = Span::new(0, cards.leaves.len() as u32);
+        out.push(CacheSubset::of_parts(
+            &cards.vertices,
+            (&[], &cards.leaves),
+            &[(Span::new(0, 0), whole)],
+            &[0],
+        ));
+    }
+    out
 }

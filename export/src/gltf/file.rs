@@ -8,11 +8,12 @@ use sylva_forest::{ForestBuilder, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
+use super::cells::{CellGrid, CellNodes};
 use super::document::Document;
 use super::indices::IndexWidth;
 use super::placement_words::{self, PLACEMENT_BYTES, SECTION_WORDS};
 use super::shared::put_tree_sections;
-use super::{Node, glb_header};
+use super::{Node, NodeLookup, glb_header};
 use crate::census::{check_transform, kept_trees};
 use crate::error::{ExportError, Invalid};
 use crate::spill::TreeSpill;
@@ -100,33 +101,96 @@ struct BlockRuns {
     sections: [Vec<u32>; 5],
 }
 
+/// What one placement in the file places: a placement of the block, or a tree's impostor.
+#[derive(Debug, Clone, Copy)]
+enum Placed {
+    Instance(u32),
+    Impostor(u32),
+}
+
+/// Every placement of `block` with its node: its instances' placements and, in a file with
+/// impostors, each canopy tree's impostor; `u32::MAX` for instances the file leaves out.
+fn block_nodes(
+    block: &PlacementBlock,
+    lookup: NodeLookup<'_>,
+) -> Result<Vec<(u32, Placed)>, Invalid> {
+    let mut out = Vec::with_capacity(block.placements.len());
+    match lookup {
+        NodeLookup::Flat(node_of) => {
+            for (k, p) in block.placements.iter().enumerate() {
+                check_transform(&p.transform)?;
+                let node = node_of
+                    .get(p.variant as usize)
+                    .and_then(|v| v.get(p.instance as usize))
+                    .copied()
+                    .ok_or(Invalid::UnknownInstance)?;
+                out.push((node, Placed::Instance(k as u32)));
+            }
+        }
+        NodeLookup::Cells {
+            nodes,
+            grid,
+            impostors,
+        } => {
+            let variants = nodes_variants(block, grid, nodes, impostors);
+            for (k, p) in block.placements.iter().enumerate() {
+                check_transform(&p.transform)?;
+                let &(cell, _) = variants
+                    .get(p.tree as usize)
+                    .ok_or(Invalid::UnknownInstance)?;
+                let node = nodes
+                    .node(cell, p.variant as usize, p.instance as usize)
+                    .unwrap_or(u32::MAX);
+                out.push((node, Placed::Instance(k as u32)));
+            }
+            for (t, (tree, &(cell, impostor))) in block.trees.iter().zip(&variants).enumerate() {
+                if !impostor {
+                    continue;
+                }
+                let root = tree.root();
+                check_transform(&root)?;
+                let node = nodes
+                    .impostor(cell, usize::from(tree.variant))
+                    .ok_or(Invalid::UnknownInstance)?;
+                out.push((node, Placed::Impostor(t as u32)));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Each tree's cell and whether its variant has an impostor.
+fn nodes_variants(
+    block: &PlacementBlock,
+    grid: &CellGrid,
+    nodes: &CellNodes,
+    impostors: &[bool],
+) -> Vec<(u32, bool)> {
+    block
+        .trees
+        .iter()
+        .map(|t| {
+            let v = usize::from(t.variant);
+            let impostor = impostors.get(v).copied().unwrap_or(false);
+            (grid.cell_of(t, nodes.seedling(v)), impostor)
+        })
+        .collect()
+}
+
 /// Groups `block`'s placements by node and spells them as the file's words, each transform
 /// checked. Tints and wind data are worked out once per tree, not per placement. Runs on the
 /// core that placed the block, so the writer only copies whole runs.
-fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, Invalid> {
+fn block_runs(block: PlacementBlock, lookup: NodeLookup<'_>) -> Result<BlockRuns, Invalid> {
     let tints: Vec<[f32; 3]> = block.trees.iter().map(tree_tint).collect();
     let winds: Vec<[f32; 4]> = block.trees.iter().map(tree_wind).collect();
-    let nodes = block
-        .placements
-        .iter()
-        .map(|p| {
-            check_transform(&p.transform)?;
-            node_of
-                .get(p.variant as usize)
-                .and_then(|v| v.get(p.instance as usize))
-                .copied()
-                .ok_or(Invalid::UnknownInstance)
-        })
-        .collect::<Result<Vec<u32>, Invalid>>()?;
+    let mut placed = block_nodes(&block, lookup)?;
     // A stable sort keeps each node's placements in the forest's order.
-    let mut order: Vec<u32> = (0..nodes.len() as u32).collect();
-    order.sort_by_key(|&k| nodes[k as usize]);
+    placed.sort_by_key(|&(node, _)| node);
     let mut out = BlockRuns {
         runs: Vec::new(),
-        sections: SECTION_WORDS.map(|words| Vec::with_capacity(words * nodes.len())),
+        sections: SECTION_WORDS.map(|words| Vec::with_capacity(words * placed.len())),
     };
-    for &k in &order {
-        let node = nodes[k as usize];
+    for &(node, what) in &placed {
         if node == u32::MAX {
             // An instance without geometry: not in the file.
             continue;
@@ -135,8 +199,13 @@ fn block_runs(block: PlacementBlock, node_of: &[Vec<u32>]) -> Result<BlockRuns, 
             Some((n, count)) if *n == node => *count += 1,
             _ => out.runs.push((node, 1)),
         }
-        let p = &block.placements[k as usize];
-        let (x, tree) = (&p.transform, p.tree as usize);
+        let (x, tree) = match what {
+            Placed::Instance(k) => {
+                let p = &block.placements[k as usize];
+                (p.transform, p.tree as usize)
+            }
+            Placed::Impostor(t) => (block.trees[t as usize].root(), t as usize),
+        };
         let [t, r, s, c, w] = &mut out.sections;
         t.extend(placement_words::floats(&x.translation.to_array()));
         r.extend(placement_words::rotation(x.rotation));
@@ -167,8 +236,7 @@ pub(super) fn write_placements(
     w: &mut AtomicFile,
     builder: &ForestBuilder,
     (terrain, region, spill): (&(dyn HeightField + Sync), Rect, &TreeSpill),
-    nodes: &[Node],
-    node_of: &[Vec<u32>],
+    (nodes, lookup): (&[Node], NodeLookup<'_>),
     base: usize,
     total: usize,
     chunk_bytes: usize,
@@ -200,7 +268,7 @@ pub(super) fn write_placements(
         }
         Ok::<(), ExportError>(())
     };
-    let runs = |block: PlacementBlock| block_runs(block, node_of);
+    let runs = |block: PlacementBlock| block_runs(block, lookup);
     let trees = |block: usize, rect: Rect| kept_trees(builder, terrain, spill, (block, rect));
     builder.stream_map_from(region, &trees, &|_| true, &runs, &mut |runs| {
         let runs = runs?;

@@ -12,12 +12,15 @@
 //! leaves a half-written file.
 
 mod builder;
+mod cells;
 mod coarse;
 mod document;
 mod extras;
 mod file;
+mod groups;
 mod in_memory;
 mod indices;
+mod levels;
 mod lod;
 mod placement_words;
 mod schema;
@@ -27,7 +30,9 @@ mod stand;
 mod subset;
 mod tangent;
 
+pub use cells::{CELL_SIZE, MAX_CELLS_PER_SIDE, SEEDLING_CELL_FACTOR};
 pub(crate) use coarse::{CoarseImpostor, write_coarse_glb};
+pub use levels::SEEDLING_MIN_PIXELS;
 pub(crate) use lod::{LodCards, LodMesh, write_lod_glb};
 pub use placement_words::WIND_TREE_REACH;
 pub use shared::write_shared_geometry;
@@ -43,9 +48,13 @@ use crate::census::{
     Drawn, Node, check_geometry, check_transform, count_placements, drawn_instances,
 };
 use crate::error::ExportError;
+use crate::lod::LodChain;
 use crate::spill::TreeSpill;
+use cells::{CellGrid, CellNodes};
 use document::Document;
 use file::{write_file, write_geometry, write_placements};
+use groups::Grouping;
+use levels::ForestLevels;
 
 /// Export settings. Like every options struct of sylva: public fields, [`Default`], and a
 /// `with_*` method per field for chaining.
@@ -80,6 +89,21 @@ pub struct GltfOptions {
     /// 3.6, some Unity and Godot importers). Forests over [`MAX_NODE_PLACEMENTS`] placements
     /// are refused in this mode. Default: false.
     pub one_node_per_placement: bool,
+    /// Side of the square cells an instanced file groups its trees in, metres: a node per
+    /// cell, under it a node per variant, under that an instanced node per prototype, so
+    /// that engines cull by cell. A forest wider than [`MAX_CELLS_PER_SIDE`] cells gets
+    /// wider ones; seedlings go in cells [`SEEDLING_CELL_FACTOR`] times as wide. `None`: one
+    /// instanced node per prototype for the whole forest. Ignored with
+    /// [`GltfOptions::one_node_per_placement`] and [`GltfOptions::shared_geometry`].
+    /// Default: [`CELL_SIZE`] (64 m).
+    pub cell_size: Option<f32>,
+    /// Levels of detail in the file: each cell's variant node declares `MSFT_lod` (not
+    /// required) with the chain's coarser levels of every prototype and, for canopy
+    /// variants, the impostor's cards placed once per tree, with their switch distances and
+    /// screen coverages in `extras`. A client without `MSFT_lod` draws full detail. Ignored
+    /// with [`GltfOptions::one_node_per_placement`] and [`GltfOptions::shared_geometry`].
+    /// Default: [`LodChain::default`] (the viewer's chain).
+    pub levels: Option<LodChain>,
 }
 
 /// Most placements [`GltfOptions::one_node_per_placement`] writes: a node each is text in the
@@ -94,6 +118,8 @@ impl Default for GltfOptions {
             chunk_bytes: CHUNK_BYTES,
             shared_geometry: None,
             one_node_per_placement: false,
+            cell_size: Some(CELL_SIZE),
+            levels: Some(LodChain::default()),
         }
     }
 }
@@ -133,10 +159,24 @@ impl GltfOptions {
         self.one_node_per_placement = one_node_per_placement;
         self
     }
+
+    /// Sets [`GltfOptions::cell_size`].
+    #[must_use]
+    pub fn with_cell_size(mut self, cell_size: Option<f32>) -> Self {
+        self.cell_size = cell_size;
+        self
+    }
+
+    /// Sets [`GltfOptions::levels`].
+    #[must_use]
+    pub fn with_levels(mut self, levels: Option<LodChain>) -> Self {
+        self.levels = levels;
+        self
+    }
 }
 
 /// What was written.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[non_exhaustive]
 pub struct GlbStats {
     /// File size in bytes.
@@ -155,8 +195,18 @@ pub struct GlbStats {
     /// Times the forest was streamed: once to count the placements, once to write them (two;
     /// one with no placements to write).
     pub passes: usize,
-    /// Branch triangles drawn by the placements (the terrain not included).
+    /// Branch triangles drawn by the placements at full detail (the terrain not included).
     pub triangles: u64,
+    /// Cells the trees are grouped in (canopy and seedling cells that hold a tree; 1 in a
+    /// file without cells).
+    pub cells: usize,
+    /// Side of a canopy cell, metres (the forest's side in a file without cells).
+    pub cell_size: f32,
+    /// Levels of detail of each canopy tree, its full detail and impostor included (1 in a
+    /// file without levels).
+    pub levels: usize,
+    /// Placements of impostors, one per canopy tree (0 in a file without levels).
+    pub impostor_placements: usize,
 }
 
 /// Default of [`GltfOptions::chunk_bytes`]: 64 MiB, about 1.3 million placements of 52 bytes.
@@ -205,10 +255,41 @@ pub fn write_glb(
     let variants = builder.variants();
     let terrain_mesh = terrain_mesh.filter(|t| !t.indices.is_empty());
     check_geometry(variants, terrain_mesh)?;
-
-    // Pass 1: count the placements of every instance, keeping each block's trees.
     let spill = TreeSpill::create(path, builder.blocks(region)?.len())?;
-    let (counts, counted) = count_placements(builder, terrain, region, &spill)?;
+    let grouped = !options.one_node_per_placement
+        && options.shared_geometry.is_none()
+        && (options.cell_size.is_some() || options.levels.is_some());
+    if grouped {
+        write_grouped(
+            builder,
+            (terrain, region, &spill),
+            terrain_mesh,
+            options,
+            path,
+        )
+    } else {
+        write_flat(
+            builder,
+            (terrain, region, &spill),
+            terrain_mesh,
+            options,
+            path,
+        )
+    }
+}
+
+/// A forest file with a node per used instance for the whole forest (or a node per
+/// placement), as tiles and importers without instancing take it.
+fn write_flat(
+    builder: &ForestBuilder,
+    (terrain, region, spill): (&(dyn HeightField + Sync), Rect, &TreeSpill),
+    terrain_mesh: Option<&TerrainMesh>,
+    options: &GltfOptions,
+    path: &Path,
+) -> Result<GlbStats, ExportError> {
+    let variants = builder.variants();
+    // Pass 1: count the placements of every instance, keeping each block's trees.
+    let (counts, counted) = count_placements(builder, terrain, region, spill)?;
     // The layout: which instances become nodes, and where every byte goes.
     let Drawn {
         nodes,
@@ -246,11 +327,10 @@ pub fn write_glb(
         builder,
         terrain_mesh,
         options,
-        &nodes,
-        placements,
+        (&nodes, placements),
         each.as_deref(),
+        None,
     )?;
-
     let written = write_file(path, &document, |file| {
         write_geometry(file, terrain_mesh, &document)?;
         if each.is_some() {
@@ -259,9 +339,8 @@ pub fn write_glb(
         write_placements(
             file,
             builder,
-            (terrain, region, &spill),
-            &nodes,
-            &node_of,
+            (terrain, region, spill),
+            (&nodes, NodeLookup::Flat(&node_of)),
             document.bin_start() + document.placement_base,
             placements,
             options.chunk_bytes,
@@ -271,6 +350,7 @@ pub fn write_glb(
     let StreamStats {
         trees, seedlings, ..
     } = counted;
+    let side = (region.max - region.min).max_element();
     Ok(GlbStats {
         bytes: document.total,
         trees,
@@ -280,7 +360,96 @@ pub fn write_glb(
         empty_placements,
         passes: 1 + passes,
         triangles,
+        cells: 1,
+        cell_size: side,
+        levels: 1,
+        impostor_placements: 0,
     })
+}
+
+/// A forest file with its trees in cells and, with [`GltfOptions::levels`], each cell's
+/// variants at every level of detail.
+fn write_grouped(
+    builder: &ForestBuilder,
+    (terrain, region, spill): (&(dyn HeightField + Sync), Rect, &TreeSpill),
+    terrain_mesh: Option<&TerrainMesh>,
+    options: &GltfOptions,
+    path: &Path,
+) -> Result<GlbStats, ExportError> {
+    let grid = CellGrid::new(region, options.cell_size);
+    // Every variant's chain, impostors included, on every core.
+    let levels = match &options.levels {
+        Some(chain) => Some(ForestLevels::build(builder, chain)?),
+        None => None,
+    };
+    let impostors = levels.as_ref().map_or_else(
+        || vec![false; builder.variants().len()],
+        ForestLevels::impostors,
+    );
+    // Pass 1: count every cell's placements of every instance, and its trees.
+    let cells = CellNodes::count(builder, (terrain, region), &grid, &impostors, spill)?;
+    let grouping = Grouping {
+        grid: &grid,
+        levels: levels.as_ref(),
+    };
+    let document = Document::lay_out(
+        builder,
+        terrain_mesh,
+        options,
+        (&cells.nodes, cells.placements),
+        None,
+        Some(grouping),
+    )?;
+    let lookup = NodeLookup::Cells {
+        nodes: &cells,
+        grid: &grid,
+        impostors: &impostors,
+    };
+    let passes = write_file(path, &document, |file| {
+        write_geometry(file, terrain_mesh, &document)?;
+        write_placements(
+            file,
+            builder,
+            (terrain, region, spill),
+            (&cells.nodes, lookup),
+            document.bin_start() + document.placement_base,
+            cells.placements,
+            options.chunk_bytes,
+        )
+    })?;
+    let used_cells: std::collections::BTreeSet<u32> = cells.nodes.iter().map(|n| n.cell).collect();
+    let canopy_levels = levels
+        .as_ref()
+        .and_then(|l| l.variants.iter().find(|v| v.cards.is_some()))
+        .map_or(1, |v| v.mesh_levels() + 1);
+    Ok(GlbStats {
+        bytes: document.total,
+        trees: cells.stats.trees,
+        seedlings: cells.stats.seedlings,
+        instance_nodes: cells.nodes.iter().filter(|n| !n.impostor).count(),
+        placements: cells.instance_placements,
+        empty_placements: cells.empty_placements,
+        passes: 1 + passes,
+        triangles: cells.triangles,
+        cells: used_cells.len(),
+        cell_size: grid.side(),
+        levels: canopy_levels,
+        impostor_placements: cells.placements - cells.instance_placements,
+    })
+}
+
+/// How the writing pass finds a placement's node.
+#[derive(Clone, Copy)]
+pub(crate) enum NodeLookup<'a> {
+    /// By variant and instance (`u32::MAX`: none).
+    Flat(&'a [Vec<u32>]),
+    /// By the cell of the placement's tree, variant and instance; and each tree of a
+    /// variant with an impostor places it once.
+    Cells {
+        nodes: &'a CellNodes,
+        grid: &'a CellGrid,
+        impostors: &'a [bool],
+    },
 }
 
 /// The lowest and highest corner of `positions` (glTF requires them on POSITION accessors)

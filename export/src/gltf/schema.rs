@@ -10,6 +10,8 @@ use serde_json::Value;
 pub(super) const GPU_INSTANCING: &str = "EXT_mesh_gpu_instancing";
 /// Normalized integer vertex attributes (the trees' normals and tangents).
 pub(super) const MESH_QUANTIZATION: &str = "KHR_mesh_quantization";
+/// Microsoft's levels of detail: a node names the nodes that draw it coarser.
+pub(super) const LEVELS_OF_DETAIL: &str = "MSFT_lod";
 
 /// The whole JSON chunk.
 #[derive(Debug, Default, Serialize)]
@@ -102,10 +104,22 @@ impl Node {
 }
 
 /// The extensions a node carries.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Default, Serialize)]
 pub(super) struct NodeExtensions {
-    #[serde(rename = "EXT_mesh_gpu_instancing")]
-    pub(super) gpu_instancing: GpuInstancing,
+    #[serde(
+        rename = "EXT_mesh_gpu_instancing",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub(super) gpu_instancing: Option<GpuInstancing>,
+    #[serde(rename = "MSFT_lod", skip_serializing_if = "Option::is_none")]
+    pub(super) lod: Option<LevelsOfDetail>,
+}
+
+/// MSFT_lod on a node: the nodes that draw it at lower levels of detail, finest first. The
+/// node itself is the highest level; a client without the extension draws only it.
+#[derive(Debug, Serialize)]
+pub(super) struct LevelsOfDetail {
+    pub(super) ids: Vec<usize>,
 }
 
 /// EXT_mesh_gpu_instancing: the node's mesh drawn once per element of these accessors.

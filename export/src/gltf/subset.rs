@@ -26,29 +26,41 @@ impl CacheSubset {
     /// The subset of `cache` that instances `used` (indices into its instances, in any
     /// order, repeats allowed) draw. Indices outside the cache are left out.
     pub(super) fn of(cache: &InstanceCache, used: &[usize]) -> CacheSubset {
-        let mut wanted = vec![false; cache.instances.len()];
+        let spans: Vec<(Span, Span)> = cache.instances.iter().map(|i| (i.bark, i.leaves)).collect();
+        CacheSubset::of_parts(&cache.vertices, (&cache.bark, &cache.leaves), &spans, used)
+    }
+
+    /// The subset of a cache given as its parts (a coarser level's triangles over the
+    /// level's vertices, say): `spans` gives each instance's bark and leaf spans of `bark`
+    /// and `leaves`.
+    pub(super) fn of_parts(
+        all_vertices: &[Vertex],
+        (all_bark, all_leaves): (&[u32], &[u32]),
+        instance_spans: &[(Span, Span)],
+        used: &[usize],
+    ) -> CacheSubset {
+        let mut wanted = vec![false; instance_spans.len()];
         for &i in used {
             if let Some(w) = wanted.get_mut(i) {
                 *w = true;
             }
         }
         let used = || {
-            cache
-                .instances
+            instance_spans
                 .iter()
                 .zip(&wanted)
                 .filter(|(_, w)| **w)
-                .map(|(inst, _)| inst)
+                .map(|(spans, _)| spans)
         };
         // Instances share triangles (a crown's span holds its branches'), so the subset keeps
         // the union of the used spans, in cache order.
-        let bark_ranges = Ranges::union(used().map(|i| i.bark), cache.bark.len());
-        let leaf_ranges = Ranges::union(used().map(|i| i.leaves), cache.leaves.len());
+        let bark_ranges = Ranges::union(used().map(|s| s.0), all_bark.len());
+        let leaf_ranges = Ranges::union(used().map(|s| s.1), all_leaves.len());
         // Which vertices those triangles reference, numbered anew in cache order.
-        let mut kept = vec![false; cache.vertices.len()];
+        let mut kept = vec![false; all_vertices.len()];
         for &i in bark_ranges
-            .indices(&cache.bark)
-            .chain(leaf_ranges.indices(&cache.leaves))
+            .indices(all_bark)
+            .chain(leaf_ranges.indices(all_leaves))
         {
             if let Some(k) = kept.get_mut(i as usize) {
                 *k = true;
@@ -57,7 +69,7 @@ impl CacheSubset {
         let mut vertices = Vec::new();
         let new_index: Vec<u32> = kept
             .iter()
-            .zip(&cache.vertices)
+            .zip(all_vertices)
             .map(|(&k, v)| {
                 let n = vertices.len() as u32;
                 if k {
@@ -69,15 +81,12 @@ impl CacheSubset {
         let renumber = |ranges: &Ranges, of: &[u32]| -> Vec<u32> {
             ranges.indices(of).map(|&i| new_index[i as usize]).collect()
         };
-        let bark = renumber(&bark_ranges, &cache.bark);
-        let leaves = renumber(&leaf_ranges, &cache.leaves);
-        let spans = cache
-            .instances
+        let bark = renumber(&bark_ranges, all_bark);
+        let leaves = renumber(&leaf_ranges, all_leaves);
+        let spans = instance_spans
             .iter()
             .zip(&wanted)
-            .map(|(inst, &w)| {
-                w.then(|| (bark_ranges.moved(inst.bark), leaf_ranges.moved(inst.leaves)))
-            })
+            .map(|(&(b, l), &w)| w.then(|| (bark_ranges.moved(b), leaf_ranges.moved(l))))
             .collect();
         CacheSubset {
             vertices,
