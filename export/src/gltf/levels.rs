@@ -1,19 +1,22 @@
 //! A forest file's levels of detail: for every variant the chain the viewer draws (full
-//! detail, the coarser levels of its instance cache, then for canopy variants the impostor's
-//! cards), the distance from which each is drawn, and how far seedlings are drawn at all.
+//! detail, the coarser levels of its instance cache, then the impostor's cards), the
+//! distance from which each is drawn, and how far seedling forms are drawn at all.
+//!
+//! Unlike the viewer's chain, seedling forms (the young trees of the understory, 5 to 7 m
+//! tall in the default forest) get an impostor too: a file's client has no fog to hide them
+//! in, and 80,000 of them at their coarsest mesh level cost more triangles than a frame has.
 
 use rayon::prelude::*;
-use sylva_forest::{ForestBuilder, ForestError};
+use sylva_forest::{ForestBuilder, ForestError, Species};
 use sylva_turtle::Mesh;
 
 use crate::error::ExportError;
-use crate::lod::{CARD_ALPHA_CUTOFF, LodChain, VariantLods, impostor_cards};
+use crate::lod::{CARD_ALPHA_CUTOFF, Impostor, LodChain, TreeLook, VariantLods, impostor_cards};
 
-/// Pixels a seedling's height spans, on the chain's screen, below which it is not drawn: a
-/// seedling smaller is a speck under the canopy, and drawing every one out to the horizon
-/// would cost more triangles than all the canopy's impostors (about 80,000 seedlings in the
-/// default forest).
-pub const SEEDLING_MIN_PIXELS: f32 = 8.0;
+/// Pixels a seedling form's height spans, on the chain's screen, below which it is not
+/// drawn: smaller, a young tree is a speck under the canopy, and the default forest's 80,000
+/// of them as impostors out to the horizon would cost more triangles than the canopy's.
+pub const SEEDLING_MIN_PIXELS: f32 = 16.0;
 
 /// One variant's levels in a file.
 #[derive(Debug, Clone)]
@@ -23,10 +26,10 @@ pub(crate) struct VariantLevels {
     /// The distance (metres, at the chain's screen) from which each coarser level is drawn,
     /// then the impostor's when it has one; each at least the one before.
     pub(crate) from: Vec<f32>,
-    /// The distance beyond which the variant is not drawn at all (seedlings, which have no
-    /// impostor); `None`: drawn at every distance.
+    /// The distance beyond which the variant is not drawn at all (seedling forms); `None`:
+    /// drawn at every distance.
     pub(crate) reach: Option<f32>,
-    /// The impostor as cards and their texture (PNG), for canopy variants.
+    /// The impostor as cards and their texture (PNG).
     pub(crate) cards: Option<(Mesh, Vec<u8>)>,
 }
 
@@ -52,18 +55,24 @@ impl ForestLevels {
             .variants()
             .par_iter()
             .map(|v| {
-                let lods = VariantLods::build(v, &species[v.species], chain)?;
-                let mut from: Vec<f32> = lods
-                    .errors
-                    .iter()
-                    .filter(|e| e.is_finite())
-                    .map(|&e| chain.distance_for(e))
-                    .collect();
-                // Each level is drawn from no nearer than the one before.
-                for k in 1..from.len() {
-                    from[k] = from[k].max(from[k - 1]);
+                let mut lods = VariantLods::build(v, &species[v.species], chain)?;
+                if lods.impostor.is_none() {
+                    // A seedling form: its impostor, drawn as the canopy's are.
+                    let look = TreeLook::of(&species[v.species]);
+                    let impostor = Impostor::render(&lods.tree, &look, &chain.impostor);
+                    let worst = lods
+                        .errors
+                        .iter()
+                        .copied()
+                        .filter(|e| e.is_finite())
+                        .fold(0.0, f32::max);
+                    if let Some(last) = lods.errors.last_mut() {
+                        *last = chain.impostor_error(&impostor).max(worst);
+                    }
+                    lods.impostor = Some(impostor);
                 }
-                let reach = lods.impostor.is_none().then(|| {
+                let from = switch_distances(&lods, chain, &species[v.species]);
+                let reach = v.seedling.then(|| {
                     let (lo, hi) = bounds_y(&lods.tree);
                     let height = (hi - lo).max(0.01);
                     let reach = height * chain.pixels_per_radian / SEEDLING_MIN_PIXELS;
@@ -92,6 +101,26 @@ impl ForestLevels {
     pub(crate) fn impostors(&self) -> Vec<bool> {
         self.variants.iter().map(|v| v.cards.is_some()).collect()
     }
+}
+
+/// The distance from which each coarser level and then the impostor is drawn: the nearest
+/// distance where its own error spans the chain's pixel error, or where a coarser level's
+/// does if that is nearer (a level with more error than a cheaper one after it is never
+/// drawn: a young pine's thinned needles err more than its impostor does). Each at least
+/// the one before.
+fn switch_distances(lods: &VariantLods, chain: &LodChain, species: &Species) -> Vec<f32> {
+    let mut tuned = chain.clone();
+    tuned.levels.clone_from(&lods.levels);
+    let card = species.turtle.leaf_size[0].max(species.turtle.leaf_size[1]);
+    let mut errors: Vec<f32> = (0..lods.levels.len())
+        .map(|k| tuned.level_error(k, card))
+        .collect();
+    errors.extend(lods.impostor.as_ref().map(|i| chain.impostor_error(i)));
+    let mut from: Vec<f32> = errors.iter().map(|&e| chain.distance_for(e)).collect();
+    for k in (0..from.len().saturating_sub(1)).rev() {
+        from[k] = from[k].min(from[k + 1]);
+    }
+    from
 }
 
 /// The alpha cutoff of the impostor cards' material.
