@@ -114,10 +114,10 @@ function placedUnder(json, n) {
   return out;
 }
 
-// MSFT_lod as sylva writes it: the coarser levels are outside the scene, each mesh level
-// places its meshes with the full level's accessors (a branch that a coarser level drops is
-// left out of it; the impostor, last when there is one, has a placement per tree), and
-// MSFT_screencoverage has a share per level, each at most the one before.
+// MSFT_lod as sylva writes it: the coarser levels are outside the scene, each places its
+// meshes with the full level's accessors (a branch that a coarser level drops is left out
+// of it), MSFT_screencoverage has a share per level, each at most the one before, and the
+// impostor that extras.sylva_levels names (a placement per tree) is outside the scene too.
 function checkLevels(json) {
   if (!(json.extensionsUsed || []).includes('MSFT_lod')) return 0;
   if ((json.extensionsRequired || []).includes('MSFT_lod')) {
@@ -133,11 +133,15 @@ function checkLevels(json) {
     groups++;
     const full = placedUnder(json, n);
     const levels = (node.extras || {}).sylva_levels || {};
-    const meshLevels = lod.ids.length - (levels.impostor ? 1 : 0);
+    const impostor = levels.impostor;
+    if (impostor != null && (scene.has(impostor) || !((json.nodes[impostor] || {}).extensions || {}).EXT_mesh_gpu_instancing)) {
+      console.log(`  levels: node ${n}'s impostor (node ${impostor}) is in the scene or not instanced`);
+      problems++;
+    }
     for (const [k, id] of lod.ids.entries()) {
       if (scene.has(id)) { console.log(`  levels: node ${n}'s level ${k + 1} (node ${id}) is in the scene`); problems++; }
       const foreign = [...placedUnder(json, id)].filter((a) => !full.has(a));
-      if (k < meshLevels && foreign.length > 0) {
+      if (foreign.length > 0) {
         console.log(`  levels: node ${n}'s level ${k + 1} places accessors ${foreign.slice(0, 5)} that its full level does not`);
         problems++;
       }

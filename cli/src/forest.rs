@@ -49,12 +49,35 @@ pub(crate) struct ForestArgs {
     /// EXT_mesh_gpu_instancing (at most 250,000 placements).
     #[arg(long)]
     no_instancing: bool,
+    /// Side of the square cells the glTF groups its trees in, metres: a node per cell, so
+    /// that engines cull by cell (0: no cells, one instanced node per branch shape for the
+    /// whole forest).
+    #[arg(long, value_name = "METRES", default_value_t = sylva::export::limits::CELL_SIZE, value_parser = cell_size)]
+    cell_size: f32,
+    /// Write no levels of detail (the coarser levels and impostors each cell's variant node
+    /// declares with MSFT_lod): a smaller file for clients that draw full detail anyway.
+    #[arg(long)]
+    no_levels: bool,
     /// Print one JSON line of figures instead of the summary (and measure placement alone).
     #[arg(long)]
     stats: bool,
     /// Print nothing but errors.
     #[arg(long, short)]
     quiet: bool,
+}
+
+/// `--cell-size`: 0 (no cells), or 8 m up to 10 km.
+fn cell_size(text: &str) -> Result<f32, String> {
+    let metres: f32 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number of metres"))?;
+    if metres == 0.0 || (8.0..=10_000.0).contains(&metres) {
+        Ok(metres)
+    } else {
+        Err(format!(
+            "{metres} m: a cell is 8 m to 10,000 m wide (or 0 for none)"
+        ))
+    }
 }
 
 /// The figures `--stats` prints.
@@ -77,6 +100,13 @@ struct ForestFigures {
     refused_spots: u64,
     empty_placements: usize,
     instance_nodes: usize,
+    /// Cells the glTF groups its trees in, and a canopy cell's side.
+    cells: usize,
+    cell_m: f32,
+    /// Levels of detail of a canopy tree in the glTF (full detail and impostor included), and
+    /// the impostors' placements (one per tree).
+    levels: usize,
+    impostor_placements: usize,
     hero_ms: f64,
     placement_ms: f64,
     placements_per_s: f64,
@@ -103,6 +133,10 @@ struct Written {
     glb_bytes: usize,
     usd_bytes: u64,
     usd_images: usize,
+    cells: usize,
+    cell_m: f32,
+    levels: usize,
+    impostor_placements: usize,
 }
 
 pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
@@ -142,7 +176,11 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         let Some(glb) = &glb else {
             return Ok::<_, Failure>(());
         };
-        let mut options = GltfOptions::default();
+        let mut options =
+            GltfOptions::default().with_cell_size((args.cell_size > 0.0).then_some(args.cell_size));
+        if args.no_levels {
+            options = options.with_levels(None);
+        }
         options.one_node_per_placement = args.no_instancing;
         let stats = write_glb(builder, map, region, Some(&terrain_mesh), &options, glb)?;
         written = Written {
@@ -153,6 +191,10 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
             instances: stats.instance_nodes,
             passes: stats.passes,
             glb_bytes: stats.bytes,
+            cells: stats.cells,
+            cell_m: stats.cell_size,
+            levels: stats.levels,
+            impostor_placements: stats.impostor_placements,
             ..Written::default()
         };
         Ok(())
@@ -199,6 +241,10 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
             refused_spots: world.siting.refused(),
             empty_placements: written.empty_placements,
             instance_nodes: written.instances,
+            cells: written.cells,
+            cell_m: written.cell_m,
+            levels: written.levels,
+            impostor_placements: written.impostor_placements,
             hero_ms: ms(world.hero_time),
             placement_ms: ms(placement_time),
             placements_per_s: m.placements as f64 / placement_time.as_secs_f64().max(1e-9),

@@ -1,9 +1,9 @@
 // sylva-three: draws a sylva forest GLB in three.js within a frame budget.
 //
 // A sylva forest file groups its trees in square cells, a node per cell and variant, and
-// gives every such node its levels of detail with MSFT_lod: the coarser levels place the
-// same trees with coarser meshes, the last level (canopy variants) places the impostor's
-// cards once per tree. three.js's GLTFLoader reads none of it and would draw every tree at
+// gives every such node its levels of detail with MSFT_lod (the coarser levels place the
+// same trees with coarser meshes) and its impostor in extras.sylva_levels (the impostor's
+// cards placed once per tree). three.js's GLTFLoader reads none of it and would draw every tree at
 // full detail. This module adds two things:
 //
 // - `SylvaLevels`, a GLTFLoader plugin that loads each node's coarser levels (nodes outside
@@ -54,7 +54,7 @@ export class SylvaLevels {
       const def = json.nodes[index];
       const lod = def.extensions && def.extensions[LEVELS_EXTENSION];
       const levels = def.extras && def.extras.sylva_levels;
-      if (lod && levels) pending.push(this.group(index, lod.ids, levels));
+      if (levels) pending.push(this.group(index, lod ? lod.ids : [], levels));
     }
     const groups = await Promise.all(pending);
     gltf.userData.sylva = { groups };
@@ -67,7 +67,7 @@ export class SylvaLevels {
     const json = parser.json;
     const def = json.nodes[index];
     const full = await parser.getDependency('node', index);
-    const meshLevels = ids.length + 1 - (levels.impostor ? 1 : 0);
+    const meshLevels = ids.length + 1;
     const byPlacements = new Map();
     const protos = [];
     for (const child of def.children || []) {
@@ -89,8 +89,8 @@ export class SylvaLevels {
       }
     }
     let impostor = null;
-    if (levels.impostor) {
-      const id = ids[ids.length - 1];
+    if (levels.impostor != null) {
+      const id = levels.impostor;
       impostor = await this.placements(id, true);
       if (impostor) impostor.meshes = [{ key: json.nodes[id].mesh, object: impostor.object }];
     }
@@ -235,7 +235,7 @@ export class SylvaForest extends Object3D {
       }
       // Placements are branches' origins: the cell's box grows by the tallest reach of a
       // tree above and around them.
-      g.box.expandByVector(new Vector3(g.levels.impostor ? 20 : 4, g.levels.impostor ? 45 : 8, g.levels.impostor ? 20 : 4));
+      g.box.expandByVector(new Vector3(g.levels.reach == null ? 20 : 6, g.levels.reach == null ? 45 : 10, g.levels.reach == null ? 20 : 6));
     }
     this.draws = new Map();
     for (const [key, n] of capacity) {

@@ -10,8 +10,10 @@
 // ms); a screenshot of each goes to DIR. `runtime` is three.js with SylvaForest, `babylon` is
 // Babylon.js with its own glTF loader and sylva-three/babylon, `full` is three.js's GLTFLoader
 // alone. Then it loads the runtime page `--loads` times in a row. It fails when a page
-// errs, crashes or times out, and when runtime or babylon draws more than `--budget`
-// triangles a frame from any eye. A crash is a failure: no page is asked twice.
+// errs, crashes or times out, and when the runtime draws more than `--budget` triangles a
+// frame from any eye (Babylon.js reads MSFT_lod only to load the levels one after another,
+// ending at full detail, so its rows are measured, not held to the budget). A crash is a
+// failure: no page is asked twice.
 import { createServer } from 'node:http';
 import { createReadStream, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -109,8 +111,9 @@ async function measure(mode, eyeName, eye, shot) {
   let crashed = null;
   page.on('crash', () => { crashed = 'the page crashed'; });
   page.on('pageerror', (e) => { crashed = crashed || `page error: ${e.message}`; });
+  if (process.env.SYLVA_WEB_VERBOSE) page.on('console', (m) => console.error(`  [${mode} ${eyeName}] ${m.text()}`));
   const path = mode === 'babylon' ? 'test/babylon.html' : 'example/index.html';
-  const url = `${base}/${path}?file=/forest.glb&mode=${mode}&check=1&frames=5&eye=${eye}`;
+  const url = `${base}/${path}?file=/forest.glb&mode=${mode}&check=1&frames=5&eye=${eye}${process.env.SYLVA_WEB_QUERY || ''}`;
   const started = Date.now();
   let result;
   try {
@@ -139,7 +142,7 @@ for (const mode of modes) {
     if (row.error) {
       console.error(`${mode} from ${name}: ${row.error}`);
       failures++;
-    } else if (mode !== 'full' && row.triangles > budget) {
+    } else if (mode === 'runtime' && row.triangles > budget) {
       console.error(`${mode} from ${name}: ${row.triangles} triangles a frame, over the budget of ${budget}`);
       failures++;
     }

@@ -40,6 +40,9 @@ pub(super) struct DocumentBuilder {
     /// Whether an attribute is quantized (`KHR_mesh_quantization`, which the file then
     /// requires: an importer without it would misread the normals).
     pub(super) quantized: bool,
+    /// Nodes that no scene lists though nothing holds them as a child or a level: what
+    /// extras name (a cell's impostors), for the clients that read them.
+    pub(super) outside_scene: Vec<usize>,
 }
 
 /// Where the four buffers of a tree mesh are: one view of its vertices and one of their
@@ -396,6 +399,7 @@ impl DocumentBuilder {
             .iter()
             .flat_map(|n| n.children.iter().copied())
             .chain(lower)
+            .chain(self.outside_scene.iter().copied())
             .collect();
         self.root.scenes = vec![Scene {
             nodes: (0..self.root.nodes.len())

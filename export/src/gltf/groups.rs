@@ -1,9 +1,16 @@
 //! A forest file's node tree when its trees are in cells: a node per cell, under it a node
 //! per variant, and under that the variant's instanced nodes. With levels of detail, each
 //! variant's node declares `MSFT_lod`: its coarser levels are nodes outside the scene over
-//! the same instancing accessors (the same placements, coarser meshes), then the impostor's
-//! cards placed once per tree; `extras.MSFT_screencoverage` says when each is drawn, and
-//! `extras.sylva_levels` gives the same as distances, for clients that pick a level per tree.
+//! the same instancing accessors (the same placements, coarser meshes), and
+//! `extras.MSFT_screencoverage` says when each is drawn. `extras.sylva_levels` gives the same
+//! as distances, for clients that pick a level per tree, and names the impostor's node (its
+//! cards placed once per tree), also outside the scene.
+//!
+//! The impostor is not one of MSFT_lod's levels: Babylon.js 9.28, which reads MSFT_lod to
+//! load the levels one after another (ending at full detail), never finishes loading a file
+//! whose coarsest level is the impostor's instanced cards (with the mesh levels alone it
+//! loads at once); and a level that places trees rather than branches is not a coarser copy
+//! of its node, as MSFT_lod's levels are.
 
 use std::collections::HashMap;
 
@@ -129,6 +136,7 @@ fn lay_out_group(
             };
             d.instanced_node(format!("{place} impostors"), mesh, accessors.0, accessors.1);
             impostor = Some(d.root.nodes.len() - 1);
+            d.outside_scene.extend(impostor);
             continue;
         }
         let inst = &v.cache.instances[node.instance];
@@ -167,21 +175,26 @@ fn lay_out_group(
         });
         coarser.push(d.root.nodes.len() - 1);
     }
-    coarser.extend(impostor);
     let extras = grouping.levels.zip(levels).map(|(forest, levels)| {
         // A group's share of the screen when its nearest tree is `d` away: its bounding
         // sphere (the cell's) seen from its centre, about half a cell's diagonal farther.
         let radius = 0.5 * (cell.rect.max - cell.rect.min).length();
         let fov = field_of_view(forest.chain.pixels_per_radian);
         let coverage = |d: f32| (2.0 * radius / ((d + radius) * fov)).min(1.0);
-        let mut screen: Vec<f32> = levels.from.iter().map(|&d| coverage(d)).collect();
+        // A share per mesh level; the last says where nothing is drawn: seedling forms past
+        // their reach, never for canopy trees (a client that reads MSFT_lod but not the
+        // impostor keeps the coarsest mesh).
+        let mut screen: Vec<f32> = levels.from[..coarser.len()]
+            .iter()
+            .map(|&d| coverage(d))
+            .collect();
         screen.push(levels.reach.map_or(0.0, coverage));
         json!({
             "MSFT_screencoverage": screen,
             "sylva_levels": {
                 "from": levels.from,
                 "reach": levels.reach,
-                "impostor": impostor.is_some(),
+                "impostor": impostor,
                 "pixel_error": forest.chain.pixel_error,
                 "pixels_per_radian": forest.chain.pixels_per_radian,
                 "fade": forest.chain.fade,
