@@ -39,15 +39,12 @@ fn array<'a>(text: &'a str, name: &str) -> Vec<&'a str> {
 fn the_instancer_holds_every_placement_the_gltf_holds() {
     let (b, map, region) = export_case();
     let mesh = map.mesh(1).unwrap();
-    let glb = write_glb(
-        &b,
-        &map,
-        region,
-        Some(&mesh),
-        &GltfOptions::default(),
-        &scratch("usd-glb"),
-    )
-    .unwrap();
+    // The flat glTF: a node per used instance, as the instancer has a prototype per used
+    // instance (a glTF in cells has a node per instance and cell).
+    let flat = GltfOptions::default()
+        .with_cell_size(None)
+        .with_levels(None);
+    let glb = write_glb(&b, &map, region, Some(&mesh), &flat, &scratch("usd-glb")).unwrap();
     let path = scratch("usd").with_file_name("forest.usda");
     let stats = write_usda(&b, &map, region, Some(&mesh), &UsdOptions::default(), &path).unwrap();
     assert_eq!(

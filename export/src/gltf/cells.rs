@@ -335,6 +335,29 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// Any tree in any region falls in a cell of its grid whose rectangle holds it, and
+        /// the cells' numbers stay below the count.
+        #[test]
+        fn every_tree_is_in_the_cell_that_holds_it(
+            side in 20.0f32..3000.0,
+            size in 8.0f32..300.0,
+            (u, v) in (0.0f32..=1.0, 0.0f32..=1.0),
+            seedling: bool,
+        ) {
+            let origin = Vec2::new(-side * 0.3, 17.0);
+            let grid = CellGrid::new(Rect::new(origin, origin + Vec2::splat(side)), Some(size));
+            let (x, z) = (origin.x + u * side, origin.y + v * side);
+            let k = grid.cell_of(&tree(x, z), seedling);
+            proptest::prop_assert!(k < grid.count());
+            let c = grid.cell(k);
+            proptest::prop_assert_eq!(c.seedlings, seedling);
+            let slack = 1e-3 * side;
+            proptest::prop_assert!(c.rect.min.x - slack <= x && x <= c.rect.max.x + slack);
+            proptest::prop_assert!(c.rect.min.y - slack <= z && z <= c.rect.max.y + slack);
+        }
+    }
+
     /// A forest too wide for 64 m cells gets wider ones, at most 32 a side; no cells means
     /// one cell.
     #[test]
