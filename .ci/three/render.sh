@@ -13,12 +13,8 @@ source "$here/../headless.sh"
 headless_serve "$here" 'rm -f "$here/forest.glb"'
 url="http://127.0.0.1:$port/render.html?file=forest.glb${eye:+&eye=$eye}${query:+&$query}"
 flags=("${headless[@]}" --disable-gpu --window-size=960,540 --virtual-time-budget=120000)
-# Three tries: headless Chromium now and then quits before the page has rendered.
-title=""
-for _ in 1 2 3; do
-  title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>rendered[^<]*</title>' || true)
-  [ -n "$title" ] && break
-done
+# One try: a page that crashes or quits before rendering is a failure, not a retry.
+title=$(chromium "${flags[@]}" --dump-dom "$url" 2>/dev/null | grep -o '<title>rendered[^<]*</title>' || true)
 echo "three.js: $title"
 chromium "${flags[@]}" --screenshot="$out" "$url" 2>/dev/null
 case "$title" in

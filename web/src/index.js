@@ -10,7 +10,8 @@
 //   the scene) and reads what the file says of them;
 // - `SylvaForest`, an Object3D that draws the forest from them: each frame it culls the
 //   cells against the camera's frustum and picks each tree's level by its distance, the
-//   switch distances the file gives for a 1080-row screen scaled to the camera, and draws
+//   switch distances the file gives for a 1080-row screen scaled to the camera (a tree
+//   past a switch distance cross-fades, dithered, over the file's fade band), and draws
 //   every prototype at every level as one InstancedMesh for the whole forest (a draw call
 //   per prototype and level, not per cell).
 //
@@ -20,7 +21,7 @@
 //   scene.add(gltf.scene, forest);
 //   renderer.setAnimationLoop(() => { forest.update(camera); renderer.render(scene, camera); });
 
-import { Box3, Frustum, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
+import { Box3, BufferGeometry, Frustum, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
 
 /** The name of the glTF extension sylva declares its levels with. */
 export const LEVELS_EXTENSION = 'MSFT_lod';
@@ -135,11 +136,57 @@ export class SylvaLevels {
   }
 }
 
+// Levels cross-fade over a band past each switch distance, dithered: each instance carries
+// a fade, 0 when whole; f > 0 when fading out, drawn where the screen's dither is at least
+// f; -f when fading in, drawn where it is below f. The two levels of a tree in the band
+// cover complementary pixels, so its silhouette never changes at once.
+const FADE_VERTEX = `
+attribute float sylvaFade;
+varying float vSylvaFade;`;
+const FADE_FRAGMENT = `
+varying float vSylvaFade;
+float sylvaDither() {
+  // Interleaved gradient noise (Jimenez 2014): a fine, even dither of the screen.
+  return fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+}`;
+const patched = new WeakSet();
+
+/** Teaches `material` the fade (once; every mesh drawing with it has `sylvaFade`). */
+function fading(material) {
+  if (patched.has(material)) return material;
+  patched.add(material);
+  const before = material.onBeforeCompile;
+  material.onBeforeCompile = (shader, renderer) => {
+    if (before) before.call(material, shader, renderer);
+    shader.vertexShader = shader.vertexShader
+      .replace('#include <common>', `#include <common>${FADE_VERTEX}`)
+      .replace('#include <begin_vertex>', '#include <begin_vertex>\n  vSylvaFade = sylvaFade;');
+    shader.fragmentShader = shader.fragmentShader
+      .replace('#include <common>', `#include <common>${FADE_FRAGMENT}`)
+      .replace('void main() {', `void main() {
+  if (vSylvaFade > 0.0 && sylvaDither() < vSylvaFade) discard;
+  if (vSylvaFade < 0.0 && sylvaDither() >= -vSylvaFade) discard;`);
+  };
+  const key = material.customProgramCacheKey.bind(material);
+  material.customProgramCacheKey = () => `${key()}|sylva-fade`;
+  material.needsUpdate = true;
+  return material;
+}
+
 /** One merged draw: a prototype at one level, an InstancedMesh per primitive. */
 class Draw {
   constructor(template, capacity) {
+    this.fades = new Float32Array(capacity);
+    const fade = new InstancedBufferAttribute(this.fades, 1);
+    this.fade = fade;
     this.meshes = instancedMeshes(template).map((m) => {
-      const mesh = new InstancedMesh(m.geometry, m.material, capacity);
+      // The primitive's own attributes, shared, and this draw's fades.
+      const geometry = new BufferGeometry();
+      for (const [name, attribute] of Object.entries(m.geometry.attributes)) geometry.setAttribute(name, attribute);
+      geometry.setIndex(m.geometry.index);
+      geometry.setAttribute('sylvaFade', fade);
+      const materials = Array.isArray(m.material) ? m.material.map(fading) : fading(m.material);
+      const mesh = new InstancedMesh(geometry, materials, capacity);
       if (m.instanceColor) mesh.instanceColor = new InstancedBufferAttribute(new Float32Array(3 * capacity), 3);
       // The forest culls by cell; a merged draw's bounds change every frame.
       mesh.frustumCulled = false;
@@ -151,18 +198,20 @@ class Draw {
     this.colors = this.meshes.length && this.meshes[0].instanceColor ? this.meshes[0].instanceColor.array : null;
   }
 
-  // Copies placement `i` of `source` in.
-  add(source, i) {
+  // Copies placement `i` of `source` in, with its fade.
+  add(source, i, fade) {
     const at = this.count++;
     this.matrices.set(source.matrices.subarray(16 * i, 16 * i + 16), 16 * at);
     if (this.colors && source.colors) this.colors.set(source.colors.subarray(3 * i, 3 * i + 3), 3 * at);
+    this.fades[at] = fade;
   }
 
-  // Copies every placement of `source` in.
+  // Copies every placement of `source` in, whole.
   addAll(source) {
     const at = this.count;
     this.matrices.set(source.matrices.subarray(0, 16 * source.n), 16 * at);
     if (this.colors && source.colors) this.colors.set(source.colors.subarray(0, 3 * source.n), 3 * at);
+    this.fades.fill(0, at, at + source.n);
     this.count += source.n;
   }
 
@@ -176,15 +225,16 @@ class Draw {
       }
       mesh.count = this.count;
       mesh.visible = this.count > 0;
-      mesh.instanceMatrix.clearUpdateRanges();
-      mesh.instanceMatrix.addUpdateRange(0, 16 * this.count);
-      mesh.instanceMatrix.needsUpdate = true;
-      if (mesh.instanceColor) {
-        mesh.instanceColor.clearUpdateRanges();
-        mesh.instanceColor.addUpdateRange(0, 3 * this.count);
-        mesh.instanceColor.needsUpdate = true;
+      for (const attribute of [mesh.instanceMatrix, mesh.instanceColor]) {
+        if (!attribute) continue;
+        attribute.clearUpdateRanges();
+        attribute.addUpdateRange(0, attribute.itemSize * this.count);
+        attribute.needsUpdate = true;
       }
     }
+    this.fade.clearUpdateRanges();
+    this.fade.addUpdateRange(0, this.count);
+    this.fade.needsUpdate = true;
   }
 }
 
@@ -260,13 +310,25 @@ export class SylvaForest extends Object3D {
     return ours / theirs;
   }
 
-  // The level of a tree `d` from the eye: a mesh level, the impostor (`meshLevels`) or NONE.
-  static level(g, d, s) {
+  // The levels of a tree `d` from the eye, as [level, fade, level, fade]: one level (a mesh
+  // level, the impostor `meshLevels`, or NONE) and NONE, or in the band past a switch
+  // distance the level before fading out and the level after fading in.
+  static levels(g, d, s) {
     const { from, reach } = g.levels;
-    if (reach != null && d >= reach * s) return NONE;
+    const fade = g.levels.fade || 0;
+    if (reach != null && d >= reach * s) return [NONE, 0, NONE, 0];
     let level = 0;
     for (let k = 0; k < from.length; k++) if (d >= from[k] * s) level = k + 1;
-    return level;
+    if (level > 0 && fade > 0) {
+      const at = from[level - 1] * s;
+      if (d < at * (1 + fade)) {
+        let before = 0;
+        for (let k = 0; k < from.length; k++) if (from[k] * s < at) before = k + 1;
+        const f = Math.min(1, Math.max(1e-3, (d - at) / (at * fade)));
+        return [before, f, level, -f];
+      }
+    }
+    return [level, 0, NONE, 0];
   }
 
   /** Culls the cells and picks every tree's level for `camera`. */
@@ -290,9 +352,10 @@ export class SylvaForest extends Object3D {
       far.set(eye.x < (g.bases.min.x + g.bases.max.x) / 2 ? g.bases.max.x : g.bases.min.x,
         eye.y < (g.bases.min.y + g.bases.max.y) / 2 ? g.bases.max.y : g.bases.min.y,
         eye.z < (g.bases.min.z + g.bases.max.z) / 2 ? g.bases.max.z : g.bases.min.z);
-      const lo = SylvaForest.level(g, near, s);
-      const hi = SylvaForest.level(g, far.distanceTo(eye), s);
-      const whole = lo === hi ? lo : null;
+      const lo = SylvaForest.levels(g, near, s);
+      const hi = SylvaForest.levels(g, far.distanceTo(eye), s);
+      // The whole cell at one level, unfaded, when its nearest and farthest trees agree.
+      const whole = lo[0] === hi[0] && lo[2] === NONE && hi[2] === NONE ? lo[0] : null;
       const sources = g.impostor ? [...g.protos, g.impostor] : g.protos;
       for (const source of sources) {
         const impostor = source === g.impostor;
@@ -313,10 +376,11 @@ export class SylvaForest extends Object3D {
         const b = source.bases;
         for (let i = 0; i < source.n; i++) {
           const dx = b[3 * i] - eye.x, dy = b[3 * i + 1] - eye.y, dz = b[3 * i + 2] - eye.z;
-          const level = SylvaForest.level(g, Math.sqrt(dx * dx + dy * dy + dz * dz), s);
-          const draw = drawOf(level);
-          if (draw) {
-            draw.add(source, i);
+          const [first, firstFade, second, secondFade] = SylvaForest.levels(g, Math.sqrt(dx * dx + dy * dy + dz * dz), s);
+          for (const [level, fade] of [[first, firstFade], [second, secondFade]]) {
+            const draw = drawOf(level);
+            if (!draw) continue;
+            draw.add(source, i, fade);
             count(stats, impostor ? 'impostor' : level, 1);
           }
         }

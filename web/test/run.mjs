@@ -2,14 +2,16 @@
 //
 //   node test/run.mjs --glb FOREST.glb [--out DIR] [--modes runtime,babylon,full]
 //                     [--eyes edge,above] [--loads 10] [--budget 3000000] [--timeout 400]
+//                     [--roles [--foliage-tolerance 2]]
 //
 // For every mode and eye it opens a page in a fresh headless Chromium (software GL), waits
 // for its first frame and ten more, and prints one JSON line: triangles and draw calls a
 // frame (three.js's renderer.info, Babylon's counters), time to first frame, frame time, and
 // the browser's peak memory (the resident memory of all its processes, sampled every 250
 // ms); a screenshot of each goes to DIR. `runtime` is three.js with SylvaForest, `babylon` is
-// Babylon.js with its own glTF loader and sylva-three/babylon, `full` is three.js's GLTFLoader
-// alone. Then it loads the runtime page `--loads` times in a row. It fails when a page
+// Babylon.js with its own glTF loader and default settings, `full` is three.js's GLTFLoader
+// alone (every tree at full detail). With --roles the pictures are flat by role and the
+// foliage seen with levels is held within --foliage-tolerance points of full detail's. Then it loads the runtime page `--loads` times in a row. It fails when a page
 // errs, crashes or times out, and when the runtime draws more than `--budget` triangles a
 // frame from any eye (Babylon.js reads MSFT_lod only to load the levels one after another,
 // ending at full detail, so its rows are measured, not held to the budget). A crash is a
@@ -36,6 +38,10 @@ const eyeNames = option('eyes', 'edge,above').split(',');
 const loads = Number(option('loads', '10'));
 const budget = Number(option('budget', '3000000'));
 const timeout = 1000 * Number(option('timeout', '400'));
+// With --roles, pictures are drawn flat by role and full detail and levels compared: the
+// foliage seen (leaves over the ground in the picture) may differ by at most this, in points.
+const roles = process.argv.includes('--roles');
+const foliageTolerance = Number(option('foliage-tolerance', '2'));
 mkdirSync(out, { recursive: true });
 
 // A static server on loopback: the package's folder, and the forest at /forest.glb.
@@ -92,11 +98,32 @@ function treeRssMb(pid) {
   return total / 1e6;
 }
 
+// Kills a process and all its descendants.
+function killTree(pid) {
+  if (pid === null) return;
+  const children = new Map();
+  for (const entry of readdirSync('/proc')) {
+    if (!/^\d+$/.test(entry)) continue;
+    try {
+      const stat = readFileSync(`/proc/${entry}/stat`, 'utf8');
+      const ppid = Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]);
+      if (!children.has(ppid)) children.set(ppid, []);
+      children.get(ppid).push(Number(entry));
+    } catch { /* gone */ }
+  }
+  const stack = [pid];
+  while (stack.length) {
+    const p = stack.pop();
+    try { process.kill(p, 'SIGKILL'); } catch { /* gone */ }
+    stack.push(...(children.get(p) || []));
+  }
+}
+
 const launchArgs = ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
   '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update',
   '--disable-sync', '--no-sandbox'];
 
-async function measure(mode, eyeName, eye, shot) {
+async function measure(mode, eyeName, eye, shot, frames = 5) {
   const profile = mkdtempSync(join(tmpdir(), 'sylva-three-'));
   const browser = await chromium.launchPersistentContext(profile, {
     executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
@@ -113,7 +140,7 @@ async function measure(mode, eyeName, eye, shot) {
   page.on('pageerror', (e) => { crashed = crashed || `page error: ${e.message}`; });
   if (process.env.SYLVA_WEB_VERBOSE) page.on('console', (m) => console.error(`  [${mode} ${eyeName}] ${m.text()}`));
   const path = mode === 'babylon' ? 'test/babylon.html' : 'example/index.html';
-  const url = `${base}/${path}?file=/forest.glb&mode=${mode}&check=1&frames=5&eye=${eye}${process.env.SYLVA_WEB_QUERY || ''}`;
+  const url = `${base}/${path}?file=/forest.glb&mode=${mode}&check=1&frames=${frames}&eye=${eye}${roles ? '&roles=1' : ''}${process.env.SYLVA_WEB_QUERY || ''}`;
   const started = Date.now();
   let result;
   try {
@@ -126,7 +153,9 @@ async function measure(mode, eyeName, eye, shot) {
   }
   clearInterval(sampler);
   peak = Math.max(peak, treeRssMb(pid));
-  await browser.close();
+  // A browser stuck in a frame it cannot finish does not close when asked: it is killed.
+  const closed = await Promise.race([browser.close().then(() => true), new Promise((ok) => setTimeout(() => ok(false), 15000))]);
+  if (!closed) killTree(pid);
   rmSync(profile, { recursive: true, force: true });
   return { mode, eye: eyeName, ...result, wall_s: (Date.now() - started) / 1000, peak_mb: Math.round(peak) };
 }
@@ -136,7 +165,7 @@ let failures = 0;
 const rows = [];
 for (const mode of modes) {
   for (const name of eyeNames) {
-    const row = await measure(mode, name, eyes[name], join(out, `${mode}_${name}.png`));
+    const row = await measure(mode, name, eyes[name], join(out, `${mode}_${name}${roles ? '_roles' : ''}.png`));
     rows.push(row);
     console.log(JSON.stringify(row));
     if (row.error) {
@@ -148,9 +177,20 @@ for (const mode of modes) {
     }
   }
 }
-// Loads in a row, each in a fresh browser, none retried.
+// Levels against full detail: the foliage each sees from the same eye.
+for (const name of eyeNames) {
+  const [levels, full] = ['runtime', 'full'].map((m) => rows.find((r) => r.mode === m && r.eye === name && r.coverage));
+  if (!levels || !full) continue;
+  const difference = levels.coverage.foliage - full.coverage.foliage;
+  console.log(`foliage from ${name}: ${levels.coverage.foliage.toFixed(1)}% with levels, ${full.coverage.foliage.toFixed(1)}% at full detail (${difference >= 0 ? '+' : ''}${difference.toFixed(1)} points)`);
+  if (Math.abs(difference) > foliageTolerance) {
+    console.error(`foliage from ${name} differs by more than ${foliageTolerance} points`);
+    failures++;
+  }
+}
+// Loads in a row, each in a fresh browser to its first frame, none retried.
 for (let k = 0; k < loads; k++) {
-  const row = await measure('runtime', 'edge', eyes.edge, null);
+  const row = await measure('runtime', 'edge', eyes.edge, null, 0);
   if (row.error || !(row.triangles > 0)) {
     console.error(`load ${k + 1} of ${loads}: ${row.error || 'nothing drawn'}`);
     failures++;
