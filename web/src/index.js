@@ -21,7 +21,7 @@
 //   scene.add(gltf.scene, forest);
 //   renderer.setAnimationLoop(() => { forest.update(camera); renderer.render(scene, camera); });
 
-import { Box3, BufferGeometry, Frustum, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
+import { Box3, BufferGeometry, DoubleSide, Frustum, ShaderChunk, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
 
 /** The name of the glTF extension sylva declares its levels with. */
 export const LEVELS_EXTENSION = 'MSFT_lod';
@@ -173,9 +173,29 @@ function fading(material) {
   return material;
 }
 
+/**
+ * The impostor cards' material drawn once, both sides: the file writes each card twice, one
+ * per winding, for clients that flip a double-sided face's normal on its back (its cards
+ * face the sky as far as light goes, from either side). Here the back keeps the front's
+ * normal, and half the triangles are drawn.
+ */
+const onceMaterials = new WeakMap();
+function cardsOnce(material) {
+  if (onceMaterials.has(material)) return onceMaterials.get(material);
+  const once = material.clone();
+  once.side = DoubleSide;
+  once.onBeforeCompile = (shader) => {
+    const front = ShaderChunk.normal_fragment_begin.replace('gl_FrontFacing ? 1.0 : - 1.0', '1.0');
+    shader.fragmentShader = shader.fragmentShader.replace('#include <normal_fragment_begin>', front);
+  };
+  once.customProgramCacheKey = () => 'sylva-cards-once';
+  onceMaterials.set(material, once);
+  return once;
+}
+
 /** One merged draw: a prototype at one level, an InstancedMesh per primitive. */
 class Draw {
-  constructor(template, capacity) {
+  constructor(template, capacity, cards = false) {
     this.fades = new Float32Array(capacity);
     const fade = new InstancedBufferAttribute(this.fades, 1);
     this.fade = fade;
@@ -185,7 +205,10 @@ class Draw {
       for (const [name, attribute] of Object.entries(m.geometry.attributes)) geometry.setAttribute(name, attribute);
       geometry.setIndex(m.geometry.index);
       geometry.setAttribute('sylvaFade', fade);
-      const materials = Array.isArray(m.material) ? m.material.map(fading) : fading(m.material);
+      // Impostor cards: the first half of the triangles (the front windings), double-sided.
+      if (cards && m.geometry.index) geometry.setDrawRange(0, m.geometry.index.count / 2);
+      const own = (material) => fading(cards ? cardsOnce(material) : material);
+      const materials = Array.isArray(m.material) ? m.material.map(own) : own(m.material);
       const mesh = new InstancedMesh(geometry, materials, capacity);
       if (m.instanceColor) mesh.instanceColor = new InstancedBufferAttribute(new Float32Array(3 * capacity), 3);
       // The forest culls by cell; a merged draw's bounds change every frame.
@@ -264,6 +287,7 @@ export class SylvaForest extends Object3D {
     // Every prototype at every level, as one draw for the forest.
     const capacity = new Map();
     const template = new Map();
+    const cards = new Set();
     for (const g of this.groups) {
       for (const source of g.impostor ? [...g.protos, g.impostor] : g.protos) {
         for (const m of source.meshes) {
@@ -272,6 +296,7 @@ export class SylvaForest extends Object3D {
           if (!template.has(m.key)) template.set(m.key, m.object);
         }
       }
+      if (g.impostor) cards.add(g.impostor.meshes[0].key);
       // The file's own cell nodes now only hold data.
       const cell = g.full.parent;
       if (cell && cell.parent) cell.parent.remove(cell);
@@ -289,7 +314,7 @@ export class SylvaForest extends Object3D {
     }
     this.draws = new Map();
     for (const [key, n] of capacity) {
-      const draw = new Draw(template.get(key), n);
+      const draw = new Draw(template.get(key), n, cards.has(key));
       this.draws.set(key, draw);
       for (const mesh of draw.meshes) this.add(mesh);
     }

@@ -26,6 +26,9 @@ use super::placement_words::{SECTION_ACCESSORS, SECTION_WORDS};
 use super::schema::{LevelsOfDetail, Node as JsonNode, NodeExtensions};
 use crate::census::Node;
 
+/// The meshes made so far, by variant, layer and instance (`None`: it draws nothing there).
+type MeshCache = HashMap<(usize, usize, usize), Option<usize>>;
+
 /// How a file's nodes are grouped: its cells and, when it has them, its levels.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Grouping<'a> {
@@ -56,7 +59,7 @@ pub(super) fn lay_out_groups(
     layers: &Layers<'_>,
     sections: [usize; 5],
 ) {
-    let mut meshes: HashMap<(usize, usize, usize), Option<usize>> = HashMap::new();
+    let mut meshes: MeshCache = HashMap::new();
     let mut cells: Vec<(u32, Vec<usize>)> = Vec::new();
     let mut start = 0;
     while start < nodes.len() {
@@ -111,10 +114,7 @@ fn lay_out_group(
     run: &[Node],
     grouping: Grouping<'_>,
     layers: &Layers<'_>,
-    (sections, meshes): (
-        [usize; 5],
-        &mut HashMap<(usize, usize, usize), Option<usize>>,
-    ),
+    (sections, meshes): ([usize; 5], &mut MeshCache),
 ) -> usize {
     let variant = run[0].variant;
     let cell = grouping.grid.cell(run[0].cell);
@@ -204,7 +204,7 @@ fn lay_out_group(
     d.root.nodes.push(JsonNode {
         name: Some(place),
         children: level_nodes.swap_remove(0),
-        extensions: (!coarser.is_empty()).then(|| NodeExtensions {
+        extensions: (!coarser.is_empty()).then_some(NodeExtensions {
             gpu_instancing: None,
             lod: Some(LevelsOfDetail { ids: coarser }),
         }),
@@ -235,7 +235,7 @@ fn instancing_accessors(
 /// asked for (named by `name`); `None` when it draws nothing there.
 fn layer_mesh(
     d: &mut DocumentBuilder,
-    meshes: &mut HashMap<(usize, usize, usize), Option<usize>>,
+    meshes: &mut MeshCache,
     layers: &Layers<'_>,
     (variant, layer, instance): (usize, usize, usize),
     name: impl FnOnce() -> String,
