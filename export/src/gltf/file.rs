@@ -132,18 +132,16 @@ fn block_nodes(
             grid,
             impostors,
         } => {
-            let variants = nodes_variants(block, grid, nodes, impostors);
+            let trees = tree_cells(block, grid, nodes, impostors);
             for (k, p) in block.placements.iter().enumerate() {
                 check_transform(&p.transform)?;
-                let &(cell, _) = variants
-                    .get(p.tree as usize)
-                    .ok_or(Invalid::UnknownInstance)?;
+                let &(cell, _) = trees.get(p.tree as usize).ok_or(Invalid::UnknownInstance)?;
                 let node = nodes
                     .node(cell, p.variant as usize, p.instance as usize)
                     .unwrap_or(u32::MAX);
                 out.push((node, Placed::Instance(k as u32)));
             }
-            for (t, (tree, &(cell, impostor))) in block.trees.iter().zip(&variants).enumerate() {
+            for (t, (tree, &(cell, impostor))) in block.trees.iter().zip(&trees).enumerate() {
                 if !impostor {
                     continue;
                 }
@@ -160,7 +158,7 @@ fn block_nodes(
 }
 
 /// Each tree's cell and whether its variant has an impostor.
-fn nodes_variants(
+fn tree_cells(
     block: &PlacementBlock,
     grid: &CellGrid,
     nodes: &CellNodes,
