@@ -285,9 +285,15 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
     );
     println!("  terrain: {}", world.siting);
     println!(
-        "  {} instance placements of {} instances ({} more of branches with no geometry yet)",
+        "  {} instance placements in {} instanced nodes ({} more of branches with no geometry yet)",
         written.placements, written.instances, written.empty_placements
     );
+    if written.cells > 1 || written.levels > 1 {
+        println!(
+            "  {} cells of {} m; {} levels a tree, down to {} impostors (one a tree)",
+            written.cells, written.cell_m, written.levels, written.impostor_placements
+        );
+    }
     let mb = |bytes: f64| bytes / (1 << 20) as f64;
     if let Some(glb) = &glb {
         println!(
