@@ -157,7 +157,9 @@ async function measure(mode, eyeName, eye, shot, frames = 5) {
   const closed = await Promise.race([browser.close().then(() => true), new Promise((ok) => setTimeout(() => ok(false), 15000))]);
   if (!closed) killTree(pid);
   rmSync(profile, { recursive: true, force: true });
-  return { mode, eye: eyeName, ...result, wall_s: (Date.now() - started) / 1000, peak_mb: Math.round(peak) };
+  // The page's own `eye` (where it stood) is kept as `at`; `eye` names the eye.
+  const { eye: at, ...rest } = result;
+  return { mode, eye: eyeName, at, ...rest, wall_s: (Date.now() - started) / 1000, peak_mb: Math.round(peak) };
 }
 
 const eyes = eyesOf(readGlb(glbPath));
@@ -179,8 +181,13 @@ for (const mode of modes) {
 }
 // Levels against full detail: the foliage each sees from the same eye.
 for (const name of eyeNames) {
+  if (!roles || !modes.includes('runtime') || !modes.includes('full')) break;
   const [levels, full] = ['runtime', 'full'].map((m) => rows.find((r) => r.mode === m && r.eye === name && r.coverage));
-  if (!levels || !full) continue;
+  if (!levels || !full) {
+    console.error(`foliage from ${name}: no picture of ${levels ? 'full detail' : 'the levels'} to compare`);
+    failures++;
+    continue;
+  }
   const difference = levels.coverage.foliage - full.coverage.foliage;
   console.log(`foliage from ${name}: ${levels.coverage.foliage.toFixed(1)}% with levels, ${full.coverage.foliage.toFixed(1)}% at full detail (${difference >= 0 ? '+' : ''}${difference.toFixed(1)} points)`);
   if (Math.abs(difference) > foliageTolerance) {
