@@ -21,7 +21,8 @@ pub const SEEDLING_MIN_PIXELS: f32 = 16.0;
 /// One variant's levels in a file.
 #[derive(Debug, Clone)]
 pub(crate) struct VariantLevels {
-    /// The chain, its cache at every level and its impostor.
+    /// The chain and its cache at every level (its impostor and whole tree taken out: the
+    /// file keeps only the cards).
     pub(crate) lods: VariantLods,
     /// The distance (metres, at the chain's screen) from which each coarser level is drawn,
     /// then the impostor's when it has one; each at least the one before.
@@ -80,8 +81,12 @@ impl ForestLevels {
                 });
                 let cards = lods
                     .impostor
-                    .as_ref()
-                    .map(|i| (impostor_cards(i), i.cards_texture().png()));
+                    .take()
+                    .map(|i| (impostor_cards(&i), i.cards_texture().png()));
+                // The file needs the cards and the cache's levels: the impostor's atlases
+                // (colour, normals, depth: 12 MB a variant) and the whole tree go now, not
+                // when every variant is built.
+                lods.tree = Mesh::default();
                 Ok(VariantLevels {
                     lods,
                     from,
