@@ -6,7 +6,8 @@ use std::time::Instant;
 
 use clap::Args;
 use serde::Serialize;
-use sylva::export::lod::{LodChain, write_asset_pack};
+use sylva::export::lod::LodChain;
+use sylva::export::write_asset_pack;
 
 use crate::Failure;
 use crate::progress::{ms, peak_rss_mb, phase, print_stats};

@@ -37,6 +37,7 @@ mod census;
 mod error;
 mod gltf;
 pub mod lod;
+mod pack;
 mod phenology;
 mod spill;
 mod texture;
@@ -48,6 +49,7 @@ pub use gltf::{
     GlbStats, GltfOptions, WIND_TREE_REACH, tree_glb, write_glb, write_shared_geometry,
     write_stand_glb, write_tree_glb,
 };
+pub use pack::{PackStats, write_asset_pack};
 pub use texture::{Texture, linear_to_srgb, srgb_to_linear};
 pub use tiles::{
     Level, TileId, TileScheme, TileStats, TilesetOptions, check_tileset_folder, tile_path,

@@ -148,7 +148,7 @@ fn small_chain() -> sylva_export::lod::LodChain {
 /// atlas), the atlases, and every tree of the region in its placements.
 #[test]
 fn a_pack_holds_every_variants_levels_and_every_tree() {
-    use sylva_export::lod::write_asset_pack;
+    use sylva_export::write_asset_pack;
     let (builder, map, region) = sylva_testkit::export_case();
     let dir = sylva_testkit::scratch("pack").with_file_name("pack");
     let stats = write_asset_pack(&builder, &map, region, &small_chain(), &dir).expect("pack");
@@ -218,7 +218,7 @@ fn a_pack_holds_every_variants_levels_and_every_tree() {
 #[test]
 fn a_pack_is_not_written_over_a_foreign_folder() {
     use sylva_export::ExportError;
-    use sylva_export::lod::write_asset_pack;
+    use sylva_export::write_asset_pack;
     let (builder, map, region) = sylva_testkit::export_case();
     let dir = sylva_testkit::scratch("foreign").with_file_name("mine");
     std::fs::create_dir_all(&dir).expect("folder");
@@ -238,7 +238,7 @@ fn a_pack_is_not_written_over_a_foreign_folder() {
 /// The same inputs make the same pack, byte for byte.
 #[test]
 fn a_pack_is_a_pure_function_of_its_inputs() {
-    use sylva_export::lod::write_asset_pack;
+    use sylva_export::write_asset_pack;
     let (builder, map, region) = sylva_testkit::export_case();
     let a = sylva_testkit::scratch("pure-a").with_file_name("pack");
     let b = sylva_testkit::scratch("pure-b").with_file_name("pack");

@@ -20,7 +20,7 @@ use sylva_instancing::Span;
 
 use super::builder::DocumentBuilder;
 use super::cells::CellGrid;
-use super::document::{VariantLayout, instance_primitives};
+use super::layer::{VariantLayout, instance_primitives};
 use super::levels::ForestLevels;
 use super::placement_words::{SECTION_ACCESSORS, SECTION_WORDS};
 use super::schema::{LevelsOfDetail, Node as JsonNode, NodeExtensions};

@@ -20,6 +20,7 @@ mod file;
 mod groups;
 mod in_memory;
 mod indices;
+mod layer;
 mod levels;
 mod lod;
 mod placement_words;

@@ -8,7 +8,6 @@ mod chain;
 mod compare;
 mod impostor;
 mod leaves;
-mod pack;
 mod raster;
 mod simplify;
 mod tree;
@@ -21,7 +20,6 @@ pub use compare::{SilhouetteMatch, calibrate_leaves, compare_silhouettes};
 pub use impostor::{
     Impostor, ImpostorOptions, MAX_ATLAS_SIDE, hemi_octahedral_direction, hemi_octahedral_uv,
 };
-pub use pack::{PackStats, write_asset_pack};
 pub use raster::{OrthoView, Picture, TreeLook, draw};
 pub use simplify::{LodLevel, simplify_mesh};
 pub use tree::variant_tree;

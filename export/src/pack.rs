@@ -13,12 +13,9 @@ use sylva_forest::{ForestBuilder, ForestError, Rect};
 use sylva_terrain::HeightField;
 use sylva_turtle::Mesh;
 
-use super::cards::impostor_cards;
-use super::chain::LodChain;
-use super::simplify::simplify_mesh;
-use super::variant::VariantLods;
 use crate::error::ExportError;
 use crate::gltf::{LodCards, LodMesh, write_lod_glb};
+use crate::lod::{CARD_ALPHA_CUTOFF, LodChain, VariantLods, impostor_cards, simplify_mesh};
 
 /// What [`write_asset_pack`] wrote.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -64,7 +61,8 @@ fn ours(name: &str) -> bool {
 /// empty or a pack's: it is replaced whole.
 ///
 /// ```
-/// use sylva_export::lod::{LodChain, write_asset_pack};
+/// use sylva_export::lod::LodChain;
+/// use sylva_export::write_asset_pack;
 /// use sylva_forest::{ForestBuilder, ForestConfig, Rect, Species};
 /// use sylva_terrain::{FlatPlane, glam::Vec2};
 ///
@@ -193,7 +191,7 @@ fn fill(
                 mesh,
                 from: from(meshes.len()),
                 atlas,
-                cutoff: super::cards::CARD_ALPHA_CUTOFF,
+                cutoff: CARD_ALPHA_CUTOFF,
             });
         let glb = format!("{name}.glb");
         let bytes = write_lod_glb(name, s, &levels, cards, &staging.join(&glb))?;
