@@ -106,8 +106,8 @@ pub(super) fn lay_out_groups(
 }
 
 /// One variant's nodes in one cell: its node at full detail, whose children are the
-/// instanced nodes, and with levels the nodes of its coarser levels and its impostor, named
-/// by `MSFT_lod`. Returns the node at full detail.
+/// instanced nodes, and with levels the nodes of its coarser levels (named by `MSFT_lod`)
+/// and its impostor (named by `extras.sylva_levels`). Returns the node at full detail.
 fn lay_out_group(
     d: &mut DocumentBuilder,
     builder: &ForestBuilder,

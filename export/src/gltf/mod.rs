@@ -99,9 +99,9 @@ pub struct GltfOptions {
     /// Default: [`CELL_SIZE`] (64 m).
     pub cell_size: Option<f32>,
     /// Levels of detail in the file: each cell's variant node declares `MSFT_lod` (not
-    /// required) with the chain's coarser levels of every prototype and, for canopy
-    /// variants, the impostor's cards placed once per tree, with their switch distances and
-    /// screen coverages in `extras`. A client without `MSFT_lod` draws full detail. Ignored
+    /// required) with the chain's coarser levels of every prototype, and names in
+    /// `extras.sylva_levels` its impostor (the cards placed once per tree), with the switch
+    /// distances and screen coverages. A client without `MSFT_lod` draws full detail. Ignored
     /// with [`GltfOptions::one_node_per_placement`] and [`GltfOptions::shared_geometry`].
     /// Default: [`LodChain::default`] (the viewer's chain).
     pub levels: Option<LodChain>,
@@ -203,10 +203,10 @@ pub struct GlbStats {
     pub cells: usize,
     /// Side of a canopy cell, metres (the forest's side in a file without cells).
     pub cell_size: f32,
-    /// Levels of detail of each canopy tree, its full detail and impostor included (1 in a
-    /// file without levels).
+    /// Levels of detail of each tree, its full detail and impostor included (1 in a file
+    /// without levels).
     pub levels: usize,
-    /// Placements of impostors, one per canopy tree (0 in a file without levels).
+    /// Placements of impostors, one per tree (0 in a file without levels).
     pub impostor_placements: usize,
 }
 
