@@ -167,6 +167,8 @@ pub(crate) struct CellNodes {
     pub(crate) stats: StreamStats,
     /// Per variant, whether it is a seedling form and its instance count.
     variants: Vec<(bool, usize)>,
+    /// The cells.
+    grid: CellGrid,
 }
 
 impl CellNodes {
@@ -207,6 +209,7 @@ impl CellNodes {
                 .iter()
                 .map(|v| (v.seedling, v.cache.instances.len()))
                 .collect(),
+            grid: *grid,
         };
         for bin in &counted.bins {
             if let Some(slot) = out.slot_of_cell.get_mut(bin.bin as usize) {
@@ -277,9 +280,11 @@ impl CellNodes {
         self.nodes.len() as u32 - 1
     }
 
-    /// Whether variant `variant` is a seedling form.
-    pub(crate) fn seedling(&self, variant: usize) -> bool {
-        self.variants.get(variant).is_some_and(|v| v.0)
+    /// The cell a tree stands in.
+    pub(crate) fn cell_of(&self, tree: &CompactTree) -> u32 {
+        let v = usize::from(tree.variant);
+        let seedling = self.variants.get(v).is_some_and(|v| v.0);
+        self.grid.cell_of(tree, seedling)
     }
 
     /// The node of variant `variant`'s impostor in cell `cell`.

@@ -8,7 +8,6 @@ use sylva_forest::{ForestBuilder, PlacementBlock, Rect, tree_tint, tree_wind};
 use sylva_terrain::{HeightField, TerrainMesh};
 
 use super::builder::padding;
-use super::cells::{CellGrid, CellNodes};
 use super::document::Document;
 use super::indices::IndexWidth;
 use super::placement_words::{self, PLACEMENT_BYTES, SECTION_WORDS};
@@ -127,52 +126,27 @@ fn block_nodes(
                 out.push((node, Placed::Instance(k as u32)));
             }
         }
-        NodeLookup::Cells {
-            nodes,
-            grid,
-            impostors,
-        } => {
-            let trees = tree_cells(block, grid, nodes, impostors);
+        NodeLookup::Cells(nodes) => {
+            let cells: Vec<u32> = block.trees.iter().map(|t| nodes.cell_of(t)).collect();
             for (k, p) in block.placements.iter().enumerate() {
                 check_transform(&p.transform)?;
-                let &(cell, _) = trees.get(p.tree as usize).ok_or(Invalid::UnknownInstance)?;
+                let &cell = cells.get(p.tree as usize).ok_or(Invalid::UnknownInstance)?;
                 let node = nodes
                     .node(cell, p.variant as usize, p.instance as usize)
                     .unwrap_or(u32::MAX);
                 out.push((node, Placed::Instance(k as u32)));
             }
-            for (t, (tree, &(cell, impostor))) in block.trees.iter().zip(&trees).enumerate() {
-                if !impostor {
+            // Each tree of a variant with an impostor places it once, at its root.
+            for (t, (tree, &cell)) in block.trees.iter().zip(&cells).enumerate() {
+                let Some(node) = nodes.impostor(cell, usize::from(tree.variant)) else {
                     continue;
-                }
-                let root = tree.root();
-                check_transform(&root)?;
-                let node = nodes
-                    .impostor(cell, usize::from(tree.variant))
-                    .ok_or(Invalid::UnknownInstance)?;
+                };
+                check_transform(&tree.root())?;
                 out.push((node, Placed::Impostor(t as u32)));
             }
         }
     }
     Ok(out)
-}
-
-/// Each tree's cell and whether its variant has an impostor.
-fn tree_cells(
-    block: &PlacementBlock,
-    grid: &CellGrid,
-    nodes: &CellNodes,
-    impostors: &[bool],
-) -> Vec<(u32, bool)> {
-    block
-        .trees
-        .iter()
-        .map(|t| {
-            let v = usize::from(t.variant);
-            let impostor = impostors.get(v).copied().unwrap_or(false);
-            (grid.cell_of(t, nodes.seedling(v)), impostor)
-        })
-        .collect()
 }
 
 /// Groups `block`'s placements by node and spells them as the file's words, each transform

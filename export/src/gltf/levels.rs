@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use sylva_forest::{ForestBuilder, ForestError, Species};
 use sylva_turtle::Mesh;
 
+use super::position_bounds;
 use crate::error::ExportError;
 use crate::lod::{Impostor, LodChain, TreeLook, VariantLods, impostor_cards};
 
@@ -74,8 +75,9 @@ impl ForestLevels {
                 }
                 let from = switch_distances(&lods, chain, &species[v.species]);
                 let reach = v.seedling.then(|| {
-                    let (lo, hi) = bounds_y(&lods.tree);
-                    let height = (hi - lo).max(0.01);
+                    let (lo, hi, _) =
+                        position_bounds(lods.tree.vertices.iter().map(|v| v.position));
+                    let height = (hi[1] - lo[1]).max(0.01);
                     let reach = height * chain.pixels_per_radian / SEEDLING_MIN_PIXELS;
                     reach.max(from.last().copied().unwrap_or(0.0))
                 });
@@ -135,12 +137,3 @@ fn switch_distances(lods: &VariantLods, chain: &LodChain, species: &Species) -> 
 /// flat by role: foliage over the ground 80.6% at full detail; impostors cut at 0.3 gave
 /// 83.8%, at 0.5 73.5%, at 0.37 80.4%.
 pub(crate) const CARDS_CUTOFF: f32 = 0.37;
-
-/// The lowest and highest y of a mesh's vertices.
-fn bounds_y(mesh: &Mesh) -> (f32, f32) {
-    mesh.vertices
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v.position[1]), hi.max(v.position[1]))
-        })
-}

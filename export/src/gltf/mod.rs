@@ -401,11 +401,7 @@ fn write_grouped(
         None,
         Some(grouping),
     )?;
-    let lookup = NodeLookup::Cells {
-        nodes: &cells,
-        grid: &grid,
-        impostors: &impostors,
-    };
+    let lookup = NodeLookup::Cells(&cells);
     let passes = write_file(path, &document, |file| {
         write_geometry(file, terrain_mesh, &document)?;
         write_placements(
@@ -446,11 +442,7 @@ pub(crate) enum NodeLookup<'a> {
     Flat(&'a [Vec<u32>]),
     /// By the cell of the placement's tree, variant and instance; and each tree of a
     /// variant with an impostor places it once.
-    Cells {
-        nodes: &'a CellNodes,
-        grid: &'a CellGrid,
-        impostors: &'a [bool],
-    },
+    Cells(&'a CellNodes),
 }
 
 /// The lowest and highest corner of `positions` (glTF requires them on POSITION accessors)
