@@ -12,7 +12,7 @@ use sylva::instancing::Assembler;
 use sylva::terrain::Heightmap;
 
 use sylva::world::Fit;
-use sylva::world::limits::{DEFAULT_REGION_SIDE, TERRAIN_MESH_SPACING};
+use sylva::world::limits::{CELL_SIZE_RANGE, DEFAULT_REGION_SIDE, TERRAIN_MESH_SPACING};
 
 use crate::Failure;
 use crate::progress::{ms, peak_rss_mb, phase, print_stats};
@@ -66,16 +66,17 @@ pub(crate) struct ForestArgs {
     quiet: bool,
 }
 
-/// `--cell-size`: 0 (no cells), or 8 m up to 10 km.
+/// `--cell-size`: 0 (no cells), or within [`CELL_SIZE_RANGE`].
 fn cell_size(text: &str) -> Result<f32, String> {
     let metres: f32 = text
         .parse()
         .map_err(|_| format!("`{text}` is not a number of metres"))?;
-    if metres == 0.0 || (8.0..=10_000.0).contains(&metres) {
+    let (small, large) = CELL_SIZE_RANGE;
+    if metres == 0.0 || (small..=large).contains(&metres) {
         Ok(metres)
     } else {
         Err(format!(
-            "{metres} m: a cell is 8 m to 10,000 m wide (or 0 for none)"
+            "{metres} m: a cell is {small} m to {large} m wide (or 0 for none)"
         ))
     }
 }

@@ -15,6 +15,12 @@ pub const DEFAULT_REGION_SIDE: f32 = 1_000.0;
 /// world's 257 samples a side would be 0.4 m apart, a quarter of its file.
 pub const TERRAIN_MESH_SPACING: f32 = 1.5;
 
+/// Sides a forest file's cells may be asked for (`sylva forest --cell-size`), metres; 0 asks
+/// for none. A cell under 8 m holds a tree or two; the writer makes at most 32 cells a side
+/// whatever is asked (`sylva_export::limits::MAX_CELLS_PER_SIDE`), which bounds the file's
+/// node count before any tree is placed.
+pub const CELL_SIZE_RANGE: (f32, f32) = (8.0, 10_000.0);
+
 /// Most canopy trees per hectare a density may ask for.
 pub const MAX_DENSITY: f32 = 10_000.0;
 /// Most canopy trees a world may be sized for (`--trees`).
