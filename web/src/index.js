@@ -22,12 +22,12 @@
 //   renderer.setAnimationLoop(() => { forest.update(camera); renderer.render(scene, camera); });
 
 import { Box3, BufferGeometry, DoubleSide, Frustum, ShaderChunk, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
+import { Bin, binForest, boxOf, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
+
+export { NONE, treeLevels } from './levels.js';
 
 /** The name of the glTF extension sylva declares its levels with. */
 export const LEVELS_EXTENSION = 'MSFT_lod';
-
-/** What `_WIND_TREE`'s offsets are in units of, when a node does not say. */
-const WIND_TREE_REACH = 256;
 
 /** The objects an instanced node became: its InstancedMesh, or a group of them. */
 function instancedMeshes(object) {
@@ -45,6 +45,8 @@ export class SylvaLevels {
   constructor(parser) {
     this.parser = parser;
     this.name = LEVELS_EXTENSION;
+    /** The loaded node of each mesh a level draws with, by mesh index. */
+    this.templates = new Map();
   }
 
   async afterRoot(gltf) {
@@ -58,7 +60,7 @@ export class SylvaLevels {
       if (levels) pending.push(this.group(index, lod ? lod.ids : [], levels));
     }
     const groups = await Promise.all(pending);
-    gltf.userData.sylva = { groups };
+    gltf.userData.sylva = { groups, templates: this.templates };
   }
 
   // One node with levels: its full level's prototypes, each with its placements (matrices,
@@ -75,7 +77,7 @@ export class SylvaLevels {
       const proto = await this.placements(child);
       if (!proto) continue;
       proto.meshes = new Array(meshLevels).fill(null);
-      proto.meshes[0] = { key: json.nodes[child].mesh, object: proto.object };
+      proto.meshes[0] = this.template(json.nodes[child].mesh, proto.object);
       byPlacements.set(proto.translation, proto);
       protos.push(proto);
     }
@@ -86,16 +88,29 @@ export class SylvaLevels {
         const inst = json.nodes[child].extensions.EXT_mesh_gpu_instancing;
         const proto = byPlacements.get(inst.attributes.TRANSLATION);
         if (!proto) continue;
-        proto.meshes[k] = { key: json.nodes[child].mesh, object: await parser.getDependency('node', child) };
+        proto.meshes[k] = this.template(json.nodes[child].mesh, await parser.getDependency('node', child));
       }
     }
     let impostor = null;
     if (levels.impostor != null) {
       const id = levels.impostor;
       impostor = await this.placements(id, true);
-      if (impostor) impostor.meshes = [{ key: json.nodes[id].mesh, object: impostor.object }];
+      if (impostor) impostor.meshes = [this.template(json.nodes[id].mesh, impostor.object)];
     }
-    return { index, full, levels, meshLevels, protos, impostor };
+    // The box of the trees' bases, which levels are picked by, and of their placements
+    // grown by a tree's reach, which the frustum culls.
+    const all = impostor ? [...protos, impostor] : protos;
+    const bases = boxOf(Float32Array.from(all.flatMap((p) => [...p.basesBox.min, ...p.basesBox.max])), 2 * all.length);
+    const box = new Box3();
+    for (const source of all) box.union(source.box);
+    box.expandByVector(new Vector3(...treeMargin(levels)));
+    return { index, full, levels, meshLevels, protos, impostor, bases, box };
+  }
+
+  // Names a mesh by its index, keeping the node it was loaded as.
+  template(mesh, object) {
+    if (!this.templates.has(mesh)) this.templates.set(mesh, object);
+    return mesh;
   }
 
   // An instanced node's placements: its matrices and colours as three.js composed them,
@@ -114,13 +129,7 @@ export class SylvaLevels {
       : null;
     const reach = (def.extras && def.extras.sylva_wind_tree_reach) || WIND_TREE_REACH;
     const n = translation.count;
-    const bases = new Float32Array(3 * n);
-    for (let i = 0; i < n; i++) {
-      for (let c = 0; c < 3; c++) {
-        const offset = wind ? wind.getComponent(i, c) * reach : 0;
-        bases[3 * i + c] = translation.getComponent(i, c) + offset;
-      }
-    }
+    const bases = treeBases(n, (i, c) => translation.getComponent(i, c), wind && ((i, c) => wind.getComponent(i, c)), reach);
     const box = new Box3();
     const p = new Vector3();
     for (let i = 0; i < n; i++) box.expandByPoint(p.fromBufferAttribute(translation, i));
@@ -130,7 +139,9 @@ export class SylvaLevels {
       n,
       matrices: mesh.instanceMatrix.array,
       colors: mesh.instanceColor ? mesh.instanceColor.array : null,
+      colorStride: 3,
       bases,
+      basesBox: boxOf(bases, n),
       box,
     };
   }
@@ -193,18 +204,20 @@ function cardsOnce(material) {
   return once;
 }
 
-/** One merged draw: a prototype at one level, an InstancedMesh per primitive. */
+/**
+ * One merged draw: a prototype at one level, an InstancedMesh per primitive, and the bin
+ * each frame's placements are copied into (the first primitive's own instance buffers).
+ */
 class Draw {
   constructor(template, capacity, cards = false) {
-    this.fades = new Float32Array(capacity);
-    const fade = new InstancedBufferAttribute(this.fades, 1);
-    this.fade = fade;
+    const fades = new Float32Array(capacity);
+    this.fade = new InstancedBufferAttribute(fades, 1);
     this.meshes = instancedMeshes(template).map((m) => {
       // The primitive's own attributes, shared, and this draw's fades.
       const geometry = new BufferGeometry();
       for (const [name, attribute] of Object.entries(m.geometry.attributes)) geometry.setAttribute(name, attribute);
       geometry.setIndex(m.geometry.index);
-      geometry.setAttribute('sylvaFade', fade);
+      geometry.setAttribute('sylvaFade', this.fade);
       // Impostor cards: the first half of the triangles (the front windings), double-sided.
       if (cards && m.geometry.index) geometry.setDrawRange(0, m.geometry.index.count / 2);
       const own = (material) => fading(cards ? cardsOnce(material) : material);
@@ -216,53 +229,35 @@ class Draw {
       mesh.name = m.name;
       return mesh;
     });
-    this.count = 0;
-    this.matrices = this.meshes.length ? this.meshes[0].instanceMatrix.array : new Float32Array(0);
-    this.colors = this.meshes.length && this.meshes[0].instanceColor ? this.meshes[0].instanceColor.array : null;
-  }
-
-  // Copies placement `i` of `source` in, with its fade.
-  add(source, i, fade) {
-    const at = this.count++;
-    this.matrices.set(source.matrices.subarray(16 * i, 16 * i + 16), 16 * at);
-    if (this.colors && source.colors) this.colors.set(source.colors.subarray(3 * i, 3 * i + 3), 3 * at);
-    this.fades[at] = fade;
-  }
-
-  // Copies every placement of `source` in, whole.
-  addAll(source) {
-    const at = this.count;
-    this.matrices.set(source.matrices.subarray(0, 16 * source.n), 16 * at);
-    if (this.colors && source.colors) this.colors.set(source.colors.subarray(0, 3 * source.n), 3 * at);
-    this.fades.fill(0, at, at + source.n);
-    this.count += source.n;
+    const [first] = this.meshes;
+    this.bin = new Bin(capacity, first ? first.instanceMatrix.array : new Float32Array(0),
+      first && first.instanceColor ? first.instanceColor.array : null, 3);
+    this.bin.fades = fades;
   }
 
   // Hands this frame's placements to every primitive's mesh.
   finish() {
+    const { count, matrices, colors } = this.bin;
     const [first] = this.meshes;
     for (const mesh of this.meshes) {
       if (mesh !== first) {
-        mesh.instanceMatrix.array.set(this.matrices.subarray(0, 16 * this.count));
-        if (mesh.instanceColor && this.colors) mesh.instanceColor.array.set(this.colors.subarray(0, 3 * this.count));
+        mesh.instanceMatrix.array.set(matrices.subarray(0, 16 * count));
+        if (mesh.instanceColor && colors) mesh.instanceColor.array.set(colors.subarray(0, 3 * count));
       }
-      mesh.count = this.count;
-      mesh.visible = this.count > 0;
+      mesh.count = count;
+      mesh.visible = count > 0;
       for (const attribute of [mesh.instanceMatrix, mesh.instanceColor]) {
         if (!attribute) continue;
         attribute.clearUpdateRanges();
-        attribute.addUpdateRange(0, attribute.itemSize * this.count);
+        attribute.addUpdateRange(0, attribute.itemSize * count);
         attribute.needsUpdate = true;
       }
     }
     this.fade.clearUpdateRanges();
-    this.fade.addUpdateRange(0, this.count);
+    this.fade.addUpdateRange(0, count);
     this.fade.needsUpdate = true;
   }
 }
-
-/** Nothing is drawn: a seedling past its reach. */
-const NONE = -1;
 
 /**
  * A forest loaded with `SylvaLevels`, drawn within a frame budget: call `update(camera)`
@@ -286,35 +281,21 @@ export class SylvaForest extends Object3D {
     this.pixelError = options.pixelError || null;
     // Every prototype at every level, as one draw for the forest.
     const capacity = new Map();
-    const template = new Map();
     const cards = new Set();
     for (const g of this.groups) {
       for (const source of g.impostor ? [...g.protos, g.impostor] : g.protos) {
-        for (const m of source.meshes) {
-          if (!m) continue;
-          capacity.set(m.key, (capacity.get(m.key) || 0) + source.n);
-          if (!template.has(m.key)) template.set(m.key, m.object);
+        for (const key of source.meshes) {
+          if (key !== null) capacity.set(key, (capacity.get(key) || 0) + source.n);
         }
       }
-      if (g.impostor) cards.add(g.impostor.meshes[0].key);
+      if (g.impostor) cards.add(g.impostor.meshes[0]);
       // The file's own cell nodes now only hold data.
       const cell = g.full.parent;
       if (cell && cell.parent) cell.parent.remove(cell);
-      g.box = new Box3();
-      g.bases = new Box3();
-      for (const source of g.impostor ? [...g.protos, g.impostor] : g.protos) {
-        g.box.union(source.box);
-        for (let i = 0; i < source.n; i++) {
-          g.bases.expandByPoint(new Vector3(source.bases[3 * i], source.bases[3 * i + 1], source.bases[3 * i + 2]));
-        }
-      }
-      // Placements are branches' origins: the cell's box grows by the tallest reach of a
-      // tree above and around them.
-      g.box.expandByVector(new Vector3(g.levels.reach == null ? 20 : 6, g.levels.reach == null ? 45 : 10, g.levels.reach == null ? 20 : 6));
     }
     this.draws = new Map();
     for (const [key, n] of capacity) {
-      const draw = new Draw(template.get(key), n, cards.has(key));
+      const draw = new Draw(data.templates.get(key), n, cards.has(key));
       this.draws.set(key, draw);
       for (const mesh of draw.meshes) this.add(mesh);
     }
@@ -326,36 +307,6 @@ export class SylvaForest extends Object3D {
     this.stats = { cells: 0, placements: [], impostors: 0 };
   }
 
-  // The switch distances of `g` for this camera: the file's, for a 1080-row screen of 60
-  // degrees and its pixel error, scaled to the camera's rows per radian and our error.
-  switchScale(camera, g) {
-    const fov = (camera.fov || 60) * Math.PI / 180;
-    const ours = this.screenHeight / fov / (this.pixelError || g.levels.pixel_error);
-    const theirs = g.levels.pixels_per_radian / g.levels.pixel_error;
-    return ours / theirs;
-  }
-
-  // The levels of a tree `d` from the eye, as [level, fade, level, fade]: one level (a mesh
-  // level, the impostor `meshLevels`, or NONE) and NONE, or in the band past a switch
-  // distance the level before fading out and the level after fading in.
-  static levels(g, d, s) {
-    const { from, reach } = g.levels;
-    const fade = g.levels.fade || 0;
-    if (reach != null && d >= reach * s) return [NONE, 0, NONE, 0];
-    let level = 0;
-    for (let k = 0; k < from.length; k++) if (d >= from[k] * s) level = k + 1;
-    if (level > 0 && fade > 0) {
-      const at = from[level - 1] * s;
-      if (d < at * (1 + fade)) {
-        let before = 0;
-        for (let k = 0; k < from.length; k++) if (from[k] * s < at) before = k + 1;
-        const f = Math.min(1, Math.max(1e-3, (d - at) / (at * fade)));
-        return [before, f, level, -f];
-      }
-    }
-    return [level, 0, NONE, 0];
-  }
-
   /** Culls the cells and picks every tree's level for `camera`. */
   update(camera) {
     camera.updateMatrixWorld();
@@ -365,58 +316,12 @@ export class SylvaForest extends Object3D {
     this.last = key;
     this.frustum.setFromProjectionMatrix(this.matrix4);
     camera.getWorldPosition(this.eye);
-    for (const draw of this.draws.values()) draw.count = 0;
-    const stats = { cells: 0, placements: [], impostors: 0 };
-    const eye = this.eye;
-    const far = new Vector3();
-    for (const g of this.groups) {
-      if (!this.frustum.intersectsBox(g.box)) continue;
-      stats.cells += 1;
-      const s = this.switchScale(camera, g);
-      const near = g.bases.distanceToPoint(eye);
-      far.set(eye.x < (g.bases.min.x + g.bases.max.x) / 2 ? g.bases.max.x : g.bases.min.x,
-        eye.y < (g.bases.min.y + g.bases.max.y) / 2 ? g.bases.max.y : g.bases.min.y,
-        eye.z < (g.bases.min.z + g.bases.max.z) / 2 ? g.bases.max.z : g.bases.min.z);
-      const lo = SylvaForest.levels(g, near, s);
-      const hi = SylvaForest.levels(g, far.distanceTo(eye), s);
-      // The whole cell at one level, unfaded, when its nearest and farthest trees agree.
-      const whole = lo[0] === hi[0] && lo[2] === NONE && hi[2] === NONE ? lo[0] : null;
-      const sources = g.impostor ? [...g.protos, g.impostor] : g.protos;
-      for (const source of sources) {
-        const impostor = source === g.impostor;
-        const drawOf = (level) => {
-          if (level === NONE) return null;
-          if (impostor) return level === g.meshLevels ? this.draws.get(source.meshes[0].key) : null;
-          const m = level < g.meshLevels ? source.meshes[level] : null;
-          return m ? this.draws.get(m.key) : null;
-        };
-        if (whole !== null) {
-          const draw = drawOf(whole);
-          if (draw) {
-            draw.addAll(source);
-            count(stats, impostor ? 'impostor' : whole, source.n);
-          }
-          continue;
-        }
-        const b = source.bases;
-        for (let i = 0; i < source.n; i++) {
-          const dx = b[3 * i] - eye.x, dy = b[3 * i + 1] - eye.y, dz = b[3 * i + 2] - eye.z;
-          const [first, firstFade, second, secondFade] = SylvaForest.levels(g, Math.sqrt(dx * dx + dy * dy + dz * dz), s);
-          for (const [level, fade] of [[first, firstFade], [second, secondFade]]) {
-            const draw = drawOf(level);
-            if (!draw) continue;
-            draw.add(source, i, fade);
-            count(stats, impostor ? 'impostor' : level, 1);
-          }
-        }
-      }
-    }
+    for (const draw of this.draws.values()) draw.bin.count = 0;
+    const fov = (camera.fov || 60) * Math.PI / 180;
+    this.stats = binForest(this.groups, this.eye.toArray(),
+      (g) => this.frustum.intersectsBox(g.box),
+      (g) => switchScale(g.levels, fov, this.screenHeight, this.pixelError),
+      (key) => this.draws.get(key).bin);
     for (const draw of this.draws.values()) draw.finish();
-    this.stats = stats;
   }
-}
-
-function count(stats, level, n) {
-  if (level === 'impostor') stats.impostors += n;
-  else stats.placements[level] = (stats.placements[level] || 0) + n;
 }

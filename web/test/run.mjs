@@ -139,8 +139,8 @@ async function measure(mode, eyeName, eye, shot, frames = 5) {
   page.on('crash', () => { crashed = 'the page crashed'; });
   page.on('pageerror', (e) => { crashed = crashed || `page error: ${e.message}`; });
   if (process.env.SYLVA_WEB_VERBOSE) page.on('console', (m) => console.error(`  [${mode} ${eyeName}] ${m.text()}`));
-  const path = mode === 'babylon' ? 'test/babylon.html' : 'example/index.html';
-  const url = `${base}/${path}?file=/forest.glb&mode=${mode}&check=1&frames=${frames}&eye=${eye}${roles ? '&roles=1' : ''}${process.env.SYLVA_WEB_QUERY || ''}`;
+  const path = mode.startsWith('babylon') ? 'test/babylon.html' : 'example/index.html';
+  const url = `${base}/${path}?file=/forest.glb&mode=${mode}${mode === 'babylon-sylva' ? '&sylva=1' : ''}&check=1&frames=${frames}&eye=${eye}${roles ? '&roles=1' : ''}${process.env.SYLVA_WEB_QUERY || ''}`;
   const started = Date.now();
   let result;
   try {
@@ -173,7 +173,7 @@ for (const mode of modes) {
     if (row.error) {
       console.error(`${mode} from ${name}: ${row.error}`);
       failures++;
-    } else if (mode === 'runtime' && row.triangles > budget) {
+    } else if ((mode === 'runtime' || mode === 'babylon-sylva') && row.triangles > budget) {
       console.error(`${mode} from ${name}: ${row.triangles} triangles a frame, over the budget of ${budget}`);
       failures++;
     }
