@@ -18,6 +18,7 @@
 import { GLTFLoader } from '@babylonjs/loaders/glTF/2.0/glTFLoader.js';
 import { LoadAssetContainerAsync } from '@babylonjs/core/Loading/sceneLoader.js';
 import { Mesh } from '@babylonjs/core/Meshes/mesh.js';
+import { SubMesh } from '@babylonjs/core/Meshes/subMesh.js';
 import '@babylonjs/core/Meshes/thinInstanceMesh.js';
 import { Matrix, Quaternion, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 import { BoundingInfo } from '@babylonjs/core/Culling/boundingInfo.js';
@@ -42,6 +43,41 @@ class SylvaLevelsExtension {
     this.name = SYLVA_LEVELS;
     this.enabled = true;
     this.loader = loader;
+    /** Placement nodes, by index: the copy of each that Babylon loads. */
+    this.copies = new Map();
+    this.copyDefs = new WeakSet();
+  }
+
+  // Babylon's own loading of an instanced node costs too much for a forest's tens of
+  // thousands: it gives each node its own geometry and index buffer (the default forest's
+  // meshes would be loaded ~20 times over), and measures every placement's every vertex for
+  // the node's bounds. The forest needs each mesh once, unplaced, and the placements, which
+  // it reads from the accessors: a placement node is loaded as a copy without its
+  // instancing, and without its mesh when another node loads that mesh.
+  onLoading() {
+    const nodes = this.loader.gltf.nodes || [];
+    const loaded = new Set();
+    const placement = (index) => {
+      const def = nodes[index];
+      if (!def || def.mesh === undefined || !(def.extensions && def.extensions[INSTANCING])) return;
+      const copy = { ...def, extensions: undefined };
+      if (loaded.has(def.mesh)) copy.mesh = undefined;
+      else loaded.add(def.mesh);
+      this.copies.set(index, copy);
+      this.copyDefs.add(copy);
+    };
+    for (const def of nodes) {
+      const levels = def.extras && def.extras.sylva_levels;
+      if (!levels) continue;
+      const ids = (def.extensions && def.extensions.MSFT_lod && def.extensions.MSFT_lod.ids) || [];
+      for (const id of [def.index, ...ids]) for (const child of nodes[id].children || []) placement(child);
+      if (levels.impostor != null) placement(levels.impostor);
+    }
+  }
+
+  loadNodeAsync(context, node, assign) {
+    if (this.copyDefs.has(node) || !this.copies.has(node.index)) return null;
+    return this.loader.loadNodeAsync(context, this.copies.get(node.index), assign);
   }
 
   dispose() {
@@ -62,7 +98,9 @@ class SylvaLevelsExtension {
     const sources = new Map();
     const templates = new Map();
     const template = (def) => {
-      if (!templates.has(def.mesh)) templates.set(def.mesh, def._primitiveBabylonMeshes || []);
+      const copy = this.copies.get(def.index);
+      const meshes = copy ? copy._primitiveBabylonMeshes : def._primitiveBabylonMeshes;
+      if (meshes) templates.set(def.mesh, meshes);
       return def.mesh;
     };
     const groups = [];
@@ -116,11 +154,6 @@ class SylvaLevelsExtension {
       // The cell's own nodes now only hold data; the forest draws them.
       if (def._babylonTransformNode) def._babylonTransformNode.setEnabled(false);
       out.push({ levels, meshLevels, protos, impostor, bases, box: { min, max } });
-    }
-    // Each template's own thin instances are the loader's copy of placements the forest
-    // holds: freed.
-    for (const meshes of templates.values()) {
-      for (const mesh of meshes) mesh.thinInstanceSetBuffer('matrix', null);
     }
     root.metadata = { ...(root.metadata || {}), sylva: { groups: out, templates } };
   }
@@ -182,31 +215,53 @@ export function registerSylvaLevels() {
 }
 
 /**
+ * The impostor cards' material drawn once, both sides: the file writes each card twice, one
+ * per winding, for clients that flip a double-sided face's normal on its back (its cards
+ * face the sky as far as light goes, from either side). Here the back keeps the front's
+ * normal, and half the triangles are drawn.
+ */
+const onceMaterials = new WeakMap();
+function cardsOnce(material) {
+  if (!material) return material;
+  if (!onceMaterials.has(material)) {
+    const once = material.clone(`${material.name} (both sides)`);
+    once.backFaceCulling = false;
+    once.twoSidedLighting = false;
+    onceMaterials.set(material, once);
+  }
+  return onceMaterials.get(material);
+}
+
+/**
  * One merged draw: a prototype at one level, a thin-instanced mesh per primitive sharing
  * the template's geometry and material, and the bin each frame's placements go to.
  */
 class Draw {
-  constructor(templates, capacity, root, scene) {
+  constructor(templates, capacity, hasColors, cards, root, scene) {
     this.meshes = templates.map((template) => {
       const mesh = new Mesh(`${template.name} (sylva)`, scene);
       template.geometry.applyToMesh(mesh);
-      mesh.material = template.material;
+      mesh.material = cards ? cardsOnce(template.material) : template.material;
+      if (cards) {
+        // Impostor cards: the first half of the triangles (the front windings), both sides.
+        const indices = mesh.getTotalIndices();
+        mesh.subMeshes = [];
+        new SubMesh(0, 0, mesh.getTotalVertices(), 0, indices / 2, mesh);
+      }
       mesh.parent = root;
       // The forest culls by cell; a merged draw's bounds change every frame (and Babylon
       // would otherwise measure every placement's vertices on each upload).
       mesh.alwaysSelectAsActiveMesh = true;
       mesh.doNotSyncBoundingInfo = true;
       mesh.thinInstanceSetBuffer('matrix', new Float32Array(16 * capacity), 16, false);
-      const colors = template._userThinInstanceBuffersStorage && template._userThinInstanceBuffersStorage.data.instanceColor;
-      if (colors) mesh.thinInstanceSetBuffer('color', new Float32Array(4 * capacity), 4, false);
+      if (hasColors) mesh.thinInstanceSetBuffer('color', new Float32Array(3 * capacity), 3, false);
       mesh.thinInstanceCount = 0;
       mesh.isVisible = false;
       return mesh;
     });
     const [first] = this.meshes;
-    this.hasColors = !!(first && first._userThinInstanceBuffersStorage && first._userThinInstanceBuffersStorage.data.instanceColor);
     this.bin = new Bin(capacity, first ? first._thinInstanceDataStorage.matrixData : new Float32Array(0),
-      this.hasColors ? first._userThinInstanceBuffersStorage.data.instanceColor : null, 4);
+      first && hasColors ? first._userThinInstanceBuffersStorage.data.instanceColor : null, 3);
     this.fades = this.meshes.map((mesh) => mesh.material && DitheredTileFadeMaterialPlugin.GetOrCreate(mesh.material));
     this.bounds = new Float32Array(2 * capacity);
     this.faded = false;
@@ -228,7 +283,7 @@ class Draw {
     this.meshes.forEach((mesh, k) => {
       if (mesh !== first) {
         mesh._thinInstanceDataStorage.matrixData.set(matrices.subarray(0, 16 * count));
-        if (colors) mesh._userThinInstanceBuffersStorage.data.instanceColor.set(colors.subarray(0, 4 * count));
+        if (colors) mesh._userThinInstanceBuffersStorage.data.instanceColor.set(colors.subarray(0, 3 * count));
       }
       mesh.thinInstanceCount = count;
       // A mesh of no thin instances draws itself once: hidden instead.
@@ -264,15 +319,20 @@ export class SylvaForest {
     this.screenHeight = options.screenHeight || 1080;
     this.pixelError = options.pixelError || null;
     const capacity = new Map();
+    const colored = new Set();
+    const cards = new Set();
     for (const g of this.groups) {
+      if (g.impostor) cards.add(g.impostor.meshes[0]);
       for (const source of g.impostor ? [...g.protos, g.impostor] : g.protos) {
         for (const key of source.meshes) {
-          if (key !== null) capacity.set(key, (capacity.get(key) || 0) + source.n);
+          if (key === null) continue;
+          capacity.set(key, (capacity.get(key) || 0) + source.n);
+          if (source.colors) colored.add(key);
         }
       }
     }
     this.draws = new Map();
-    for (const [key, n] of capacity) this.draws.set(key, new Draw(data.templates.get(key), n, root, scene));
+    for (const [key, n] of capacity) this.draws.set(key, new Draw(data.templates.get(key) || [], n, colored.has(key), cards.has(key), root, scene));
     this.last = null;
     /** What the last update drew: cells in view, placements per mesh level, impostors. */
     this.stats = { cells: 0, placements: [], impostors: 0 };
