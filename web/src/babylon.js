@@ -21,10 +21,9 @@ import { Mesh } from '@babylonjs/core/Meshes/mesh.js';
 import { SubMesh } from '@babylonjs/core/Meshes/subMesh.js';
 import '@babylonjs/core/Meshes/thinInstanceMesh.js';
 import { Matrix, Quaternion, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
-import { BoundingInfo } from '@babylonjs/core/Culling/boundingInfo.js';
 import { Camera } from '@babylonjs/core/Cameras/camera.js';
 import { DitheredTileFadeMaterialPlugin } from '@babylonjs/core/Materials/ditheredTileFadeMaterialPlugin.js';
-import { Bin, binForest, boxOf, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
+import { Bin, binForest, boxOf, localPlanes, meshSphere, placementSpheres, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
 
 /** The name sylva's loader extension registers under (no file names it). */
 export const SYLVA_LEVELS = 'sylva_levels';
@@ -190,6 +189,7 @@ class SylvaLevelsExtension {
     const reach = (def.extras && def.extras.sylva_wind_tree_reach) || WIND_TREE_REACH;
     const bases = treeBases(n, (i, c) => translation[3 * i + c], wind && ((i, c) => wind[4 * i + c]), reach);
     const colorStride = color ? color.length / n : 0;
+    const { center, radius } = meshSphere(loader.gltf, def.mesh);
     const source = {
       translation: inst.attributes.TRANSLATION,
       n,
@@ -197,6 +197,7 @@ class SylvaLevelsExtension {
       colors: color,
       colorStride,
       bases,
+      spheres: placementSpheres(matrices, n, center, radius),
       basesBox: boxOf(bases, n),
       box: boxOf(translation, n),
     };
@@ -348,16 +349,12 @@ export class SylvaForest {
     const key = `${view.m.join(',')}|${world.m.join(',')}`;
     if (key === this.last) return;
     this.last = key;
-    const planes = this.scene.frustumPlanes;
+    // The frustum and the eye in the root's frame, the file's coordinates.
+    const planes = localPlanes(this.scene.frustumPlanes.map((p) => [p.normal.x, p.normal.y, p.normal.z, p.d]), world.m);
     const eye = Vector3.TransformCoordinates(camera.globalPosition, world.clone().invert());
-    for (const g of this.groups) {
-      if (!g.bounding) g.bounding = new BoundingInfo(Vector3.FromArray(g.box.min), Vector3.FromArray(g.box.max));
-      g.bounding.update(world);
-    }
     const fov = verticalFov(camera, this.scene.getEngine());
     for (const draw of this.draws.values()) draw.bin.count = 0;
-    this.stats = binForest(this.groups, [eye.x, eye.y, eye.z],
-      (g) => g.bounding.isInFrustum(planes),
+    this.stats = binForest(this.groups, [eye.x, eye.y, eye.z], planes,
       (g) => switchScale(g.levels, fov, this.screenHeight, this.pixelError),
       (k) => this.draws.get(k).bin);
     for (const draw of this.draws.values()) draw.finish();

@@ -22,7 +22,7 @@
 //   renderer.setAnimationLoop(() => { forest.update(camera); renderer.render(scene, camera); });
 
 import { Box3, BufferGeometry, DoubleSide, Frustum, ShaderChunk, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
-import { Bin, binForest, boxOf, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
+import { Bin, binForest, boxOf, localPlanes, meshSphere, placementSpheres, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
 
 export { NONE, treeLevels } from './levels.js';
 
@@ -101,9 +101,10 @@ export class SylvaLevels {
     // grown by a tree's reach, which the frustum culls.
     const all = impostor ? [...protos, impostor] : protos;
     const bases = boxOf(Float32Array.from(all.flatMap((p) => [...p.basesBox.min, ...p.basesBox.max])), 2 * all.length);
-    const box = new Box3();
-    for (const source of all) box.union(source.box);
-    box.expandByVector(new Vector3(...treeMargin(levels)));
+    const placed = new Box3();
+    for (const source of all) placed.union(source.box);
+    const margin = treeMargin(levels);
+    const box = { min: placed.min.toArray().map((v, c) => v - margin[c]), max: placed.max.toArray().map((v, c) => v + margin[c]) };
     return { index, full, levels, meshLevels, protos, impostor, bases, box };
   }
 
@@ -141,6 +142,10 @@ export class SylvaLevels {
       colors: mesh.instanceColor ? mesh.instanceColor.array : null,
       colorStride: 3,
       bases,
+      spheres: (() => {
+        const { center, radius } = meshSphere(parser.json, def.mesh);
+        return placementSpheres(mesh.instanceMatrix.array, n, center, radius);
+      })(),
       basesBox: boxOf(bases, n),
       box,
     };
@@ -213,9 +218,12 @@ class Draw {
     const fades = new Float32Array(capacity);
     this.fade = new InstancedBufferAttribute(fades, 1);
     this.meshes = instancedMeshes(template).map((m) => {
-      // The primitive's own attributes, shared, and this draw's fades.
+      // The primitive's vertex attributes, shared (not the template's placements' own, such
+      // as _WIND_TREE, which GLTFLoader puts on the geometry), and this draw's fades.
       const geometry = new BufferGeometry();
-      for (const [name, attribute] of Object.entries(m.geometry.attributes)) geometry.setAttribute(name, attribute);
+      for (const [name, attribute] of Object.entries(m.geometry.attributes)) {
+        if (!attribute.isInstancedBufferAttribute) geometry.setAttribute(name, attribute);
+      }
       geometry.setIndex(m.geometry.index);
       geometry.setAttribute('sylvaFade', this.fade);
       // Impostor cards: the first half of the triangles (the front windings), double-sided.
@@ -307,19 +315,21 @@ export class SylvaForest extends Object3D {
     this.stats = { cells: 0, placements: [], impostors: 0 };
   }
 
-  /** Culls the cells and picks every tree's level for `camera`. */
+  /** Culls the cells and trees and picks every tree's level for `camera`. */
   update(camera) {
     camera.updateMatrixWorld();
+    this.updateMatrixWorld();
     this.matrix4.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
-    const key = this.matrix4.elements.join(',');
+    const key = `${this.matrix4.elements.join(',')}|${this.matrixWorld.elements.join(',')}`;
     if (key === this.last) return;
     this.last = key;
     this.frustum.setFromProjectionMatrix(this.matrix4);
-    camera.getWorldPosition(this.eye);
+    // The frustum and the eye in the forest's own frame, the file's coordinates.
+    const planes = localPlanes(this.frustum.planes.map((p) => [p.normal.x, p.normal.y, p.normal.z, p.constant]), this.matrixWorld.elements);
+    this.worldToLocal(camera.getWorldPosition(this.eye));
     for (const draw of this.draws.values()) draw.bin.count = 0;
     const fov = (camera.fov || 60) * Math.PI / 180;
-    this.stats = binForest(this.groups, this.eye.toArray(),
-      (g) => this.frustum.intersectsBox(g.box),
+    this.stats = binForest(this.groups, this.eye.toArray(), planes,
       (g) => switchScale(g.levels, fov, this.screenHeight, this.pixelError),
       (key) => this.draws.get(key).bin);
     for (const draw of this.draws.values()) draw.finish();

@@ -14,8 +14,9 @@
 //
 // and a source is the placements of one instanced node: `n`, `matrices` (16 floats each,
 // column-major, as glTF and both engines lay them out), `colors` (or null), `colorStride`,
-// `bases` (each placement's tree base, 3 floats) and `meshes` (per level, a key naming the
-// mesh the engine draws it with, or null).
+// `bases` (each placement's tree base, 3 floats), `spheres` (each placement's bounds, from
+// `placementSpheres`) and `meshes` (per level, a key naming the mesh the engine draws it
+// with, or null).
 
 /** Nothing is drawn: a seedling past its reach. */
 export const NONE = -1;
@@ -97,6 +98,85 @@ export function boxOf(points, n) {
 }
 
 /**
+ * A frustum's planes, given in world coordinates as [nx, ny, nz, d] (a point p is on the
+ * inner side when n . p + d >= 0, as both engines keep them), moved into the frame of an
+ * object whose local-to-world matrix is `m` (16 floats, translation at 12..14, as both
+ * engines lay matrices out), so that the file's own coordinates can be tested against them.
+ */
+export function localPlanes(planes, m) {
+  return planes.map(([nx, ny, nz, d]) => {
+    const n = [0, 1, 2].map((i) => m[4 * i] * nx + m[4 * i + 1] * ny + m[4 * i + 2] * nz);
+    const offset = d + m[12] * nx + m[13] * ny + m[14] * nz;
+    const length = Math.hypot(n[0], n[1], n[2]) || 1;
+    return [n[0] / length, n[1] / length, n[2] / length, offset / length];
+  });
+}
+
+/** Where a box { min, max } lies against `planes`: OUTSIDE, CROSSING or INSIDE. */
+export function boxAgainst(planes, { min, max }) {
+  let inside = true;
+  for (const [nx, ny, nz, d] of planes) {
+    // The corner farthest along the normal, and the one farthest against it.
+    const far = nx * (nx > 0 ? max[0] : min[0]) + ny * (ny > 0 ? max[1] : min[1]) + nz * (nz > 0 ? max[2] : min[2]) + d;
+    if (far < 0) return OUTSIDE;
+    const near = nx * (nx > 0 ? min[0] : max[0]) + ny * (ny > 0 ? min[1] : max[1]) + nz * (nz > 0 ? min[2] : max[2]) + d;
+    if (near < 0) inside = false;
+  }
+  return inside ? INSIDE : CROSSING;
+}
+
+/** A box wholly outside the frustum. */
+export const OUTSIDE = 0;
+/** A box partly inside the frustum. */
+export const CROSSING = 1;
+/** A box wholly inside the frustum. */
+export const INSIDE = 2;
+
+/**
+ * The sphere around a glTF mesh's vertices, { center, radius }, from its primitives'
+ * POSITION bounds (which glTF requires) in the file's JSON `json`.
+ */
+export function meshSphere(json, meshIndex) {
+  const min = [Infinity, Infinity, Infinity];
+  const max = [-Infinity, -Infinity, -Infinity];
+  for (const primitive of json.meshes[meshIndex].primitives) {
+    const accessor = json.accessors[primitive.attributes.POSITION];
+    const unit = accessor.normalized ? NORMALIZED_MAX[accessor.componentType] || 1 : 1;
+    for (let c = 0; c < 3; c++) {
+      min[c] = Math.min(min[c], accessor.min[c] / unit);
+      max[c] = Math.max(max[c], accessor.max[c] / unit);
+    }
+  }
+  const center = min.map((v, c) => (v + max[c]) / 2);
+  return { center, radius: Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]) / 2 };
+}
+
+// The largest value of each normalized component type, by glTF's componentType.
+const NORMALIZED_MAX = { 5120: 127, 5121: 255, 5122: 32767, 5123: 65535 };
+
+/**
+ * Each placement's bounding sphere (4 floats: centre, radius), from its matrix and its
+ * mesh's sphere in the mesh's own coordinates (`center` [x, y, z], `radius`): the
+ * frustum culls placements by them.
+ */
+export function placementSpheres(matrices, n, center, radius) {
+  const spheres = new Float32Array(4 * n);
+  const [cx, cy, cz] = center;
+  for (let i = 0; i < n; i++) {
+    const m = matrices.subarray(16 * i, 16 * i + 16);
+    spheres[4 * i] = m[0] * cx + m[4] * cy + m[8] * cz + m[12];
+    spheres[4 * i + 1] = m[1] * cx + m[5] * cy + m[9] * cz + m[13];
+    spheres[4 * i + 2] = m[2] * cx + m[6] * cy + m[10] * cz + m[14];
+    const scale = Math.sqrt(Math.max(
+      m[0] * m[0] + m[1] * m[1] + m[2] * m[2],
+      m[4] * m[4] + m[5] * m[5] + m[6] * m[6],
+      m[8] * m[8] + m[9] * m[9] + m[10] * m[10]));
+    spheres[4 * i + 3] = radius * scale;
+  }
+  return spheres;
+}
+
+/**
  * The placements of one draw (a prototype at one level) for one frame: matrices, colours
  * and fades, copied in from the sources' placements. The engine uploads `count` of each.
  */
@@ -147,18 +227,20 @@ export class Bin {
 }
 
 /**
- * Bins a forest's placements for one frame: every group `inView` is culled in, each tree's
- * level picked by its distance from `eye` ([x, y, z], the file's coordinates) with the
- * switch distances scaled by `scaleOf(group)`, and copied into the bin `binOf(key)` of its
- * mesh at that level. A cell whose nearest and farthest trees agree on one unfaded level
- * is copied whole. Returns what was drawn: cells in view, placements per mesh level,
- * impostors.
+ * Bins a forest's placements for one frame: a group whose box is outside `planes` (the
+ * camera's frustum in the file's coordinates, from `localPlanes`) is skipped, a placement
+ * whose sphere is outside them too; each tree's level is picked by its distance from `eye`
+ * ([x, y, z], the file's coordinates) with the switch distances scaled by `scaleOf(group)`,
+ * and its placements copied into the bin `binOf(key)` of their mesh at that level. A cell
+ * wholly in view whose nearest and farthest trees agree on one unfaded level is copied
+ * whole. Returns what was drawn: cells in view, placements per mesh level, impostors.
  */
-export function binForest(groups, eye, inView, scaleOf, binOf) {
+export function binForest(groups, eye, planes, scaleOf, binOf) {
   const stats = { cells: 0, placements: [], impostors: 0 };
   const [ex, ey, ez] = eye;
   for (const g of groups) {
-    if (!inView(g)) continue;
+    const seen = boxAgainst(planes, g.box);
+    if (seen === OUTSIDE) continue;
     stats.cells += 1;
     const s = scaleOf(g);
     const { min, max } = g.bases;
@@ -173,7 +255,7 @@ export function binForest(groups, eye, inView, scaleOf, binOf) {
     }
     const lo = treeLevels(g.levels, Math.sqrt(near), s);
     const hi = treeLevels(g.levels, Math.sqrt(far), s);
-    const whole = lo[0] === hi[0] && lo[2] === NONE && hi[2] === NONE ? lo[0] : null;
+    const whole = seen === INSIDE && lo[0] === hi[0] && lo[2] === NONE && hi[2] === NONE ? lo[0] : null;
     const sources = g.impostor ? [...g.protos, g.impostor] : g.protos;
     for (const source of sources) {
       const impostor = source === g.impostor;
@@ -196,7 +278,9 @@ export function binForest(groups, eye, inView, scaleOf, binOf) {
         continue;
       }
       const b = source.bases;
+      const o = source.spheres;
       for (let i = 0; i < source.n; i++) {
+        if (seen === CROSSING && !sphereInside(planes, o[4 * i], o[4 * i + 1], o[4 * i + 2], o[4 * i + 3])) continue;
         const dx = b[3 * i] - ex, dy = b[3 * i + 1] - ey, dz = b[3 * i + 2] - ez;
         const [first, firstFade, second, secondFade] = treeLevels(g.levels, Math.sqrt(dx * dx + dy * dy + dz * dz), s);
         for (const [level, fade] of [[first, firstFade], [second, secondFade]]) {
@@ -209,4 +293,10 @@ export function binForest(groups, eye, inView, scaleOf, binOf) {
     }
   }
   return stats;
+}
+
+// Whether a sphere reaches the inner side of every plane.
+function sphereInside(planes, x, y, z, radius) {
+  for (const [nx, ny, nz, d] of planes) if (nx * x + ny * y + nz * z + d < -radius) return false;
+  return true;
 }

@@ -91,6 +91,19 @@ export function instancedMesh2(gltf, renderer, { screenHeight = 1080, fov = 60 }
   return root;
 }
 
+// A geometry BatchedMesh can take: its vertices' attributes only (GLTFLoader puts the
+// placements' own, such as _WIND_TREE, on the geometry too), each laid out on its own (it
+// copies arrays whole; GLTFLoader interleaves a strided buffer view's).
+function plain(geometry) {
+  const out = new BufferGeometry();
+  for (const [name, attribute] of Object.entries(geometry.attributes)) {
+    if (attribute.isInstancedBufferAttribute) continue;
+    out.setAttribute(name, attribute.isInterleavedBufferAttribute ? attribute.clone() : attribute);
+  }
+  out.setIndex(geometry.index);
+  return out;
+}
+
 /** BatchedMesh per material; each instance's geometry set by its tree's level. */
 export function batchedMesh(gltf, { screenHeight = 1080 } = {}) {
   const { groups, templates } = gltf.userData.sylva;
@@ -114,7 +127,7 @@ export function batchedMesh(gltf, { screenHeight = 1080 } = {}) {
         const id = `${key} ${j}`;
         if (!batch.ids.has(id)) {
           batch.ids.set(id, batch.geometries.length);
-          batch.geometries.push(p.geometry);
+          batch.geometries.push(plain(p.geometry));
           batch.vertices += p.geometry.attributes.position.count;
           batch.indices += p.geometry.index ? p.geometry.index.count : 0;
         }
