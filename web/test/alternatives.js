@@ -44,6 +44,15 @@ function chains(groups) {
   return byKey;
 }
 
+// A geometry sharing `geometry`'s attributes (and so its bounds) that draws nothing.
+function nothingOf(geometry) {
+  const nothing = new BufferGeometry();
+  for (const [name, attribute] of Object.entries(geometry.attributes)) nothing.setAttribute(name, attribute);
+  nothing.setIndex(geometry.index);
+  nothing.setDrawRange(0, 0);
+  return nothing;
+}
+
 /** InstancedMesh2 with its own LOD and BVH culling. */
 export function instancedMesh2(gltf, renderer, { screenHeight = 1080, fov = 60 } = {}) {
   const { groups, templates } = gltf.userData.sylva;
@@ -60,7 +69,9 @@ export function instancedMesh2(gltf, renderer, { screenHeight = 1080, fov = 60 }
     const n = chain.sources.reduce((sum, source) => sum + source.n, 0);
     const full = primitives(templates.get(chain.meshes[0]));
     full.forEach((template, j) => {
-      const first = chain.impostor ? empty : template.geometry;
+      // Near, an impostor draws nothing; but InstancedMesh2 culls every level by its first
+      // level's bounds, so that level is the cards with nothing in their draw range.
+      const first = chain.impostor ? nothingOf(template.geometry) : template.geometry;
       const mesh = new InstancedMesh2(first, template.material, { capacity: n, renderer });
       mesh.addInstances(n);
       let at = 0;
@@ -82,7 +93,8 @@ export function instancedMesh2(gltf, renderer, { screenHeight = 1080, fov = 60 }
         const gone = from[chain.meshLevels - 1];
         if (gone !== undefined) mesh.addLOD(empty, template.material, gone);
       }
-      if (reach !== null && !chain.impostor) mesh.addLOD(empty, template.material, reach);
+      // A young tree is drawn no farther than its reach, cards or branches.
+      if (reach !== null) mesh.addLOD(chain.impostor ? first : empty, template.material, reach);
       mesh.computeBVH();
       root.add(mesh);
     });
