@@ -45,6 +45,11 @@ pub(crate) struct TilesArgs {
     /// Where the world's origin stands on the globe.
     #[arg(long, value_name = "LON,LAT", default_value = "8.54,47.37", value_parser = parse_origin)]
     origin: (f64, f64),
+    /// Fine tiles carry their trees' levels of detail and 64 m cells, as `sylva forest`'s
+    /// file does (for sylva-three and Babylon.js to draw a tile within a frame budget), with
+    /// their own geometry and textures: larger tiles, and no shared.bin.
+    #[arg(long)]
+    levels: bool,
     /// Print one JSON line of figures instead of the summary.
     #[arg(long)]
     stats: bool,
@@ -64,6 +69,7 @@ impl TilesArgs {
             group: sylva::world::limits::DEFAULT_GROUP,
             tile: None,
             tileset_only: false,
+            levels: false,
             origin: (
                 sylva::world::limits::DEFAULT_ORIGIN[0],
                 sylva::world::limits::DEFAULT_ORIGIN[1],
@@ -107,7 +113,8 @@ pub(crate) fn run(args: TilesArgs) -> Result<(), Failure> {
         .world
         .world(hidden, args.quiet, sylva::world::Fit::WHOLE)?;
     let (builder, map) = (&world.builder, &world.map);
-    let scheme = TileScheme::new(world.region, args.tile_size, args.group)?;
+    let scheme =
+        TileScheme::new(world.region, args.tile_size, args.group)?.with_fine_levels(args.levels);
     let mut options = TilesetOptions::default();
     options.origin = args.origin;
     let start = Instant::now();

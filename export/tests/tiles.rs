@@ -109,6 +109,50 @@ fn the_tileset_refines_coarse_proxies_into_fine_branch_tiles() {
 }
 
 #[test]
+fn fine_tiles_with_levels_are_forest_files_of_their_own() {
+    let (builder, map, scheme) = world();
+    let scheme = scheme.with_fine_levels(true);
+    let d = dir("levels");
+    write_tileset(&builder, &map, &scheme, &d, &TilesetOptions::default()).unwrap();
+    let id = TileId {
+        level: Level::Fine,
+        x: 1,
+        y: 1,
+    };
+    write_tile(&builder, &map, &scheme, id, &d).unwrap();
+    // Nothing shared: no shared.bin, and the tile refers to no other file.
+    assert!(!d.join("shared.bin").exists());
+    let glb = std::fs::read(tile_path(&d, id)).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let json: Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let buffers = json["buffers"].as_array().unwrap();
+    assert!(
+        buffers.iter().all(|b| b.get("uri").is_none()),
+        "{buffers:?}"
+    );
+    // Its trees carry their levels and impostors in cells, as a forest file's do.
+    let nodes = json["nodes"].as_array().unwrap();
+    let grouped: Vec<&Value> = nodes
+        .iter()
+        .filter(|n| n["extras"]["sylva_levels"].is_object())
+        .collect();
+    assert!(!grouped.is_empty());
+    assert!(
+        grouped
+            .iter()
+            .all(|n| n["extensions"]["MSFT_lod"]["ids"].is_array())
+    );
+    assert!(nodes.iter().any(|n| n["extras"]["sylva_cell"].is_object()));
+    // The same tile without levels is smaller: it shares its geometry.
+    let (_, _, shared) = world();
+    let e = dir("levels-shared");
+    write_tile(&builder, &map, &shared, id, &e).unwrap();
+    assert!(std::fs::metadata(tile_path(&e, id)).unwrap().len() < glb.len() as u64);
+    std::fs::remove_dir_all(&d).ok();
+    std::fs::remove_dir_all(&e).ok();
+}
+
+#[test]
 fn bad_tile_ids_and_schemes_are_refused() {
     let (builder, map, scheme) = world();
     let d = dir("bad");

@@ -1,6 +1,6 @@
 // sylva-three's tests and measures in headless Chromium (Debian's, driven by playwright-core).
 //
-//   node test/run.mjs --glb FOREST.glb [--out DIR] [--modes runtime,babylon,full]
+//   node test/run.mjs --glb FOREST.glb [--out DIR] [--modes runtime,babylon-sylva,babylon,full,im2,batched]
 //                     [--eyes edge,above] [--loads 10] [--budget 3000000] [--timeout 400]
 //                     [--roles [--foliage-tolerance 2]]
 //
@@ -8,14 +8,17 @@
 // for its first frame and ten more, and prints one JSON line: triangles and draw calls a
 // frame (three.js's renderer.info, Babylon's counters), time to first frame, frame time, and
 // the browser's peak memory (the resident memory of all its processes, sampled every 250
-// ms); a screenshot of each goes to DIR. `runtime` is three.js with SylvaForest, `babylon` is
-// Babylon.js with its own glTF loader and default settings, `full` is three.js's GLTFLoader
-// alone (every tree at full detail). With --roles the pictures are flat by role and the
-// foliage seen with levels is held within --foliage-tolerance points of full detail's. Then it loads the runtime page `--loads` times in a row. It fails when a page
-// errs, crashes or times out, and when the runtime draws more than `--budget` triangles a
-// frame from any eye (Babylon.js reads MSFT_lod only to load the levels one after another,
-// ending at full detail, so its rows are measured, not held to the budget). A crash is a
-// failure: no page is asked twice.
+// ms); a screenshot of each goes to DIR. `runtime` is three.js with SylvaForest,
+// `babylon-sylva` Babylon.js with sylva-three/babylon, `babylon` Babylon.js with its own glTF
+// loader and default settings, `full` three.js's GLTFLoader alone (every tree at full
+// detail), `im2` and `batched` the designs sylva-three was weighed against
+// (test/alternatives.js). With --roles the pictures are flat by role and the foliage seen
+// with levels is held within --foliage-tolerance points of full detail's. Then it loads the
+// runtime page `--loads` times in a row. It fails when a page errs, crashes or times out,
+// and when either engine with sylva-three draws more than `--budget` triangles a frame from
+// any eye (Babylon.js's loader alone reads MSFT_lod only to load the levels one after
+// another, ending at full detail, so its rows are measured, not held to the budget). A
+// crash is a failure: no page is asked twice.
 import { createServer } from 'node:http';
 import { createReadStream, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';

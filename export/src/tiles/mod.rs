@@ -37,7 +37,7 @@ use tileset::{bounding_box, east_north_up};
 pub const MAX_TILES: u64 = 1 << 20;
 
 /// How a world is cut into tiles: fine tiles of side `tile`, grouped `group` x `group` under
-/// each coarse tile.
+/// each coarse tile, and what a fine tile holds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TileScheme {
     /// The world's rectangle.
@@ -46,6 +46,12 @@ pub struct TileScheme {
     pub tile: f32,
     /// Fine tiles along each side of a coarse tile.
     pub group: u32,
+    /// Whether a fine tile carries its trees' levels of detail and cells, as a forest file
+    /// does (`MSFT_lod`, impostors, 64 m cells: what `sylva-three` draws within a frame
+    /// budget), holding its own geometry and textures; otherwise (the default) its trees are
+    /// full detail over the geometry every fine tile shares (`shared.bin`), the smallest
+    /// world.
+    pub fine_levels: bool,
 }
 
 /// Which of the two levels a tile is on.
@@ -157,7 +163,28 @@ impl TileScheme {
                 limit: MAX_TILES,
             });
         }
-        Ok(TileScheme { world, tile, group })
+        Ok(TileScheme {
+            world,
+            tile,
+            group,
+            fine_levels: false,
+        })
+    }
+
+    /// Sets [`TileScheme::fine_levels`].
+    ///
+    /// ```
+    /// use sylva_export::TileScheme;
+    /// use sylva_forest::Rect;
+    /// use sylva_terrain::glam::Vec2;
+    /// let s = TileScheme::new(Rect::new(Vec2::ZERO, Vec2::splat(500.0)), 250.0, 2)?;
+    /// assert!(s.with_fine_levels(true).fine_levels && !s.fine_levels);
+    /// # Ok::<(), sylva_export::ExportError>(())
+    /// ```
+    #[must_use]
+    pub fn with_fine_levels(mut self, fine_levels: bool) -> Self {
+        self.fine_levels = fine_levels;
+        self
     }
 
     /// Fine tiles along x and z.
@@ -253,8 +280,9 @@ pub fn write_tile(
     match id.level {
         Level::Fine => {
             let mesh = tile_terrain(terrain, rect, FINE_TERRAIN_CELLS, scheme.world);
+            // With levels, a tile is a forest file of its own; otherwise it shares geometry.
             let options = GltfOptions {
-                shared_geometry: Some("../shared.bin".into()),
+                shared_geometry: (!scheme.fine_levels).then(|| "../shared.bin".into()),
                 ..GltfOptions::default()
             };
             let written = write_glb(builder, terrain, rect, Some(&mesh), &options, &path)?;
@@ -389,7 +417,8 @@ impl TilesetOptions {
     }
 }
 
-/// The last step: writes `dir/shared.bin` (the geometry every fine tile references), the
+/// The last step: writes `dir/shared.bin` (the geometry every fine tile references, unless
+/// the scheme's fine tiles carry their levels and their own geometry), the
 /// impostor atlases every coarse tile refers to, and `dir/tileset.json` (3D Tiles 1.1) for the
 /// scheme's tiles, which may be written before or after, by any process. Geometric errors: a
 /// coarse tile's is the widest crown diameter (what flat cards leave out of a crown seen off
@@ -403,8 +432,13 @@ pub fn write_tileset(
     options: &TilesetOptions,
 ) -> Result<usize, ExportError> {
     std::fs::create_dir_all(dir).map_err(FileError::at(dir))?;
-    let shared =
-        write_shared_geometry(builder, &dir.join("shared.bin"))? + write_atlases(builder, dir)?;
+    // Fine tiles with levels hold their own geometry: nothing refers to a shared file.
+    let geometry = if scheme.fine_levels {
+        0
+    } else {
+        write_shared_geometry(builder, &dir.join("shared.bin"))?
+    };
+    let shared = geometry + write_atlases(builder, dir)?;
     let (tallest, widest) = builder
         .variants()
         .iter()
