@@ -10,6 +10,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::text_file::not_regular;
+
 /// Reading or writing a file failed: the path and the system's error.
 ///
 /// Cloneable and comparable (by path and [`io::ErrorKind`]) so that error enums holding it
@@ -72,6 +74,40 @@ impl std::error::Error for FileError {
     }
 }
 
+/// The regular file a write to `path` replaces (see [`AtomicFile::create`]).
+fn writable_destination(path: &Path) -> Result<PathBuf, FileError> {
+    let metadata = match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(path.to_path_buf()),
+        Err(e) => return Err(FileError::new(path, e)),
+        Ok(m) => m,
+    };
+    if metadata.is_file() {
+        return Ok(path.to_path_buf());
+    }
+    if !metadata.file_type().is_symlink() {
+        return Err(FileError::new(path, not_regular(&metadata.file_type())));
+    }
+    let target = std::fs::canonicalize(path).map_err(|e| {
+        let cause = if e.kind() == io::ErrorKind::NotFound {
+            io::Error::new(
+                io::ErrorKind::NotFound,
+                "a link to nothing: remove it or name another path",
+            )
+        } else {
+            e
+        };
+        FileError::new(path, cause)
+    })?;
+    let kind = std::fs::metadata(&target)
+        .map_err(FileError::at(&target))?
+        .file_type();
+    if kind.is_file() {
+        Ok(target)
+    } else {
+        Err(FileError::new(path, not_regular(&kind)))
+    }
+}
+
 /// Distinguishes the temporary files of one process.
 static NEXT_TEMPORARY: AtomicU64 = AtomicU64::new(0);
 
@@ -130,9 +166,20 @@ pub struct AtomicFile {
 }
 
 impl AtomicFile {
-    /// Starts writing `destination`: creates the temporary beside it.
+    /// Starts writing `destination`: creates the temporary beside it. Only a regular file
+    /// is replaced: a new path or a regular file is written; a link to a regular file is
+    /// written through (its target is replaced, atomically, and the link stays); a device,
+    /// a FIFO, a socket, a folder or a link to none of these is refused, untouched.
+    ///
+    /// ```
+    /// # #[cfg(unix)] {
+    /// use sylva_base::file::AtomicFile;
+    /// let refused = AtomicFile::create("/dev/null").unwrap_err();
+    /// assert!(refused.to_string().contains("a device, not a regular file"), "{refused}");
+    /// # }
+    /// ```
     pub fn create(destination: impl AsRef<Path>) -> Result<AtomicFile, FileError> {
-        let destination = destination.as_ref().to_path_buf();
+        let destination = writable_destination(destination.as_ref())?;
         let temporary = beside(&destination, "sylva-partial");
         let file = File::create(&temporary).map_err(|e| FileError::new(&destination, e))?;
         Ok(AtomicFile {
@@ -420,6 +467,61 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         dir
+    }
+
+    /// Issue 60: run as root, `--out /dev/null` replaced `/dev/null` with a regular file.
+    #[test]
+    #[cfg(unix)]
+    fn devices_fifos_and_folders_are_never_replaced() {
+        let dir = scratch("special");
+        for path in [Path::new("/dev/null"), dir.as_path()] {
+            let err = AtomicFile::create(path).unwrap_err();
+            assert!(
+                err.to_string().contains("not a regular file")
+                    || err.kind() == io::ErrorKind::IsADirectory,
+                "{err}"
+            );
+        }
+        let fifo = dir.join("pipe");
+        if std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .is_ok_and(|s| s.success())
+        {
+            let err = AtomicFile::create(&fifo).unwrap_err();
+            assert!(err.to_string().contains("FIFO"), "{err}");
+            assert!(!std::fs::metadata(&fifo).unwrap().is_file());
+        }
+        // A link to a device is refused as the device is.
+        let link = dir.join("null");
+        std::os::unix::fs::symlink("/dev/null", &link).unwrap();
+        assert!(AtomicFile::create(&link).is_err());
+        // A link to nothing is refused, and says so.
+        let dangling = dir.join("dangling");
+        std::os::unix::fs::symlink(dir.join("nowhere"), &dangling).unwrap();
+        let err = AtomicFile::create(&dangling).unwrap_err();
+        assert!(err.to_string().contains("a link to nothing"), "{err}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// A link to a regular file is written through: the target changes, the link stays.
+    #[test]
+    #[cfg(unix)]
+    fn a_link_to_a_file_is_written_through() {
+        let dir = scratch("through");
+        let target = dir.join("forest.glb");
+        std::fs::write(&target, "old").unwrap();
+        let link = dir.join("latest.glb");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write(&link, |w| w.write_all(b"new")).unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "new");
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

@@ -146,6 +146,20 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         let out = args.out.unwrap_or_else(|| PathBuf::from("forest_tiles"));
         return crate::tiles::run(TilesArgs::of_world(args.world, out, args.stats, args.quiet));
     }
+    // Every output its own file, checked before any work.
+    let glb = match (&args.out, &args.usd) {
+        (Some(out), _) => Some(out.clone()),
+        (None, None) => Some(PathBuf::from("forest.glb")),
+        (None, Some(_)) => None,
+    };
+    let mut outputs = vec![("--heightmap", args.heightmap.as_path())];
+    if let Some(glb) = &glb {
+        outputs.push(("--out", glb.as_path()));
+    }
+    if let Some(usd) = &args.usd {
+        outputs.push(("--usd", usd.as_path()));
+    }
+    crate::failure::distinct_outputs(&outputs)?;
     // One file holds a region a desktop viewer opens; a larger model says what it took.
     let world = args.world.world(
         hidden,
@@ -165,12 +179,6 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         Some((measured?, time))
     } else {
         None
-    };
-    // The glTF unless only USD was asked for.
-    let glb = match (&args.out, &args.usd) {
-        (Some(out), _) => Some(out.clone()),
-        (None, None) => Some(PathBuf::from("forest.glb")),
-        (None, Some(_)) => None,
     };
     let mut written = Written::default();
     let (glb_written, export_time) = phase(hidden, "placing trees and writing glTF", || {

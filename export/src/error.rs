@@ -68,8 +68,11 @@ pub enum ExportError {
     #[error(transparent)]
     OutOfRange(#[from] OutOfRange),
     /// The world would have more tiles than [`MAX_TILES`](crate::limits::MAX_TILES): use larger
-    /// tiles.
-    #[error("{columns} x {rows} tiles is more than the limit of {limit}; use larger tiles")]
+    /// tiles (what it would cost, and the smallest tile side within the limit, are said).
+    #[error(
+        "{columns} x {rows} tiles (a tileset.json of about {} MB) is more than the limit of {limit} tiles; use tiles of at least {min_tile} m (--tile-size)",
+        tileset_bytes / 1_000_000
+    )]
     TooManyTiles {
         /// Tiles along x.
         columns: f32,
@@ -77,6 +80,10 @@ pub enum ExportError {
         rows: f32,
         /// The limit.
         limit: u64,
+        /// About how many bytes the tileset's `tileset.json` would have been.
+        tileset_bytes: u64,
+        /// The smallest tile side, whole metres, that keeps the world within the limit.
+        min_tile: u32,
     },
     /// A tile id names a tile outside the world.
     #[error("tile {id} is outside the world: {columns} x {rows} tiles on its level")]

@@ -64,5 +64,5 @@ pub mod limits {
         SEEDLING_MIN_PIXELS,
     };
     pub use crate::texture::{CUTOFF_MIP_LEVEL, TEXTURE_SIZE};
-    pub use crate::tiles::MAX_TILES;
+    pub use crate::tiles::{MAX_TILES, TILESET_BYTES_PER_TILE};
 }

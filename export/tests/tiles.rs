@@ -177,10 +177,16 @@ fn bad_tile_ids_and_schemes_are_refused() {
     );
     let world = Rect::new(Vec2::ZERO, Vec2::splat(20_000.0));
     assert!(TileScheme::new(world, 5.0, 4).is_err(), "tiles under 10 m");
+    // Issue 60: 20 km of 20 m tiles was a million tiles and a 1.06 GB tileset.json.
+    let e = TileScheme::new(world, 20.0, 1).unwrap_err().to_string();
+    assert!(e.contains("1000 x 1000 tiles"), "{e}");
+    assert!(e.contains("tileset.json of about 1160 MB"), "{e}");
     assert!(
-        TileScheme::new(world, 12.0, 4).is_err(),
-        "more than a million tiles"
+        e.contains("use tiles of at least 79 m (--tile-size)"),
+        "{e}"
     );
+    assert!(TileScheme::new(world, 79.0, 1).is_ok());
+    assert!(TileScheme::new(world, 78.0, 1).is_err());
     assert!(
         TileScheme::new(world, 30_000.0, 4).is_err(),
         "tiles larger than the world"

@@ -31,6 +31,14 @@ pub(crate) async fn create(
     let description = WorldDescription::parse(&body)?;
     // Inline species are parsed now, so a mistake in one is this answer's, with its line.
     description.species()?;
+    // A world on generated ground knows its tiles now: a world this server would refuse to
+    // cut into tiles (too many, or tiles wider than the world) is refused here, with what it
+    // would cost and what to change, not accepted and then refused at every request.
+    if let TerrainDescription::Generated { .. } = description.terrain {
+        let region = Rect::new(Vec2::ZERO, Vec2::splat(description.area));
+        TileScheme::new(region, description.tile_size, description.group)
+            .map_err(|e| ApiError::unprocessable(e.to_string()))?;
+    }
     let keeper = server.clone();
     let (id, notes) = tokio::task::spawn_blocking(move || {
         // A model's ground is made now, so a model that makes no world (too large without

@@ -201,6 +201,15 @@ async fn bad_requests_are_4xx_in_json() {
         ),
         ("/worlds", br#"{"area": 1e12}"#.to_vec(), 400),
         ("/worlds", br#"{"tile_size": 0.001}"#.to_vec(), 400),
+        // Issue 60: inside every field's range, but a million tiles (a 1.1 GB tileset.json)
+        // grew the server until it died; and a world narrower than its tiles was accepted,
+        // then refused at every request. Both are refused when posted.
+        (
+            "/worlds",
+            br#"{"area": 20000, "tile_size": 20, "group": 1}"#.to_vec(),
+            422,
+        ),
+        ("/worlds", br#"{"area": 100}"#.to_vec(), 422),
         (
             "/worlds",
             br#"{"seed": 123456789012345678901234567890}"#.to_vec(),

@@ -55,7 +55,7 @@ pub use interpret::{InterpretStats, interpret};
 pub use mesh::{Material, Mesh, Vertex, Wind};
 pub use model_shapes::ModelShapes;
 pub use obj::write_obj;
-pub use options::{BranchShape, StemBreak, Tropism, TurtleOptions};
+pub use options::{BranchShape, MAX_PIECES, StemBreak, Tropism, TurtleOptions};
 pub use queries::{Queries, query_frames};
 pub use sink::{GeometrySink, NullSink, Segment};
 pub use skeleton::{Bone, Skeleton};

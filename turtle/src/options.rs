@@ -40,6 +40,10 @@ pub struct StemBreak {
     pub min_radius: f32,
 }
 
+/// The default of [`TurtleOptions::max_pieces`]: a million pieces of geometry per word, ten
+/// times the largest tree of sylva's presets and of the vlab models it reads.
+pub const MAX_PIECES: u64 = 1_000_000;
+
 /// Turtle and meshing settings. Angles are in degrees.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -99,6 +103,12 @@ pub struct TurtleOptions {
     pub curve_steps: u32,
     /// Deepest `[` / `{` nesting accepted. Default: 1,048,576 (2^20).
     pub max_depth: usize,
+    /// Most pieces of geometry (segments, leaves and polygons together) one word may draw:
+    /// interpretation stops with [`TurtleError::TooManyPieces`](crate::TurtleError::TooManyPieces)
+    /// past it, so a grammar that doubles its stems every generation ends in an error, not
+    /// in all of memory. Default: [`MAX_PIECES`] (about 16 M triangles of tubes and 1 GB of
+    /// mesh at the most).
+    pub max_pieces: u64,
     /// A stem broken by a storm or lightning ([`StemBreak`]); `None` draws the whole tree.
     /// A forest's damaged trees are drawn with it (`sylva-forest`'s forms). Default: none.
     pub stem_break: Option<StemBreak>,
@@ -134,6 +144,7 @@ impl Default for TurtleOptions {
             branch_collar: 0.0,
             curve_steps: 1,
             max_depth: 1 << 20,
+            max_pieces: MAX_PIECES,
             stem_break: None,
             leaf_keep: 1.0,
             shapes: Arc::default(),
@@ -209,6 +220,13 @@ impl TurtleOptions {
     #[must_use]
     pub fn with_leaf_keep(mut self, share: f32) -> Self {
         self.leaf_keep = share;
+        self
+    }
+
+    /// Sets [`TurtleOptions::max_pieces`].
+    #[must_use]
+    pub fn with_max_pieces(mut self, max_pieces: u64) -> Self {
+        self.max_pieces = max_pieces;
         self
     }
 

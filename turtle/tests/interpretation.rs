@@ -176,6 +176,35 @@ fn normals_are_unit_and_outward() {
     }
 }
 
+/// Issue 60: `axiom: F` / `F -> FF` at 22 generations drew a 4 M-segment tree (6.6 GB);
+/// the turtle stops at its piece budget with an error naming the module.
+#[test]
+fn a_doubling_grammar_stops_at_the_piece_budget() {
+    let bomb = LSystem::parse("axiom: F\nF -> FF").unwrap();
+    let word = bomb.derive(21, 0).unwrap();
+    assert_eq!(word.len(), 1 << 21);
+    let err = interpret(&word, &TurtleOptions::default(), &mut NullSink).unwrap_err();
+    assert_eq!(
+        err,
+        TurtleError::TooManyPieces {
+            index: sylva_turtle::MAX_PIECES as usize,
+            limit: sylva_turtle::MAX_PIECES
+        }
+    );
+    assert!(
+        err.to_string().contains("derive fewer generations"),
+        "{err}"
+    );
+    // A smaller budget stops sooner; a word within it is drawn whole.
+    let small = TurtleOptions::default().with_max_pieces(100);
+    assert!(interpret(&word, &small, &mut NullSink).is_err());
+    let tree = bomb.derive(6, 0).unwrap();
+    assert_eq!(
+        interpret(&tree, &small, &mut NullSink).unwrap().segments,
+        64
+    );
+}
+
 #[test]
 fn bad_words_give_errors_not_panics() {
     let w: Word = "F]F".parse().unwrap();

@@ -168,16 +168,14 @@ pub fn read_model_bytes(path: &Path) -> Result<Vec<u8>, FileError> {
     read_bounded(path, MAX_MODEL_BYTES as u64)
 }
 
-/// A file's bytes, refused beyond `limit` before they are read.
+/// A regular file's bytes, refused beyond `limit` before and while they are read (see
+/// [`sylva_base::text_file::read_bytes`]: a device or FIFO is refused unread).
 fn read_bounded(path: &Path, limit: u64) -> Result<Vec<u8>, FileError> {
-    let size = std::fs::metadata(path).map_err(FileError::at(path))?.len();
-    if size > limit {
-        return Err(FileError::new(
-            path,
-            std::io::Error::other(format!("{size} bytes is over the limit of {limit}")),
-        ));
-    }
-    std::fs::read(path).map_err(FileError::at(path))
+    use sylva_base::text_file::{TextFileError, read_bytes};
+    read_bytes(path, limit).map_err(|e| match e {
+        TextFileError::Io(e) => e,
+        other => FileError::new(path, std::io::Error::other(other.to_string())),
+    })
 }
 
 #[cfg(test)]

@@ -34,7 +34,11 @@ use ground::{height_range, tile_terrain};
 use tileset::{bounding_box, east_north_up};
 
 /// Most tiles a world may have (fine tiles).
-pub const MAX_TILES: u64 = 1 << 20;
+pub const MAX_TILES: u64 = 1 << 16;
+
+/// About how many bytes a tile takes in `tileset.json` (its bounding box, error, content and
+/// the JSON around them; measured on written tilesets: 577 bytes a tile).
+pub const TILESET_BYTES_PER_TILE: u64 = 580;
 
 /// How a world is cut into tiles: fine tiles of side `tile`, grouped `group` x `group` under
 /// each coarse tile, and what a fine tile holds.
@@ -156,11 +160,25 @@ impl TileScheme {
             "1 to 64",
         )?;
         let n = (size / tile).ceil();
-        if f64::from(n.x) * f64::from(n.y) > MAX_TILES as f64 {
+        let fine = f64::from(n.x) * f64::from(n.y);
+        if fine > MAX_TILES as f64 {
+            let coarse = (f64::from(n.x) / f64::from(group)).ceil()
+                * (f64::from(n.y) / f64::from(group)).ceil();
+            // The side at which the tiles along each axis multiply to at most the limit.
+            let side = f64::from(size.x) * f64::from(size.y) / MAX_TILES as f64;
+            let mut min_tile = side.sqrt().ceil() as u32;
+            while (f64::from(size.x) / f64::from(min_tile)).ceil()
+                * (f64::from(size.y) / f64::from(min_tile)).ceil()
+                > MAX_TILES as f64
+            {
+                min_tile += 1;
+            }
             return Err(ExportError::TooManyTiles {
                 columns: n.x,
                 rows: n.y,
                 limit: MAX_TILES,
+                tileset_bytes: ((fine + coarse) * TILESET_BYTES_PER_TILE as f64) as u64,
+                min_tile,
             });
         }
         Ok(TileScheme {

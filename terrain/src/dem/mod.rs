@@ -182,15 +182,24 @@ impl ElevationModel {
         options: &ReadOptions,
     ) -> Result<ElevationModel, TerrainError> {
         let path = path.as_ref();
-        let io = |e: std::io::Error| TerrainError::Io(std::sync::Arc::new(e));
-        let len = std::fs::metadata(path).map_err(io)?.len();
-        if len > MAX_FILE_BYTES {
-            return Err(TerrainError::TooLarge {
-                what: format!("{len} bytes of file"),
+        // Only a regular file, and no more of it than the limit, whatever its size says.
+        use sylva_base::text_file::{TextFileError, read_bytes};
+        let bytes = read_bytes(path, MAX_FILE_BYTES).map_err(|e| match e {
+            TextFileError::TooLarge { .. } => TerrainError::TooLarge {
+                what: format!(
+                    "{}: more than {MAX_FILE_BYTES} bytes of file",
+                    path.display()
+                ),
                 limit: format!("{MAX_FILE_BYTES} bytes"),
-            });
-        }
-        let bytes = std::fs::read(path).map_err(io)?;
+            },
+            TextFileError::Io(e) => TerrainError::Io(std::sync::Arc::new(std::io::Error::new(
+                e.kind(),
+                e.source.to_string(),
+            ))),
+            other => TerrainError::Io(std::sync::Arc::new(std::io::Error::other(
+                other.to_string(),
+            ))),
+        })?;
         let format = DemFormat::of(path, &bytes[..bytes.len().min(16)]).ok_or_else(|| {
             TerrainError::Dem {
                 format: "elevation model",

@@ -120,6 +120,15 @@ pub fn interpret<S: GeometrySink + ?Sized>(
             }
             Command::Ignore => {}
         }
+        // Checked as the geometry grows: a bomb stops at the limit, in bounded memory.
+        let s = &turtle.stats;
+        let pieces = u64::from(s.segments) + u64::from(s.leaves) + u64::from(s.polygons);
+        if pieces > options.max_pieces {
+            return Err(TurtleError::TooManyPieces {
+                index,
+                limit: options.max_pieces,
+            });
+        }
     }
     Ok(turtle.finish())
 }
