@@ -91,6 +91,8 @@ pub use walk::{ForestTrunks, GuidedWalk, TrunkGrid, Trunks, WalkOptions, WalkSte
 
 /// The limits and tuning constants of forest generation.
 pub mod limits {
-    pub use crate::species_file::MAX_SPECIES_FILE_BYTES;
+    pub use crate::species_file::{MAX_SPECIES_FILE_BYTES, MAX_SPECIES_NAME_CHARS};
     pub use crate::stream::{BLOCK_PATCHES, MAX_BLOCKS};
+    /// Most pieces of geometry one tree may draw (the turtle's default budget).
+    pub use sylva_turtle::MAX_PIECES as MAX_TREE_PIECES;
 }

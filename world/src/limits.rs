@@ -49,6 +49,13 @@ pub const MAX_BUDGET_MB: u32 = 128;
 
 /// Most species a world may have.
 pub const MAX_SPECIES: usize = 16;
+/// Most bytes of a species file.
+pub use sylva_forest::limits::MAX_SPECIES_FILE_BYTES;
+/// Most characters of a species' name (a species file's `name:`).
+pub use sylva_forest::limits::MAX_SPECIES_NAME_CHARS;
+/// Most pieces of geometry (segments, leaves, polygons) one tree may draw: a grammar past it
+/// is refused before its tree is meshed.
+pub use sylva_forest::limits::MAX_TREE_PIECES;
 /// Most bytes a world description may have (inline species files included).
 pub const MAX_DESCRIPTION_BYTES: usize = 256 << 10;
 /// Most hydraulic-erosion droplets per sample of generated terrain.

@@ -73,6 +73,20 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     sink: &mut S,
 ) -> Result<InterpretStats, TurtleError> {
     let table = options.symbols.resolve(word.alphabet());
+    // The cost before the work: a word with more stems to draw than the budget is refused
+    // before any geometry is made, in the memory of its word alone.
+    let mut stems = 0u64;
+    for (index, module) in word.iter().enumerate() {
+        if table.get(module.id.index()).copied().flatten() == Some(Command::Draw) {
+            stems += 1;
+            if stems > options.max_pieces {
+                return Err(TurtleError::TooManyPieces {
+                    index,
+                    limit: options.max_pieces,
+                });
+            }
+        }
+    }
     let mut turtle = Turtle::new(options, sink);
     turtle.sink.begin();
     for (index, module) in word.iter().enumerate() {
