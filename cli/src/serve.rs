@@ -41,6 +41,13 @@ pub(crate) struct ServeArgs {
     /// Requests in progress beyond which new ones get 503.
     #[arg(long, value_name = "N", default_value_t = 4096)]
     max_requests: usize,
+    /// Connections open at once beyond which a new one is answered 503 with Retry-After and
+    /// closed.
+    #[arg(long, value_name = "N", default_value_t = 512)]
+    max_connections: usize,
+    /// Seconds a client may take to send a request's head before its connection is closed.
+    #[arg(long, value_name = "S", default_value_t = 10)]
+    header_timeout: u64,
     /// Worlds held built in memory (each about its instance-cache budget and terrain).
     #[arg(long, value_name = "N", default_value_t = 4)]
     worlds_in_memory: usize,
@@ -51,9 +58,18 @@ pub(crate) struct ServeArgs {
 }
 
 pub(crate) fn run(args: ServeArgs) -> Result<(), Failure> {
-    if args.workers == Some(0) || args.max_queued == 0 || args.max_requests == 0 {
+    if args.workers == Some(0)
+        || args.max_queued == 0
+        || args.max_requests == 0
+        || args.max_connections == 0
+    {
         return Err(Failure::usage(
-            "--workers, --max-queued and --max-requests must be positive",
+            "--workers, --max-queued, --max-requests and --max-connections must be positive",
+        ));
+    }
+    if args.header_timeout == 0 || args.header_timeout > 600 {
+        return Err(Failure::usage(
+            "--header-timeout: expected 1 to 600 seconds",
         ));
     }
     if args.generation_timeout == 0 || args.generation_timeout > 3600 {
@@ -69,6 +85,8 @@ pub(crate) fn run(args: ServeArgs) -> Result<(), Failure> {
         max_queued: args.max_queued,
         generation_timeout: Duration::from_secs(args.generation_timeout),
         max_requests: args.max_requests,
+        max_connections: args.max_connections,
+        header_timeout: Duration::from_secs(args.header_timeout),
         worlds_in_memory: args.worlds_in_memory.max(1),
         web_modules: args.web_modules,
         ..defaults

@@ -31,6 +31,7 @@
 
 mod body;
 mod cache;
+mod connections;
 mod error;
 mod files;
 mod heightmaps;
@@ -117,9 +118,15 @@ pub async fn serve(
     options: ServerOptions,
     shutdown: impl Future<Output = ()> + Send + 'static,
 ) -> Result<(), ApiError> {
+    let (max_connections, header_timeout) = (options.max_connections, options.header_timeout);
     let server = Server::new(options)?;
-    axum::serve(listener, router(server))
-        .with_graceful_shutdown(shutdown)
-        .await
-        .map_err(|e| ApiError::internal(format!("serving: {e}")))
+    connections::serve(
+        listener,
+        router(server),
+        max_connections,
+        header_timeout,
+        shutdown,
+    )
+    .await;
+    Ok(())
 }

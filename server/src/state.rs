@@ -30,6 +30,12 @@ pub struct ServerOptions {
     pub generation_timeout: Duration,
     /// Requests in progress beyond which new ones get 503 `busy`.
     pub max_requests: usize,
+    /// Connections open at once beyond which a new one is answered 503 `busy` (with
+    /// `Retry-After`) and closed.
+    pub max_connections: usize,
+    /// How long a client may take to send a request's head (its request line and headers)
+    /// before its connection is closed.
+    pub header_timeout: Duration,
     /// Worlds held built in memory (each its instance caches and terrain).
     pub worlds_in_memory: usize,
     /// Bytes of single trees kept in memory.
@@ -48,6 +54,8 @@ impl Default for ServerOptions {
             max_queued: 256,
             generation_timeout: Duration::from_secs(120),
             max_requests: 4096,
+            max_connections: 512,
+            header_timeout: Duration::from_secs(10),
             worlds_in_memory: 4,
             tree_bytes: 64 << 20,
             web_modules: None,
@@ -80,6 +88,20 @@ impl ServerOptions {
         self.max_queued = max_queued;
         self
     }
+    /// Sets [`ServerOptions::max_connections`].
+    #[must_use]
+    pub fn with_max_connections(mut self, max_connections: usize) -> Self {
+        self.max_connections = max_connections;
+        self
+    }
+
+    /// Sets [`ServerOptions::header_timeout`].
+    #[must_use]
+    pub fn with_header_timeout(mut self, timeout: Duration) -> Self {
+        self.header_timeout = timeout;
+        self
+    }
+
     /// Sets [`ServerOptions::generation_timeout`].
     #[must_use]
     pub fn with_generation_timeout(mut self, timeout: Duration) -> Self {

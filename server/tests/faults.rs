@@ -158,3 +158,53 @@ async fn a_full_cache_disk_answers_503_and_stays_readable() {
     server.stop().await;
     let _ = std::fs::remove_dir_all(&cache);
 }
+
+/// Issue 60: 1,100 connections that never finished their request heads made every new
+/// client wait until it gave up. A head must arrive within the header timeout, and beyond
+/// the connection cap a new connection is told 503 with `Retry-After` at once.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn clients_that_never_finish_their_heads_cannot_hold_the_server() {
+    let cap = 8;
+    let server = start(
+        options(scratch("slow-heads"))
+            .with_max_connections(cap)
+            .with_header_timeout(Duration::from_secs(1)),
+    )
+    .await;
+    // As many connections as the cap, each half a request head, then silence.
+    let mut slow = Vec::new();
+    for _ in 0..cap {
+        let mut s = tokio::net::TcpStream::connect(server.address)
+            .await
+            .unwrap();
+        s.write_all(b"GET /status HTTP/1.1\r\nhost: te")
+            .await
+            .unwrap();
+        slow.push(s);
+    }
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    // One more is answered at once: busy, and when to come back.
+    let mut extra = tokio::net::TcpStream::connect(server.address)
+        .await
+        .unwrap();
+    let mut answer = Vec::new();
+    tokio::time::timeout(Duration::from_secs(5), extra.read_to_end(&mut answer))
+        .await
+        .expect("the refusal came at once")
+        .unwrap();
+    let answer = String::from_utf8_lossy(&answer).to_lowercase();
+    assert!(answer.starts_with("http/1.1 503"), "{answer}");
+    assert!(answer.contains("retry-after: 1"), "{answer}");
+    assert!(answer.contains("\"error\":\"busy\""), "{answer}");
+    // Past the header timeout the server has closed every slow connection ...
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    for s in &mut slow {
+        let mut rest = Vec::new();
+        let read = tokio::time::timeout(Duration::from_secs(5), s.read_to_end(&mut rest)).await;
+        assert!(read.is_ok(), "a slow connection was still open");
+    }
+    // ... and a client is served again.
+    let mut c = Client::connect(server.address).await;
+    assert_eq!(c.get("/status").await.status.as_u16(), 200);
+    server.stop().await;
+}
