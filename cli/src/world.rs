@@ -11,7 +11,9 @@ use indicatif::ProgressBar;
 use sylva::forest::{Constraints, ForestBuilder, Rect, SitingReport};
 use sylva::terrain::Heightmap;
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
-use sylva::world::limits::{DEFAULT_SIDE, MAX_DENSITY, MAX_SIDE, MAX_TREES};
+use sylva::world::limits::{
+    DEFAULT_SIDE, MAX_BUDGET_MB, MAX_DENSITY, MAX_SIDE, MAX_SPECIES, MAX_TREES,
+};
 use sylva::world::{Fit, Ground, Progress, Project, Stage, WorldBuilder, WorldError};
 
 use crate::Failure;
@@ -110,11 +112,17 @@ pub(crate) struct BuiltWorld {
     pub(crate) siting: SitingReport,
 }
 
-/// `--budget-mb`'s bytes: an error for 0 or a size beyond memory's reach.
+/// `--budget-mb`'s bytes: an error outside 1 to [`MAX_BUDGET_MB`], the limit every front
+/// end checks.
 pub(crate) fn budget_bytes(mb: usize) -> Result<usize, Failure> {
-    mb.checked_mul(1 << 20)
-        .filter(|&b| b > 0)
-        .ok_or_else(|| Failure::usage("--budget-mb must be positive"))
+    // The limit every front end checks (the server's descriptions, the viewer, Python):
+    // 100,000 was accepted here and aborted at 6 GB.
+    if !(1..=MAX_BUDGET_MB as usize).contains(&mb) {
+        return Err(Failure::usage(format!(
+            "--budget-mb {mb}: expected 1 to {MAX_BUDGET_MB}"
+        )));
+    }
+    Ok(mb << 20)
 }
 
 /// Parses `A,B`.
@@ -225,6 +233,12 @@ impl WorldArgs {
                 (recipe, Some(ground))
             }
             None => {
+                if self.species.len() > MAX_SPECIES {
+                    return Err(Failure::usage(format!(
+                        "{} --species: a world has at most {MAX_SPECIES}",
+                        self.species.len()
+                    )));
+                }
                 let species = if self.species.is_empty() {
                     sylva::presets::species()?
                 } else {

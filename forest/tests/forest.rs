@@ -381,7 +381,10 @@ fn a_grammar_path_to_an_endless_device_is_an_error() {
         panic!("{err}");
     };
     assert_eq!((line, column), (1, 10));
-    assert!(message.contains("a device, not a regular file"), "{message}");
+    assert!(
+        message.contains("a device, not a regular file"),
+        "{message}"
+    );
 }
 
 /// Hostile species files end in an error with a place, or in a species; never a panic.

@@ -2,6 +2,7 @@
 
 use sylva::forest::Constraints;
 use sylva::terrain::dem::Window;
+use sylva::world::limits::{MAX_BUDGET_MB, MAX_SIDE, MIN_SIDE};
 
 use crate::error::ViewerError;
 use crate::scene::Camera;
@@ -253,8 +254,16 @@ pub(crate) fn parse() -> Result<Args, String> {
             trees.unwrap_or(0)
         ));
     }
-    if !(side > 10.0 && side <= 20_000.0) {
-        return Err(format!("--area {side}: expected 10 to 20000 metres"));
+    if !(side >= MIN_SIDE && side <= MAX_SIDE) {
+        return Err(format!(
+            "--area {side}: expected {MIN_SIDE} to {MAX_SIDE} metres"
+        ));
+    }
+    if budget_mb.is_some_and(|mb| !(1..=MAX_BUDGET_MB as usize).contains(&mb)) {
+        return Err(format!(
+            "--budget-mb {}: expected 1 to {MAX_BUDGET_MB}",
+            budget_mb.unwrap_or_default()
+        ));
     }
     if spacing.is_some_and(|s: f32| !(s > 0.0 && s <= 100_000.0)) {
         return Err("--spacing: expected metres between samples, above 0".to_owned());
@@ -354,7 +363,7 @@ pub(crate) fn parse() -> Result<Args, String> {
             side,
             trees,
             species: Vec::new(),
-            budget: budget_mb.map(|mb| mb.max(1) << 20),
+            budget: budget_mb.map(|mb| mb << 20),
             paint: paint.clone(),
             specimen: turntable > 0,
             floor: !no_floor,

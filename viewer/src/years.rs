@@ -6,8 +6,8 @@ use std::sync::{Mutex, PoisonError};
 use sylva::forest::succession::Succession;
 use sylva::forest::{ForestBuilder, ForestError};
 
-/// Most years the viewer simulates.
-pub(crate) const MAX_YEARS: u32 = 2000;
+/// Most years the viewer simulates: the world's limit, the same the CLI and the server check.
+pub(crate) use sylva::world::limits::MAX_YEARS;
 
 /// A world's forest over time, at the year it has reached.
 pub(crate) struct Years {

@@ -13,7 +13,7 @@ use crate::id::WorldId;
 use crate::limits::{
     DEFAULT_GROUP, DEFAULT_ORIGIN, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_BUDGET_MB, MAX_DENSITY,
     MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_GROUP, MAX_HEIGHT_RANGE, MAX_SIDE, MAX_SPACING,
-    MAX_SPECIES, MIN_SIDE, TILE_SIZE_RANGE,
+    MAX_SPECIES, MAX_YEARS, MIN_SIDE, TILE_SIZE_RANGE,
 };
 use crate::presets::{self, DEFAULT_RELIEF, DEFAULT_ROUGHNESS, DEFAULT_SMOOTHING};
 
@@ -58,6 +58,14 @@ pub struct WorldDescription {
     /// [`DEFAULT_BUDGET_MB`](crate::limits::DEFAULT_BUDGET_MB), 32, which the default world reaches.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub budget_mb: Option<u32>,
+    /// Draw year N of a forest over time grown from bare ground (as `--year`), at most
+    /// [`MAX_YEARS`]. Default: `None`, the forest as placed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub year: Option<u32>,
+    /// The day of the year (0 to 365) the forest is drawn on (as `--season`): leaves, autumn
+    /// colour, bare crowns and snow as that day has them. Default: `None`, summer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub season: Option<f32>,
 }
 
 /// A species of a world.
@@ -159,6 +167,8 @@ impl Default for WorldDescription {
             origin: DEFAULT_ORIGIN,
             density: None,
             budget_mb: None,
+            year: None,
+            season: None,
         }
     }
 }
@@ -242,6 +252,14 @@ impl WorldDescription {
             .filter(|mb| !(1..=MAX_BUDGET_MB).contains(mb))
         {
             return bad(format!("budget_mb {mb}: expected 1 to {MAX_BUDGET_MB}"));
+        }
+        if let Some(year) = self.year.filter(|&y| y > MAX_YEARS) {
+            return bad(format!("year {year}: expected 0 to {MAX_YEARS}"));
+        }
+        if let Some(day) = self.season.filter(|d| !(0.0..=365.0).contains(d)) {
+            return bad(format!(
+                "season {day}: expected a day of the year, 0 to 365"
+            ));
         }
         match &self.terrain {
             TerrainDescription::Generated {
@@ -383,6 +401,16 @@ mod tests {
     }
 
     #[test]
+    fn the_year_and_the_season_reach_the_builder() {
+        let d = WorldDescription::parse(br#"{"year": 80, "season": 290, "species": ["birch"]}"#)
+            .unwrap();
+        let b = d.world_builder().unwrap();
+        assert_eq!((b.year, b.season), (Some(80), Some(290.0)));
+        // Absent, they leave a description's canonical form (and its world's id) as before.
+        assert!(!WorldDescription::default().canonical().contains("year"));
+    }
+
+    #[test]
     fn mistakes_name_their_field() {
         for (json, field) in [
             (r#"{"area": 0}"#, "area"),
@@ -391,6 +419,8 @@ mod tests {
             (r#"{"group": 0}"#, "group"),
             (r#"{"origin": [200, 0]}"#, "origin"),
             (r#"{"budget_mb": 100000}"#, "budget_mb"),
+            (r#"{"year": 100000}"#, "year"),
+            (r#"{"season": 400}"#, "season"),
             (r#"{"density": -3}"#, "density"),
             (r#"{"colour": 1}"#, "colour"),
             (r#"{"seed": -1}"#, "seed"),

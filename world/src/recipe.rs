@@ -73,7 +73,7 @@ impl WorldDescription {
     }
 
     /// The world's builder: its species (parsed: a mistake in an inline one has its line
-    /// and column), seed, budget and density.
+    /// and column), seed, budget, density, year and season.
     ///
     /// ```
     /// use sylva_world::WorldDescription;
@@ -85,7 +85,9 @@ impl WorldDescription {
     pub fn world_builder(&self) -> Result<WorldBuilder, WorldError> {
         let mut builder = WorldBuilder::new(self.species()?)
             .with_seed(self.seed)
-            .with_density(self.density);
+            .with_density(self.density)
+            .with_year(self.year)
+            .with_season(self.season);
         builder.budget = self.budget_mb.map(|mb| mb as usize * (1 << 20));
         Ok(builder)
     }
