@@ -10,8 +10,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::text_file::not_regular;
-
 /// Reading or writing a file failed: the path and the system's error.
 ///
 /// Cloneable and comparable (by path and [`io::ErrorKind`]) so that error enums holding it
@@ -106,6 +104,38 @@ fn writable_destination(path: &Path) -> Result<PathBuf, FileError> {
     } else {
         Err(FileError::new(path, not_regular(&kind)))
     }
+}
+
+/// The error for a path that is not a regular file, naming what it is.
+pub(crate) fn not_regular(kind: &std::fs::FileType) -> io::Error {
+    if kind.is_dir() {
+        return io::Error::new(io::ErrorKind::IsADirectory, "a folder, not a file");
+    }
+    io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!("{}, not a regular file", special_kind(kind)),
+    )
+}
+
+/// What a file that is not regular is, in words.
+fn special_kind(kind: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if kind.is_socket() {
+            return "a socket";
+        }
+        if kind.is_char_device() || kind.is_block_device() {
+            return "a device";
+        }
+    }
+    if kind.is_symlink() {
+        return "a link";
+    }
+    "not a file"
 }
 
 /// Distinguishes the temporary files of one process.

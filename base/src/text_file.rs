@@ -6,7 +6,7 @@
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
-use crate::file::FileError;
+use crate::file::{FileError, not_regular};
 
 /// Why a text file could not be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -84,38 +84,6 @@ pub fn read_bytes(path: &Path, limit: u64) -> Result<Vec<u8>, TextFileError> {
         return Err(too_large());
     }
     Ok(bytes)
-}
-
-/// The error for a path that is not a regular file, naming what it is.
-pub(crate) fn not_regular(kind: &std::fs::FileType) -> io::Error {
-    if kind.is_dir() {
-        return io::Error::new(io::ErrorKind::IsADirectory, "a folder, not a file");
-    }
-    io::Error::new(
-        io::ErrorKind::InvalidInput,
-        format!("{}, not a regular file", special_kind(kind)),
-    )
-}
-
-/// What a file that is not regular is, in words.
-fn special_kind(kind: &std::fs::FileType) -> &'static str {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if kind.is_fifo() {
-            return "a FIFO (named pipe)";
-        }
-        if kind.is_socket() {
-            return "a socket";
-        }
-        if kind.is_char_device() || kind.is_block_device() {
-            return "a device";
-        }
-    }
-    if kind.is_symlink() {
-        return "a link";
-    }
-    "not a file"
 }
 
 #[cfg(test)]

@@ -254,7 +254,7 @@ pub(crate) fn parse() -> Result<Args, String> {
             trees.unwrap_or(0)
         ));
     }
-    if !(side >= MIN_SIDE && side <= MAX_SIDE) {
+    if !(MIN_SIDE..=MAX_SIDE).contains(&side) {
         return Err(format!(
             "--area {side}: expected {MIN_SIDE} to {MAX_SIDE} metres"
         ));
