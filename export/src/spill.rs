@@ -12,12 +12,12 @@ use sylva_base::file::FileError;
 use sylva_instancing::CompactTree;
 
 /// The name of a writer's scratch file `tag` beside `destination`: hidden, so that folders
-/// checked for foreign files (a tileset's) take it for their own, and removed by its owner.
+/// checked for foreign files (a tileset's) take it for their own; unique to the process and
+/// the call, so that two runs writing one path never share one (they did: the first failed);
+/// removed by its owner, or by a later run once its owner is gone
+/// ([`sylva_base::file::sweep_abandoned`]).
 pub(crate) fn scratch_beside(destination: &Path, tag: &str) -> PathBuf {
-    let name = destination
-        .file_name()
-        .map_or_else(|| "forest".into(), |n| n.to_string_lossy().into_owned());
-    destination.with_file_name(format!(".{name}.{tag}.sylva-scratch"))
+    sylva_base::file::scratch_beside(destination, &format!("sylva-scratch-{tag}"))
 }
 
 /// The scratch file and where each block's trees are in it.
