@@ -72,8 +72,19 @@ impl std::error::Error for FileError {
     }
 }
 
-/// The regular file a write to `path` replaces (see [`AtomicFile::create`]).
-fn writable_destination(path: &Path) -> Result<PathBuf, FileError> {
+/// The regular file a write to `path` would replace (see [`AtomicFile::create`]), or the
+/// error that write would meet: for checking a run's outputs before its work.
+///
+/// ```
+/// use std::path::Path;
+/// use sylva_base::file::writable_destination;
+/// let new = std::env::temp_dir().join("sylva-new-output.glb");
+/// assert_eq!(writable_destination(&new)?, new);
+/// # #[cfg(unix)]
+/// assert!(writable_destination(Path::new("/dev/null")).is_err());
+/// # Ok::<(), sylva_base::file::FileError>(())
+/// ```
+pub fn writable_destination(path: &Path) -> Result<PathBuf, FileError> {
     let metadata = match std::fs::symlink_metadata(path) {
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(path.to_path_buf()),
         Err(e) => return Err(FileError::new(path, e)),

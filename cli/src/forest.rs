@@ -160,6 +160,9 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
         outputs.push(("--usd", usd.as_path()));
     }
     crate::failure::distinct_outputs(&outputs)?;
+    for (_, path) in &outputs {
+        sylva::base::file::writable_destination(path)?;
+    }
     // One file holds a region a desktop viewer opens; a larger model says what it took.
     let world = args.world.world(
         hidden,

@@ -108,6 +108,11 @@ pub(crate) fn run(args: TilesArgs) -> Result<(), Failure> {
     // The folder and the tile id are checked before the world is built.
     check_tileset_folder(dir)?;
     let tile: Option<TileId> = args.tile.as_deref().map(str::parse).transpose()?;
+    // A world whose side the flags give is cut into tiles now: a scheme of too many tiles is
+    // refused before seconds of hero trees, with what it would cost.
+    if let Some(region) = args.world.known_region() {
+        TileScheme::new(region, args.tile_size, args.group)?;
+    }
     // A tileset streams: it takes a model whole, up to the largest world.
     let world = args
         .world

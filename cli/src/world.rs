@@ -302,6 +302,24 @@ impl WorldArgs {
         })
     }
 
+    /// The world's region when the flags alone say it (a generated world of `--area`, or of
+    /// the default side): what can be checked before any work. `None` when a model, a tree
+    /// count, a painting or a project decides it.
+    pub(crate) fn known_region(&self) -> Option<Rect> {
+        if self.terrain.is_some()
+            || self.project.is_some()
+            || self.paint.is_some()
+            || (self.trees.is_some() && self.area.is_none())
+        {
+            return None;
+        }
+        let side = self.area.unwrap_or(DEFAULT_SIDE);
+        Some(Rect::new(
+            sylva::terrain::glam::Vec2::ZERO,
+            sylva::terrain::glam::Vec2::splat(side),
+        ))
+    }
+
     /// Where trees may stand: the slope limit and the height range.
     fn constraints(&self) -> Result<Constraints, Failure> {
         if !(0.0..=90.0).contains(&self.max_slope) {
