@@ -15,7 +15,9 @@ use sylva::forest::{PlacementBlock, Rect};
 use sylva::terrain::dem::Window;
 use sylva::terrain::glam::Vec2;
 use sylva::turtle::Vertex;
-use sylva::world::limits::{DEFAULT_GROUP, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES};
+use sylva::world::limits::{
+    DEFAULT_GROUP, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_BUDGET_MB, MAX_TREES,
+};
 use sylva::world::{Ground, World, WorldBuilder};
 
 use crate::arrays::{column, dict, figures, rows, triangles};
@@ -78,8 +80,11 @@ impl Forest {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Forest> {
         let season = season.as_ref().map(day_of).transpose()?;
-        if budget_mb == Some(0) {
-            return Err(invalid("budget_mb must be positive"));
+        // The limit every front end checks (world::limits), the server's and the CLI's.
+        if let Some(mb) = budget_mb.filter(|mb| !(1..=MAX_BUDGET_MB).contains(mb)) {
+            return Err(invalid(format!(
+                "budget_mb {mb}: expected 1 to {MAX_BUDGET_MB}"
+            )));
         }
         let crop = crop.map(|(column, row, width, height)| Window {
             column,

@@ -138,6 +138,9 @@ def test_settings_out_of_range_are_refused():
         sylva.Forest(area=100, species=["baobab"])
     with pytest.raises(sylva.SylvaError, match="budget"):
         sylva.Forest(area=100, budget_mb=0)
+    # The limit every front end checks (issue 60: the CLI took 100,000 and aborted at 6 GB).
+    with pytest.raises(sylva.SylvaError, match="expected 1 to 128"):
+        sylva.Forest(area=100, budget_mb=100_000)
     with pytest.raises(sylva.SylvaError):
         sylva.Forest(area=1e9)
     with pytest.raises(sylva.SylvaError, match="density"):

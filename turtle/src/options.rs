@@ -40,8 +40,8 @@ pub struct StemBreak {
     pub min_radius: f32,
 }
 
-/// The default of [`TurtleOptions::max_pieces`]: a million pieces of geometry per word, ten
-/// times the largest tree of sylva's presets and of the vlab models it reads.
+/// The default of [`TurtleOptions::max_pieces`]: a million pieces of geometry per word (a
+/// tree of that many is about 16 M triangles of tubes; the trees of a forest are thousands).
 pub const MAX_PIECES: u64 = 1_000_000;
 
 /// Turtle and meshing settings. Angles are in degrees.

@@ -186,9 +186,12 @@ impl ElevationModel {
         use sylva_base::text_file::{TextFileError, read_bytes};
         let bytes = read_bytes(path, MAX_FILE_BYTES).map_err(|e| match e {
             TextFileError::TooLarge { .. } => TerrainError::TooLarge {
+                // The size it says, or (a file that grew while read) the limit passed.
                 what: format!(
-                    "{}: more than {MAX_FILE_BYTES} bytes of file",
-                    path.display()
+                    "{} bytes of file",
+                    std::fs::metadata(path)
+                        .map_or(0, |m| m.len())
+                        .max(MAX_FILE_BYTES + 1)
                 ),
                 limit: format!("{MAX_FILE_BYTES} bytes"),
             },
