@@ -179,6 +179,35 @@ impl Species {
         Ok(builder.finish())
     }
 
+    /// The cost of its full-grown tree known before it is made: the stems its word draws
+    /// (derived at [`Species::generations`] from seed 0; the word is all that is held), or
+    /// the error that drawing it would meet (a word past the module limit, a tree past
+    /// [`TurtleOptions::max_pieces`](sylva_turtle::TurtleOptions::max_pieces)). A front end
+    /// asks it before accepting a world: a grammar bomb is refused when posted, in the
+    /// memory of its word.
+    ///
+    /// ```
+    /// let oak = sylva_forest::Species::from_preset("sylva-oak", 4)?;
+    /// assert!(oak.check_cost()? > 10);
+    /// let bomb = sylva_lsys::LSystem::parse("axiom: F\nF -> FF")?;
+    /// assert!(sylva_forest::Species::new("bomb", bomb, 22).check_cost().is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn check_cost(&self) -> Result<u64, ForestError> {
+        let word = self
+            .grammar
+            .derive(self.generations, 0)
+            .and_then(|w| self.grammar.interpretation(&w, 0))
+            .map_err(|source| ForestError::Derive {
+                species: self.name.clone(),
+                source,
+            })?;
+        sylva_turtle::check_stems(&word, &self.turtle).map_err(|source| ForestError::Turtle {
+            species: self.name.clone(),
+            source,
+        })
+    }
+
     /// Derives its tree at `generations` from `seed` and has the turtle draw it into `sink`.
     fn draw_into(
         &self,

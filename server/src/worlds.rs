@@ -29,8 +29,16 @@ pub(crate) async fn create(
 ) -> Result<Response, ApiError> {
     let body = crate::body::read(request, MAX_DESCRIPTION_BYTES).await?;
     let description = WorldDescription::parse(&body)?;
-    // Inline species are parsed now, so a mistake in one is this answer's, with its line.
-    description.species()?;
+    // Inline species are parsed now, so a mistake in one is this answer's, with its line;
+    // and each one's tree is costed now (its word derived, its stems counted: the memory of
+    // a word), so a grammar bomb is this answer's 422, not the death of every later request.
+    let species = description.species()?;
+    let costed = tokio::task::spawn_blocking(move || {
+        species.iter().try_for_each(|s| s.check_cost().map(drop))
+    })
+    .await
+    .map_err(|e| ApiError::internal(e.to_string()))?;
+    costed.map_err(|e| ApiError::unprocessable(e.to_string()))?;
     // A world on generated ground knows its tiles now: a world this server would refuse to
     // cut into tiles (too many, or tiles wider than the world) is refused here, with what it
     // would cost and what to change, not accepted and then refused at every request.

@@ -210,40 +210,42 @@ async fn clients_that_never_finish_their_heads_cannot_hold_the_server() {
 }
 
 /// Issue 60: a valid world of a grammar bomb (`F -> FF` at 22 generations, inside the
-/// species file's limit of 24) killed the server when its tileset was asked for. Now that
-/// world fails alone, with its cause, and a good world beside it is served.
+/// species file's limit of 24) killed the server when its tileset was asked for. Now its
+/// tree is costed when it is posted (its word derived, its stems counted): 422 with the
+/// cause, and a good world beside it is served.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_bomb_world_fails_alone() {
+async fn a_bomb_world_is_refused_when_posted() {
     let server = start(options(scratch("bomb"))).await;
     let species = r#"name: bomb\ngrammar: bomb.lsys\ngenerations: 22\n"#;
     let grammar = r#"axiom: F\nF -> FF\n"#;
-    let bomb = world(
-        server.address,
-        &format!(r#"{{"area": 100, "tile_size": 50, "group": 2, "budget_mb": 2, "species": [{{"file": "{species}", "grammar": "{grammar}"}}]}}"#),
-    )
-    .await;
-    let good = world(server.address, SMALL_WORLD).await;
     let (_, peak_before) = memory_mb();
     let mut c = Client::connect(server.address).await;
-    let failed = c.get(&format!("/worlds/{bomb}/tileset.json")).await;
+    let refused = c
+        .post(
+            "/worlds",
+            format!(r#"{{"area": 100, "tile_size": 50, "group": 2, "budget_mb": 2, "species": [{{"file": "{species}", "grammar": "{grammar}"}}]}}"#)
+                .as_bytes(),
+        )
+        .await;
     assert_eq!(
-        failed.status.as_u16(),
+        refused.status.as_u16(),
         422,
         "{}",
-        String::from_utf8_lossy(&failed.body)
+        String::from_utf8_lossy(&refused.body)
     );
+    let message = refused.json()["message"]
+        .as_str()
+        .unwrap_or_default()
+        .to_owned();
     assert!(
-        failed.json()["message"]
-            .as_str()
-            .unwrap_or_default()
-            .contains("pieces"),
-        "{}",
-        String::from_utf8_lossy(&failed.body)
+        message.contains("bomb") && message.contains("pieces"),
+        "{message}"
     );
+    let good = world(server.address, SMALL_WORLD).await;
     let served = c.get(&format!("/worlds/{good}/tileset.json")).await;
     assert_eq!(served.status.as_u16(), 200);
     let (_, peak_after) = memory_mb();
-    // The bomb's word is held, never its mesh: well under a gigabyte more at the peak.
+    // The bomb's word is held for a moment, never its mesh.
     assert!(
         peak_after - peak_before < 1024.0,
         "peak grew {peak_before} -> {peak_after} MB"

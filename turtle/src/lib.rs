@@ -51,7 +51,7 @@ mod tube;
 pub use error::TurtleError;
 pub use frame::Frame;
 pub use glam;
-pub use interpret::{InterpretStats, interpret};
+pub use interpret::{InterpretStats, check_stems, interpret};
 pub use mesh::{Material, Mesh, Vertex, Wind};
 pub use model_shapes::ModelShapes;
 pub use obj::write_obj;

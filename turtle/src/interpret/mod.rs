@@ -57,6 +57,34 @@ struct State {
     contour: u32,
 }
 
+/// The stems `word` would draw with `options` (its modules that draw), or
+/// [`TurtleError::TooManyPieces`] at the first past [`TurtleOptions::max_pieces`]: the cost
+/// of a tree known before any geometry is made, in the memory of its word alone.
+/// [`interpret`] checks it first.
+///
+/// ```
+/// use sylva_turtle::{check_stems, TurtleOptions};
+/// let word: sylva_lsys::Word = "F[+F]F[-F]f".parse().unwrap();
+/// assert_eq!(check_stems(&word, &TurtleOptions::default()), Ok(4));
+/// assert!(check_stems(&word, &TurtleOptions::default().with_max_pieces(3)).is_err());
+/// ```
+pub fn check_stems(word: &Word, options: &TurtleOptions) -> Result<u64, TurtleError> {
+    let table = options.symbols.resolve(word.alphabet());
+    let mut stems = 0u64;
+    for (index, module) in word.iter().enumerate() {
+        if table.get(module.id.index()).copied().flatten() == Some(Command::Draw) {
+            stems += 1;
+            if stems > options.max_pieces {
+                return Err(TurtleError::TooManyPieces {
+                    index,
+                    limit: options.max_pieces,
+                });
+            }
+        }
+    }
+    Ok(stems)
+}
+
 /// Interprets `word` with the turtle described by `options`, sending geometry to `sink`.
 ///
 /// ```
@@ -72,21 +100,8 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     options: &TurtleOptions,
     sink: &mut S,
 ) -> Result<InterpretStats, TurtleError> {
+    check_stems(word, options)?;
     let table = options.symbols.resolve(word.alphabet());
-    // The cost before the work: a word with more stems to draw than the budget is refused
-    // before any geometry is made, in the memory of its word alone.
-    let mut stems = 0u64;
-    for (index, module) in word.iter().enumerate() {
-        if table.get(module.id.index()).copied().flatten() == Some(Command::Draw) {
-            stems += 1;
-            if stems > options.max_pieces {
-                return Err(TurtleError::TooManyPieces {
-                    index,
-                    limit: options.max_pieces,
-                });
-            }
-        }
-    }
     let mut turtle = Turtle::new(options, sink);
     turtle.sink.begin();
     for (index, module) in word.iter().enumerate() {
