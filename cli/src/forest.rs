@@ -159,10 +159,7 @@ pub(crate) fn run(args: ForestArgs) -> Result<(), Failure> {
     if let Some(usd) = &args.usd {
         outputs.push(("--usd", usd.as_path()));
     }
-    crate::failure::distinct_outputs(&outputs)?;
-    for (_, path) in &outputs {
-        sylva::base::file::writable_destination(path)?;
-    }
+    crate::outputs::check_outputs(&outputs)?;
     // One file holds a region a desktop viewer opens; a larger model says what it took.
     let world = args.world.world(
         hidden,

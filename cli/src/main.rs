@@ -25,6 +25,7 @@ mod failure;
 mod forest;
 mod grammar;
 mod grow;
+mod outputs;
 mod pack;
 mod paint;
 // Plots and the server are features (off in the quick start's build, on in CI's and with

@@ -12,7 +12,7 @@ use sylva::forest::{Constraints, ForestBuilder, Rect, SitingReport};
 use sylva::terrain::Heightmap;
 use sylva::terrain::dem::{ElevationModel, ReadOptions, Window};
 use sylva::world::limits::{
-    DEFAULT_SIDE, MAX_BUDGET_MB, MAX_DENSITY, MAX_SIDE, MAX_SPECIES, MAX_TREES,
+    DEFAULT_SIDE, MAX_DENSITY, MAX_SIDE, MAX_SPECIES, MAX_TREES, check_budget_mb,
 };
 use sylva::world::{Fit, Ground, Progress, Project, Stage, WorldBuilder, WorldError};
 
@@ -112,16 +112,10 @@ pub(crate) struct BuiltWorld {
     pub(crate) siting: SitingReport,
 }
 
-/// `--budget-mb`'s bytes: an error outside 1 to [`MAX_BUDGET_MB`], the limit every front
-/// end checks.
+/// `--budget-mb`'s bytes: an error outside the range every front end checks
+/// ([`check_budget_mb`]).
 pub(crate) fn budget_bytes(mb: usize) -> Result<usize, Failure> {
-    // The limit every front end checks (the server's descriptions, the viewer, Python):
-    // 100,000 was accepted here and aborted at 6 GB.
-    if !(1..=MAX_BUDGET_MB as usize).contains(&mb) {
-        return Err(Failure::usage(format!(
-            "--budget-mb {mb}: expected 1 to {MAX_BUDGET_MB}"
-        )));
-    }
+    check_budget_mb(mb as u64).map_err(|e| Failure::usage(format!("--budget-mb {e}")))?;
     Ok(mb << 20)
 }
 

@@ -194,18 +194,23 @@ impl Species {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn check_cost(&self) -> Result<u64, ForestError> {
-        let word = self
-            .grammar
-            .derive(self.generations, 0)
-            .and_then(|w| self.grammar.interpretation(&w, 0))
-            .map_err(|source| ForestError::Derive {
-                species: self.name.clone(),
-                source,
-            })?;
+        let word = self.word(self.generations, 0)?;
         sylva_turtle::check_stems(&word, &self.turtle).map_err(|source| ForestError::Turtle {
             species: self.name.clone(),
             source,
         })
+    }
+
+    /// The word its turtle draws: derived at `generations` from `seed`, then its
+    /// interpretation rules applied.
+    fn word(&self, generations: u32, seed: u64) -> Result<sylva_lsys::Word, ForestError> {
+        self.grammar
+            .derive(generations, seed)
+            .and_then(|w| self.grammar.interpretation(&w, seed))
+            .map_err(|source| ForestError::Derive {
+                species: self.name.clone(),
+                source,
+            })
     }
 
     /// Derives its tree at `generations` from `seed` and has the turtle draw it into `sink`.
@@ -215,14 +220,7 @@ impl Species {
         seed: u64,
         sink: &mut impl sylva_turtle::GeometrySink,
     ) -> Result<(), ForestError> {
-        let word = self
-            .grammar
-            .derive(generations, seed)
-            .and_then(|w| self.grammar.interpretation(&w, seed))
-            .map_err(|source| ForestError::Derive {
-                species: self.name.clone(),
-                source,
-            })?;
+        let word = self.word(generations, seed)?;
         interpret(&word, &self.turtle, sink).map_err(|source| ForestError::Turtle {
             species: self.name.clone(),
             source,

@@ -16,7 +16,7 @@ use sylva::terrain::dem::Window;
 use sylva::terrain::glam::Vec2;
 use sylva::turtle::Vertex;
 use sylva::world::limits::{
-    DEFAULT_GROUP, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_BUDGET_MB, MAX_TREES,
+    DEFAULT_GROUP, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_TREES, check_budget_mb,
 };
 use sylva::world::{Ground, World, WorldBuilder};
 
@@ -81,10 +81,8 @@ impl Forest {
     ) -> PyResult<Forest> {
         let season = season.as_ref().map(day_of).transpose()?;
         // The limit every front end checks (world::limits), the server's and the CLI's.
-        if let Some(mb) = budget_mb.filter(|mb| !(1..=MAX_BUDGET_MB).contains(mb)) {
-            return Err(invalid(format!(
-                "budget_mb {mb}: expected 1 to {MAX_BUDGET_MB}"
-            )));
+        if let Some(Err(e)) = budget_mb.map(|mb| check_budget_mb(mb.into())) {
+            return Err(invalid(format!("budget_mb {e}")));
         }
         let crop = crop.map(|(column, row, width, height)| Window {
             column,

@@ -10,7 +10,7 @@ use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
 use sha2::{Digest, Sha256};
-use sylva::export::{Level, TileId, TileScheme, write_tile, write_tileset};
+use sylva::export::{ExportError, Level, TileId, TileScheme, write_tile, write_tileset};
 use sylva::forest::Rect;
 use sylva::terrain::glam::Vec2;
 
@@ -42,11 +42,7 @@ pub(crate) async fn create(
     // A world on generated ground knows its tiles now: a world this server would refuse to
     // cut into tiles (too many, or tiles wider than the world) is refused here, with what it
     // would cost and what to change, not accepted and then refused at every request.
-    if let TerrainDescription::Generated { .. } = description.terrain {
-        let region = Rect::new(Vec2::ZERO, Vec2::splat(description.area));
-        TileScheme::new(region, description.tile_size, description.group)
-            .map_err(|e| ApiError::unprocessable(e.to_string()))?;
-    }
+    scheme_of(&description).map_err(|e| ApiError::unprocessable(e.to_string()))?;
     let keeper = server.clone();
     let (id, notes) = tokio::task::spawn_blocking(move || {
         // A model's ground is made now, so a model that makes no world (too large without
@@ -155,13 +151,14 @@ fn etag(id: &WorldId, file: &str) -> String {
 
 /// The scheme of a world on generated terrain, known from its description alone (a world on
 /// an uploaded heightmap learns its side when built).
-fn scheme_of(description: &WorldDescription) -> Option<TileScheme> {
+/// `None` for such a world; the scheme's error for a description it cannot cut into tiles.
+fn scheme_of(description: &WorldDescription) -> Result<Option<TileScheme>, ExportError> {
     match description.terrain {
         TerrainDescription::Generated { .. } => {
             let region = Rect::new(Vec2::ZERO, Vec2::splat(description.area));
-            TileScheme::new(region, description.tile_size, description.group).ok()
+            TileScheme::new(region, description.tile_size, description.group).map(Some)
         }
-        TerrainDescription::Heightmap { .. } => None,
+        TerrainDescription::Heightmap { .. } => Ok(None),
     }
 }
 
@@ -199,7 +196,7 @@ async fn send_world_file(
     let description = tokio::task::spawn_blocking(move || reader.cache.description(&wanted))
         .await
         .map_err(|e| ApiError::internal(e.to_string()))??;
-    if let (WorldFile::Tile(t), Some(scheme)) = (file, scheme_of(&description)) {
+    if let (WorldFile::Tile(t), Some(scheme)) = (file, scheme_of(&description).ok().flatten()) {
         check_tile(&scheme, t)?;
     }
     let key = format!("{id}/{}", file.job());

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{Client, SMALL_WORLD, options, scratch, start, world};
+use common::{Client, SMALL_WORLD, inline_species_world, options, scratch, start, world};
 use hyper::{Method, StatusCode};
 use sylva::world::limits::MAX_DESCRIPTION_BYTES;
 use sylva_server::WorldDescription;
@@ -397,11 +397,7 @@ async fn a_world_of_an_inline_species_with_its_grammar() {
     let server = start(options(scratch("inline"))).await;
     let species = r#"name: bush\ngrammar: bush.lsys\ngenerations: 4\nleaves: A\n"#;
     let grammar = r#"axiom: A\nA -> F[+A][-A]F[&A]A\n"#;
-    let id = world(
-        server.address,
-        &format!(r#"{{"area": 100, "tile_size": 50, "group": 2, "budget_mb": 2, "species": [{{"file": "{species}", "grammar": "{grammar}"}}]}}"#),
-    )
-    .await;
+    let id = world(server.address, &inline_species_world(species, grammar)).await;
     let mut c = Client::connect(server.address).await;
     let tile = c.get(&format!("/worlds/{id}/tiles/f_1_1.glb")).await;
     assert_eq!(

@@ -10,7 +10,10 @@ mod common;
 
 use std::time::Duration;
 
-use common::{Client, SMALL_WORLD, memory_mb, open_files, options, scratch, start, world};
+use common::{
+    Client, SMALL_WORLD, inline_species_world, memory_mb, open_files, options, scratch, start,
+    world,
+};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
 /// Sends `GET path`, reads at most `keep` bytes of the answer, and hangs up.
@@ -221,11 +224,7 @@ async fn a_bomb_world_is_refused_when_posted() {
     let (_, peak_before) = memory_mb();
     let mut c = Client::connect(server.address).await;
     let refused = c
-        .post(
-            "/worlds",
-            format!(r#"{{"area": 100, "tile_size": 50, "group": 2, "budget_mb": 2, "species": [{{"file": "{species}", "grammar": "{grammar}"}}]}}"#)
-                .as_bytes(),
-        )
+        .post("/worlds", inline_species_world(species, grammar).as_bytes())
         .await;
     assert_eq!(
         refused.status.as_u16(),

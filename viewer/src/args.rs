@@ -2,7 +2,7 @@
 
 use sylva::forest::Constraints;
 use sylva::terrain::dem::Window;
-use sylva::world::limits::{MAX_BUDGET_MB, MAX_SIDE, MIN_SIDE};
+use sylva::world::limits::{MAX_SIDE, MIN_SIDE, check_budget_mb};
 
 use crate::error::ViewerError;
 use crate::scene::Camera;
@@ -259,11 +259,8 @@ pub(crate) fn parse() -> Result<Args, String> {
             "--area {side}: expected {MIN_SIDE} to {MAX_SIDE} metres"
         ));
     }
-    if budget_mb.is_some_and(|mb| !(1..=MAX_BUDGET_MB as usize).contains(&mb)) {
-        return Err(format!(
-            "--budget-mb {}: expected 1 to {MAX_BUDGET_MB}",
-            budget_mb.unwrap_or_default()
-        ));
+    if let Some(Err(e)) = budget_mb.map(|mb| check_budget_mb(mb as u64)) {
+        return Err(format!("--budget-mb {e}"));
     }
     if spacing.is_some_and(|s: f32| !(s > 0.0 && s <= 100_000.0)) {
         return Err("--spacing: expected metres between samples, above 0".to_owned());

@@ -11,9 +11,9 @@ use sylva_forest::Species;
 use crate::error::WorldError;
 use crate::id::WorldId;
 use crate::limits::{
-    DEFAULT_GROUP, DEFAULT_ORIGIN, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_BUDGET_MB, MAX_DENSITY,
+    DEFAULT_GROUP, DEFAULT_ORIGIN, DEFAULT_SIDE, DEFAULT_TILE_SIZE, MAX_DENSITY,
     MAX_DESCRIPTION_BYTES, MAX_EROSION, MAX_GROUP, MAX_HEIGHT_RANGE, MAX_SIDE, MAX_SPACING,
-    MAX_SPECIES, MAX_YEARS, MIN_SIDE, TILE_SIZE_RANGE,
+    MAX_SPECIES, MAX_YEARS, MIN_SIDE, TILE_SIZE_RANGE, check_budget_mb,
 };
 use crate::presets::{self, DEFAULT_RELIEF, DEFAULT_ROUGHNESS, DEFAULT_SMOOTHING};
 
@@ -247,11 +247,8 @@ impl WorldDescription {
                 "density {d}: expected 0 < trees per hectare <= {MAX_DENSITY}"
             ));
         }
-        if let Some(mb) = self
-            .budget_mb
-            .filter(|mb| !(1..=MAX_BUDGET_MB).contains(mb))
-        {
-            return bad(format!("budget_mb {mb}: expected 1 to {MAX_BUDGET_MB}"));
+        if let Some(Err(e)) = self.budget_mb.map(|mb| check_budget_mb(mb.into())) {
+            return bad(format!("budget_mb {e}"));
         }
         if let Some(year) = self.year.filter(|&y| y > MAX_YEARS) {
             return bad(format!("year {year}: expected 0 to {MAX_YEARS}"));

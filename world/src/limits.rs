@@ -47,6 +47,23 @@ pub const CANOPY_TREES_PER_HECTARE: f32 = 290.0;
 /// Largest instance-cache budget a description may ask for, MiB.
 pub const MAX_BUDGET_MB: u32 = 128;
 
+/// Checks an instance-cache budget in MiB against [`MAX_BUDGET_MB`], the one check every
+/// front end makes (the CLI took 100,000 and aborted at 6 GB); the error is the value and
+/// the range, for the caller to put its setting's name before.
+///
+/// ```
+/// use sylva_world::limits::check_budget_mb;
+/// assert!(check_budget_mb(32).is_ok());
+/// assert_eq!(check_budget_mb(0).unwrap_err(), "0: expected 1 to 128");
+/// ```
+pub fn check_budget_mb(mb: u64) -> Result<(), String> {
+    if (1..=u64::from(MAX_BUDGET_MB)).contains(&mb) {
+        Ok(())
+    } else {
+        Err(format!("{mb}: expected 1 to {MAX_BUDGET_MB}"))
+    }
+}
+
 /// Most species a world may have.
 pub const MAX_SPECIES: usize = 16;
 /// Most bytes of a species file.

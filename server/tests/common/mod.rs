@@ -172,6 +172,14 @@ pub(crate) async fn world(address: SocketAddr, description: &str) -> String {
     a.json()["id"].as_str().unwrap().to_owned()
 }
 
+/// A 100 m world of one species given inline: its species file's text and its grammar's,
+/// each with `\n` escaped as JSON wants.
+pub(crate) fn inline_species_world(species: &str, grammar: &str) -> String {
+    format!(
+        r#"{{"area": 100, "tile_size": 50, "group": 2, "budget_mb": 2, "species": [{{"file": "{species}", "grammar": "{grammar}"}}]}}"#
+    )
+}
+
 /// Options for a test server over `cache`.
 pub(crate) fn options(cache: PathBuf) -> ServerOptions {
     ServerOptions::default()

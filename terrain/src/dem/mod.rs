@@ -195,10 +195,7 @@ impl ElevationModel {
                 ),
                 limit: format!("{MAX_FILE_BYTES} bytes"),
             },
-            TextFileError::Io(e) => TerrainError::Io(std::sync::Arc::new(std::io::Error::new(
-                e.kind(),
-                e.source.to_string(),
-            ))),
+            TextFileError::Io(e) => TerrainError::Io(e.source),
             other => TerrainError::Io(std::sync::Arc::new(std::io::Error::other(
                 other.to_string(),
             ))),

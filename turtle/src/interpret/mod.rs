@@ -69,16 +69,22 @@ struct State {
 /// assert!(check_stems(&word, &TurtleOptions::default().with_max_pieces(3)).is_err());
 /// ```
 pub fn check_stems(word: &Word, options: &TurtleOptions) -> Result<u64, TurtleError> {
-    let table = options.symbols.resolve(word.alphabet());
+    count_stems(
+        word,
+        &options.symbols.resolve(word.alphabet()),
+        options.max_pieces,
+    )
+}
+
+/// [`check_stems`] with the word's symbols already resolved (`interpret` resolves them once
+/// for both).
+fn count_stems(word: &Word, table: &[Option<Command>], limit: u64) -> Result<u64, TurtleError> {
     let mut stems = 0u64;
     for (index, module) in word.iter().enumerate() {
         if table.get(module.id.index()).copied().flatten() == Some(Command::Draw) {
             stems += 1;
-            if stems > options.max_pieces {
-                return Err(TurtleError::TooManyPieces {
-                    index,
-                    limit: options.max_pieces,
-                });
+            if stems > limit {
+                return Err(TurtleError::TooManyPieces { index, limit });
             }
         }
     }
@@ -100,8 +106,8 @@ pub fn interpret<S: GeometrySink + ?Sized>(
     options: &TurtleOptions,
     sink: &mut S,
 ) -> Result<InterpretStats, TurtleError> {
-    check_stems(word, options)?;
     let table = options.symbols.resolve(word.alphabet());
+    count_stems(word, &table, options.max_pieces)?;
     let mut turtle = Turtle::new(options, sink);
     turtle.sink.begin();
     for (index, module) in word.iter().enumerate() {
