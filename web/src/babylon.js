@@ -23,7 +23,7 @@ import '@babylonjs/core/Meshes/thinInstanceMesh.js';
 import { Matrix, Quaternion, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 import { Camera } from '@babylonjs/core/Cameras/camera.js';
 import { DitheredTileFadeMaterialPlugin } from '@babylonjs/core/Materials/ditheredTileFadeMaterialPlugin.js';
-import { Bin, binForest, boxOf, localPlanes, meshSphere, placementSpheres, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
+import { Bin, binForest, boxOf, cellGroup, drawPlan, localPlanes, meshSphere, placementSpheres, switchScale, treeBases, WIND_TREE_REACH } from './levels.js';
 
 /** The name sylva's loader extension registers under (no file names it). */
 export const SYLVA_LEVELS = 'sylva_levels';
@@ -94,7 +94,6 @@ class SylvaLevelsExtension {
     const { loader } = this;
     const nodes = loader.gltf.nodes || [];
     const root = loader.rootBabylonMesh;
-    const sources = new Map();
     const templates = new Map();
     const template = (def) => {
       const copy = this.copies.get(def.index);
@@ -124,7 +123,7 @@ class SylvaLevelsExtension {
       const protos = [];
       for (const child of def.children || []) {
         const childDef = nodes[child];
-        const proto = await this.placements(childDef, sources, false);
+        const proto = await this.placements(childDef, false);
         if (!proto) continue;
         proto.meshes = new Array(meshLevels).fill(null);
         proto.meshes[0] = template(childDef);
@@ -141,30 +140,22 @@ class SylvaLevelsExtension {
       let impostor = null;
       if (levels.impostor != null) {
         const impostorDef = nodes[levels.impostor];
-        impostor = await this.placements(impostorDef, sources, true);
+        impostor = await this.placements(impostorDef, true);
         if (impostor) impostor.meshes = [template(impostorDef)];
       }
-      const all = impostor ? [...protos, impostor] : protos;
-      const bases = boxOf(Float32Array.from(all.flatMap((p) => [...p.basesBox.min, ...p.basesBox.max])), 2 * all.length);
-      const translations = boxOf(Float32Array.from(all.flatMap((p) => [...p.box.min, ...p.box.max])), 2 * all.length);
-      const margin = treeMargin(levels);
-      const min = translations.min.map((v, c) => v - margin[c]);
-      const max = translations.max.map((v, c) => v + margin[c]);
       // The cell's own nodes now only hold data; the forest draws them.
       if (def._babylonTransformNode) def._babylonTransformNode.setEnabled(false);
-      out.push({ levels, meshLevels, protos, impostor, bases, box: { min, max } });
+      out.push(cellGroup({ levels, meshLevels, protos, impostor }));
     }
     root.metadata = { ...(root.metadata || {}), sylva: { groups: out, templates } };
   }
 
-  // An instanced node's placements (shared by the levels that place the same trees): its
-  // matrices and colours, and each placement's tree base (the placement itself for an
-  // impostor).
-  async placements(def, sources, atBase) {
+  // An instanced node's placements (the coarser levels place the same ones through the same
+  // accessors): its matrices and colours, and each placement's tree base (the placement
+  // itself for an impostor).
+  async placements(def, atBase) {
     const inst = def.extensions && def.extensions[INSTANCING];
     if (!inst) return null;
-    const key = `${inst.attributes.TRANSLATION} ${atBase}`;
-    if (sources.has(key)) return { ...sources.get(key) };
     const { loader } = this;
     const read = (name) => {
       const index = inst.attributes[name];
@@ -190,7 +181,7 @@ class SylvaLevelsExtension {
     const bases = treeBases(n, (i, c) => translation[3 * i + c], wind && ((i, c) => wind[4 * i + c]), reach);
     const colorStride = color ? color.length / n : 0;
     const { center, radius } = meshSphere(loader.gltf, def.mesh);
-    const source = {
+    return {
       translation: inst.attributes.TRANSLATION,
       n,
       matrices,
@@ -201,8 +192,6 @@ class SylvaLevelsExtension {
       basesBox: boxOf(bases, n),
       box: boxOf(translation, n),
     };
-    sources.set(key, source);
-    return { ...source };
   }
 }
 
@@ -319,19 +308,7 @@ export class SylvaForest {
     this.groups = data.groups;
     this.screenHeight = options.screenHeight || 1080;
     this.pixelError = options.pixelError || null;
-    const capacity = new Map();
-    const colored = new Set();
-    const cards = new Set();
-    for (const g of this.groups) {
-      if (g.impostor) cards.add(g.impostor.meshes[0]);
-      for (const source of g.impostor ? [...g.protos, g.impostor] : g.protos) {
-        for (const key of source.meshes) {
-          if (key === null) continue;
-          capacity.set(key, (capacity.get(key) || 0) + source.n);
-          if (source.colors) colored.add(key);
-        }
-      }
-    }
+    const { capacity, colored, cards } = drawPlan(this.groups);
     this.draws = new Map();
     for (const [key, n] of capacity) this.draws.set(key, new Draw(data.templates.get(key) || [], n, colored.has(key), cards.has(key), root, scene));
     this.last = null;

@@ -21,8 +21,8 @@
 //   scene.add(gltf.scene, forest);
 //   renderer.setAnimationLoop(() => { forest.update(camera); renderer.render(scene, camera); });
 
-import { Box3, BufferGeometry, DoubleSide, Frustum, ShaderChunk, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
-import { Bin, binForest, boxOf, localPlanes, meshSphere, placementSpheres, switchScale, treeBases, treeMargin, WIND_TREE_REACH } from './levels.js';
+import { BufferGeometry, DoubleSide, Frustum, ShaderChunk, InstancedBufferAttribute, InstancedMesh, Matrix4, Object3D, Vector3 } from 'three';
+import { Bin, binForest, boxOf, cellGroup, drawPlan, localPlanes, meshSphere, placementSpheres, switchScale, treeBases, WIND_TREE_REACH } from './levels.js';
 
 export { NONE, treeLevels } from './levels.js';
 
@@ -97,15 +97,7 @@ export class SylvaLevels {
       impostor = await this.placements(id, true);
       if (impostor) impostor.meshes = [this.template(json.nodes[id].mesh, impostor.object)];
     }
-    // The box of the trees' bases, which levels are picked by, and of their placements
-    // grown by a tree's reach, which the frustum culls.
-    const all = impostor ? [...protos, impostor] : protos;
-    const bases = boxOf(Float32Array.from(all.flatMap((p) => [...p.basesBox.min, ...p.basesBox.max])), 2 * all.length);
-    const placed = new Box3();
-    for (const source of all) placed.union(source.box);
-    const margin = treeMargin(levels);
-    const box = { min: placed.min.toArray().map((v, c) => v - margin[c]), max: placed.max.toArray().map((v, c) => v + margin[c]) };
-    return { index, full, levels, meshLevels, protos, impostor, bases, box };
+    return cellGroup({ index, full, levels, meshLevels, protos, impostor });
   }
 
   // Names a mesh by its index, keeping the node it was loaded as.
@@ -130,10 +122,9 @@ export class SylvaLevels {
       : null;
     const reach = (def.extras && def.extras.sylva_wind_tree_reach) || WIND_TREE_REACH;
     const n = translation.count;
-    const bases = treeBases(n, (i, c) => translation.getComponent(i, c), wind && ((i, c) => wind.getComponent(i, c)), reach);
-    const box = new Box3();
-    const p = new Vector3();
-    for (let i = 0; i < n; i++) box.expandByPoint(p.fromBufferAttribute(translation, i));
+    const at = (i, c) => translation.getComponent(i, c);
+    const bases = treeBases(n, at, wind && ((i, c) => wind.getComponent(i, c)), reach);
+    const { center, radius } = meshSphere(parser.json, def.mesh);
     return {
       object,
       translation: inst.attributes.TRANSLATION,
@@ -142,12 +133,9 @@ export class SylvaLevels {
       colors: mesh.instanceColor ? mesh.instanceColor.array : null,
       colorStride: 3,
       bases,
-      spheres: (() => {
-        const { center, radius } = meshSphere(parser.json, def.mesh);
-        return placementSpheres(mesh.instanceMatrix.array, n, center, radius);
-      })(),
+      spheres: placementSpheres(mesh.instanceMatrix.array, n, center, radius),
       basesBox: boxOf(bases, n),
-      box,
+      box: boxOf(treeBases(n, at, null), n),
     };
   }
 }
@@ -239,8 +227,7 @@ class Draw {
     });
     const [first] = this.meshes;
     this.bin = new Bin(capacity, first ? first.instanceMatrix.array : new Float32Array(0),
-      first && first.instanceColor ? first.instanceColor.array : null, 3);
-    this.bin.fades = fades;
+      first && first.instanceColor ? first.instanceColor.array : null, 3, fades);
   }
 
   // Hands this frame's placements to every primitive's mesh.
@@ -287,20 +274,13 @@ export class SylvaForest extends Object3D {
     this.groups = data.groups;
     this.screenHeight = options.screenHeight || 1080;
     this.pixelError = options.pixelError || null;
-    // Every prototype at every level, as one draw for the forest.
-    const capacity = new Map();
-    const cards = new Set();
+    // The file's own cell nodes now only hold data.
     for (const g of this.groups) {
-      for (const source of g.impostor ? [...g.protos, g.impostor] : g.protos) {
-        for (const key of source.meshes) {
-          if (key !== null) capacity.set(key, (capacity.get(key) || 0) + source.n);
-        }
-      }
-      if (g.impostor) cards.add(g.impostor.meshes[0]);
-      // The file's own cell nodes now only hold data.
       const cell = g.full.parent;
       if (cell && cell.parent) cell.parent.remove(cell);
     }
+    // Every prototype at every level, as one draw for the forest.
+    const { capacity, cards } = drawPlan(this.groups);
     this.draws = new Map();
     for (const [key, n] of capacity) {
       const draw = new Draw(data.templates.get(key), n, cards.has(key));

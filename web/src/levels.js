@@ -4,17 +4,20 @@
 // bins; the rule that picks a tree's level lives here once.
 //
 // A forest's groups are what the engine's loader read from the file, one per cell and
-// variant:
+// variant, made by `cellGroup`:
 //
 //   { levels,      // the node's extras.sylva_levels: from, reach, fade, pixel_error, pixels_per_radian
 //     meshLevels,  // mesh levels: 1 + the MSFT_lod ids
 //     protos,      // sources, one per prototype of the full level
 //     impostor,    // the source of the impostor's cards, or null
-//     bases }      // { min, max } of the trees' bases, in the file's coordinates
+//     sources,     // the prototypes' and the impostor's sources together
+//     bases,       // { min, max } of the trees' bases, in the file's coordinates
+//     box }        // { min, max } of the trees drawn, for the frustum
 //
 // and a source is the placements of one instanced node: `n`, `matrices` (16 floats each,
 // column-major, as glTF and both engines lay them out), `colors` (or null), `colorStride`,
-// `bases` (each placement's tree base, 3 floats), `spheres` (each placement's bounds, from
+// `bases` (each placement's tree base, 3 floats), `basesBox` and `box` (the boxes of the
+// bases and of the translations), `spheres` (each placement's bounds, from
 // `placementSpheres`) and `meshes` (per level, a key naming the mesh the engine draws it
 // with, or null).
 
@@ -50,12 +53,19 @@ export function switchScale(levels, fov, screenHeight, pixelError) {
  * and NONE, or in the band past a switch distance the level before, fading out (fade f > 0:
  * drawn where the screen's dither is at least f), and the level after, fading in (-f: drawn
  * where it is below f). The two cover complementary pixels, so a silhouette never changes
- * at once.
+ * at once. `out`, when given, is filled and returned (the per-frame loop allocates none).
  */
-export function treeLevels(levels, d, s) {
+export function treeLevels(levels, d, s, out = [NONE, 0, NONE, 0]) {
   const { from, reach } = levels;
   const fade = levels.fade || 0;
-  if (reach != null && d >= reach * s) return [NONE, 0, NONE, 0];
+  const answer = (first, firstFade, second, secondFade) => {
+    out[0] = first;
+    out[1] = firstFade;
+    out[2] = second;
+    out[3] = secondFade;
+    return out;
+  };
+  if (reach != null && d >= reach * s) return answer(NONE, 0, NONE, 0);
   let level = 0;
   for (let k = 0; k < from.length; k++) if (d >= from[k] * s) level = k + 1;
   if (level > 0 && fade > 0) {
@@ -64,10 +74,10 @@ export function treeLevels(levels, d, s) {
       let before = 0;
       for (let k = 0; k < from.length; k++) if (from[k] * s < at) before = k + 1;
       const f = Math.min(1, Math.max(1e-3, (d - at) / (at * fade)));
-      return [before, f, level, -f];
+      return answer(before, f, level, -f);
     }
   }
-  return [level, 0, NONE, 0];
+  return answer(level, 0, NONE, 0);
 }
 
 /**
@@ -177,20 +187,64 @@ export function placementSpheres(matrices, n, center, radius) {
 }
 
 /**
+ * A group from what an engine's loader read: its `levels`, mesh levels, prototypes' sources
+ * and impostor's source (or null), with `sources`, `bases` and `box` derived from them, and
+ * `extra` (the engine's own fields) kept.
+ */
+export function cellGroup({ levels, meshLevels, protos, impostor, ...extra }) {
+  const sources = impostor ? [...protos, impostor] : protos;
+  const union = (boxOfSource) => boxOf(Float32Array.from(sources.flatMap((s) => [...boxOfSource(s).min, ...boxOfSource(s).max])), 2 * sources.length);
+  const placed = union((s) => s.box);
+  const margin = treeMargin(levels);
+  return {
+    ...extra,
+    levels,
+    meshLevels,
+    protos,
+    impostor,
+    sources,
+    bases: union((s) => s.basesBox),
+    box: { min: placed.min.map((v, c) => v - margin[c]), max: placed.max.map((v, c) => v + margin[c]) },
+  };
+}
+
+/**
+ * What a forest draws: per mesh key, the placements it may hold at once (every source that
+ * draws with it), whether any of them has colours, and whether it is an impostor's cards.
+ */
+export function drawPlan(groups) {
+  const capacity = new Map();
+  const colored = new Set();
+  const cards = new Set();
+  for (const g of groups) {
+    if (g.impostor) cards.add(g.impostor.meshes[0]);
+    for (const source of g.sources) {
+      for (const key of source.meshes) {
+        if (key === null) continue;
+        capacity.set(key, (capacity.get(key) || 0) + source.n);
+        if (source.colors) colored.add(key);
+      }
+    }
+  }
+  return { capacity, colored, cards };
+}
+
+/**
  * The placements of one draw (a prototype at one level) for one frame: matrices, colours
  * and fades, copied in from the sources' placements. The engine uploads `count` of each.
  */
 export class Bin {
   /**
    * @param matrices 16 floats per placement of capacity (the engine's own instance buffer,
-   *   so nothing is copied twice); `colors` likewise `colorStride` floats each, or null.
+   *   so nothing is copied twice); `colors` likewise `colorStride` floats each, or null;
+   *   `fades` one float each (the engine's own, or a new array).
    */
-  constructor(capacity, matrices, colors, colorStride) {
+  constructor(capacity, matrices, colors, colorStride, fades = new Float32Array(capacity)) {
     this.capacity = capacity;
     this.matrices = matrices;
     this.colors = colors;
     this.colorStride = colorStride;
-    this.fades = new Float32Array(capacity);
+    this.fades = fades;
     this.count = 0;
   }
 
@@ -238,6 +292,7 @@ export class Bin {
 export function binForest(groups, eye, planes, scaleOf, binOf) {
   const stats = { cells: 0, placements: [], impostors: 0 };
   const [ex, ey, ez] = eye;
+  const picked = [NONE, 0, NONE, 0];
   for (const g of groups) {
     const seen = boxAgainst(planes, g.box);
     if (seen === OUTSIDE) continue;
@@ -256,8 +311,7 @@ export function binForest(groups, eye, planes, scaleOf, binOf) {
     const lo = treeLevels(g.levels, Math.sqrt(near), s);
     const hi = treeLevels(g.levels, Math.sqrt(far), s);
     const whole = seen === INSIDE && lo[0] === hi[0] && lo[2] === NONE && hi[2] === NONE ? lo[0] : null;
-    const sources = g.impostor ? [...g.protos, g.impostor] : g.protos;
-    for (const source of sources) {
+    for (const source of g.sources) {
       const impostor = source === g.impostor;
       const binAt = (level) => {
         if (level === NONE) return null;
@@ -282,12 +336,12 @@ export function binForest(groups, eye, planes, scaleOf, binOf) {
       for (let i = 0; i < source.n; i++) {
         if (seen === CROSSING && !sphereInside(planes, o[4 * i], o[4 * i + 1], o[4 * i + 2], o[4 * i + 3])) continue;
         const dx = b[3 * i] - ex, dy = b[3 * i + 1] - ey, dz = b[3 * i + 2] - ez;
-        const [first, firstFade, second, secondFade] = treeLevels(g.levels, Math.sqrt(dx * dx + dy * dy + dz * dz), s);
-        for (const [level, fade] of [[first, firstFade], [second, secondFade]]) {
-          const bin = binAt(level);
+        treeLevels(g.levels, Math.sqrt(dx * dx + dy * dy + dz * dz), s, picked);
+        for (let k = 0; k < 4; k += 2) {
+          const bin = binAt(picked[k]);
           if (!bin) continue;
-          bin.add(source, i, fade);
-          counted(level, 1);
+          bin.add(source, i, picked[k + 1]);
+          counted(picked[k], 1);
         }
       }
     }

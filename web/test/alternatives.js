@@ -33,8 +33,7 @@ function detachCells(groups) {
 function chains(groups) {
   const byKey = new Map();
   for (const g of groups) {
-    const all = g.impostor ? [...g.protos, g.impostor] : g.protos;
-    for (const source of all) {
+    for (const source of g.sources) {
       const impostor = source === g.impostor;
       const key = `${impostor ? 'impostor' : 'mesh'} ${source.meshes[0]}`;
       if (!byKey.has(key)) byKey.set(key, { impostor, meshes: source.meshes, levels: g.levels, meshLevels: g.meshLevels, sources: [] });
