@@ -20,7 +20,10 @@
 //! Hashes are integer arithmetic only (wrapping multiplies, shifts, xors), so they give the
 //! same bits on every platform.
 
+mod destination;
 pub mod file;
+mod file_error;
 pub mod hash;
 pub mod range;
+mod scratch;
 pub mod text_file;

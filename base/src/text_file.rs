@@ -6,7 +6,8 @@
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
-use crate::file::{FileError, not_regular};
+use crate::destination::not_regular;
+use crate::file_error::FileError;
 
 /// Why a text file could not be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
